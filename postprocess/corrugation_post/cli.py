@@ -1,0 +1,90 @@
+"""Command line: ``python -m corrugation_post {figures,compare,check}``.
+
+Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
+2 unusable input (missing file, not a run file, passage not stored) or bad usage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+import matplotlib
+
+EXIT_OK, EXIT_PARTIAL, EXIT_BAD_INPUT = 0, 1, 2
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python -m corrugation_post",
+        description="Figures and comparisons from corrugation run files (HDF5).",
+    )
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    fig = sub.add_parser("figures", help="wear map, centre-line wear, loads, traction snapshots")
+    fig.add_argument("run", help="run file (.h5)")
+    fig.add_argument("--out", required=True, help="output folder (created if needed)")
+    fig.add_argument("--pass", dest="pass_index", type=int, default=None,
+                     help="stored passage index (default: the last stored)")
+
+    cmp_ = sub.add_parser("compare", help="overlay several runs, table of relative differences")
+    cmp_.add_argument("runs", nargs="+", help="run files; the first is the reference")
+    cmp_.add_argument("--out", required=True, help="output folder (created if needed)")
+    cmp_.add_argument("--pass", dest="pass_index", type=int, default=None,
+                      help="stored passage index (default: the last one stored in every run)")
+
+    chk = sub.add_parser("check", help="check a run file against the layout contract")
+    chk.add_argument("run", help="run file (.h5)")
+    return parser
+
+
+def _warn(problems) -> None:
+    for msg in problems:
+        print(f"warning: {msg}", file=sys.stderr)
+
+
+def _figures(args) -> int:
+    from .figures import make_figures
+
+    paths, problems = make_figures(args.run, args.out, args.pass_index)
+    for p in paths:
+        print(p)
+    _warn(problems)
+    return EXIT_PARTIAL if problems else EXIT_OK
+
+
+def _compare(args) -> int:
+    from .compare import compare_runs, format_table
+
+    if len(args.runs) < 2:
+        print("note: only one run given; relative differences are all zero", file=sys.stderr)
+    rows, paths, problems = compare_runs(args.runs, args.out, args.pass_index)
+    print(format_table(rows))
+    for p in paths:
+        print(p)
+    _warn(problems)
+    return EXIT_PARTIAL if problems else EXIT_OK
+
+
+def _check(args) -> int:
+    from .schema import check_file
+
+    problems = check_file(args.run)
+    for msg in problems:
+        print(msg)
+    print(f"{args.run}: {'OK' if not problems else f'{len(problems)} problem(s)'}")
+    return EXIT_PARTIAL if problems else EXIT_OK
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run the command line; returns the exit status."""
+    from .io import RunFileError
+
+    matplotlib.use("Agg")
+    args = _parser().parse_args(argv)
+    handler = {"figures": _figures, "compare": _compare, "check": _check}[args.command]
+    try:
+        return handler(args)
+    except RunFileError as err:
+        print(f"error: {err}", file=sys.stderr)
+        return EXIT_BAD_INPUT

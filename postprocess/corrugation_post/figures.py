@@ -1,0 +1,283 @@
+"""Figures of one run: wear maps (paper Figs. 6-8), loads, traction snapshots (Figs. 3-4).
+
+Every figure function takes a ``Run``, a stored passage index and an output
+folder, writes one PNG and returns its path.  Figures are built on
+``matplotlib.figure.Figure`` objects (no pyplot, no display needed).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.ticker import MaxNLocator
+from matplotlib.tri import Triangulation
+
+from .io import PASSES, RAIL, Run, RunFileError
+from .units import values_in
+
+DPI = 150
+
+
+def _title(run: Run, what: str, pass_index: int, note: str = "") -> str:
+    return f"{what}, stored passage {pass_index}{note}\ncontact model: {run.contact_model}"
+
+
+def _save(fig: Figure, out_dir: Path, name: str) -> Path:
+    out_dir.mkdir(parents=True, exist_ok=True)
+    path = out_dir / name
+    fig.savefig(path, dpi=DPI)
+    return path
+
+
+def _traffic_note(rail, pass_index: int) -> str:
+    if "traffic" not in rail:
+        return ""
+    return f" (cumulative traffic {int(rail['traffic'].sel({'pass': pass_index}).values)})"
+
+
+def wear_map(run: Run, pass_index: int, out_dir: Path) -> Path:
+    """Wear depth of one passage over the rail stretch, colour in micrometres."""
+    with run.rail() as rail:
+        wear = rail["wear"].sel({"pass": pass_index}).transpose("y", "x").load()
+        x, y = values_in(rail["x"], "mm"), values_in(rail["y"], "mm")
+        note = _traffic_note(rail, pass_index)
+    fig = Figure(figsize=(9, 4), layout="constrained")
+    ax = fig.add_subplot()
+    mesh = ax.pcolormesh(x, y, values_in(wear, "um"), shading="auto", cmap="viridis")
+    fig.colorbar(mesh, ax=ax, label="wear depth (µm)")
+    ax.set(xlabel="x along rail (mm)", ylabel="y lateral (mm)",
+           title=_title(run, "Wear depth", pass_index, note))
+    return _save(fig, out_dir, "wear_map.png")
+
+
+def wear_centreline(run: Run, pass_index: int, out_dir: Path) -> Path:
+    """Wear depth along the grid row nearest y = 0, and its lateral maximum, vs x."""
+    with run.rail() as rail:
+        wear = rail["wear"].sel({"pass": pass_index}).load()
+        x = values_in(rail["x"], "mm")
+        row = wear.sel(y=0.0, method="nearest")
+        y0 = float(values_in(row["y"], "mm"))
+        note = _traffic_note(rail, pass_index)
+    fig = Figure(figsize=(9, 4), layout="constrained")
+    ax = fig.add_subplot()
+    ax.plot(x, values_in(row, "um"), label=f"centre line (y = {y0:.2f} mm)")
+    ax.plot(x, values_in(wear.max("y"), "um"), "--", label="maximum over y")
+    ax.set(xlabel="x along rail (mm)", ylabel="wear depth (µm)",
+           title=_title(run, "Wear depth", pass_index, note))
+    ax.grid(alpha=0.3)
+    ax.legend()
+    return _save(fig, out_dir, "wear_centreline.png")
+
+
+def contact_mask(ct) -> np.ndarray:
+    """Boolean mask of steps with the wheel in contact."""
+    if "in_contact" in ct:
+        return np.asarray(ct["in_contact"].values) != 0
+    return (np.asarray(ct["normal_force"].values) > 0) & (np.asarray(ct["max_pressure"].values) > 0)
+
+
+def _shade_loss_of_contact(ax, xc: np.ndarray, contact: np.ndarray) -> None:
+    """Grey spans where the wheel is out of contact."""
+    if contact.all():
+        return
+    edges = np.flatnonzero(np.diff(np.r_[0, (~contact).astype(int), 0]))
+    for start, stop in zip(edges[::2], edges[1::2]):
+        ax.axvspan(xc[start], xc[stop - 1], color="0.85", lw=0)
+
+
+def _creepage_sign_note(cx: np.ndarray) -> str:
+    if np.all(cx <= 0):
+        return "creepage_x ≤ 0 at every step (|·| plotted)"
+    if np.all(cx >= 0):
+        return "creepage_x ≥ 0 at every step (|·| plotted)"
+    return f"creepage_x changes sign: > 0 at {np.count_nonzero(cx > 0)} of {cx.size} steps (▲)"
+
+
+def loads(run: Run, pass_index: int, out_dir: Path) -> Path:
+    """Stacked panels vs patch centre: forces, |creepage_x|, semi-axes (+ optional extras)."""
+    with run.contact(pass_index) as ct:
+        ct = ct.load()
+    xc = values_in(ct["x_c"], "mm")
+    contact = contact_mask(ct)
+    extra = [v for v in ("newton_iterations",) if v in ct]
+    fig = Figure(figsize=(8, 2.0 * (4 + len(extra)) + 0.8), layout="constrained")
+    axes = fig.subplots(4 + len(extra), 1, sharex=True)
+    axes[0].plot(xc, values_in(ct["normal_force"], "kN"))
+    axes[0].set_ylabel("normal force (kN)")
+    axes[1].plot(xc, values_in(ct["longitudinal_force"], "kN"))
+    axes[1].set_ylabel("longitudinal\nforce (kN)")
+    cx = values_in(ct["creepage_x"], "1")
+    axes[2].plot(xc, np.abs(cx), label=_creepage_sign_note(cx))
+    if np.any(cx > 0) and np.any(cx < 0):
+        axes[2].plot(xc[cx > 0], np.abs(cx[cx > 0]), "^", ms=3, color="C3")
+    axes[2].set_ylabel("|creepage_x|")
+    axes[2].legend(fontsize=8)
+    axes[3].plot(xc, values_in(ct["semi_axis_a"], "mm"), label="a (along rail)")
+    axes[3].plot(xc, values_in(ct["semi_axis_b"], "mm"), label="b (lateral)")
+    axes[3].set_ylabel("semi-axes (mm)")
+    axes[3].legend(fontsize=8)
+    for ax, name in zip(axes[4:], extra):
+        ax.plot(xc, ct[name].values, drawstyle="steps-mid")
+        ax.set_ylabel(str(ct[name].attrs.get("long_name", name)).replace(" ", "\n", 1))
+    for ax in axes:
+        _shade_loss_of_contact(ax, xc, contact)
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel("patch centre x_c (mm)")
+    fig.suptitle(_title(run, "Contact loads", pass_index))
+    return _save(fig, out_dir, "loads.png")
+
+
+def snapshot_steps(xc: np.ndarray, contact: np.ndarray, count: int = 4) -> np.ndarray:
+    """Indices of ``count`` in-contact steps evenly spread over the recorded x_c range.
+
+    The targets are the centres of ``count`` equal intervals, so the first and
+    last steps (often start-up transients) are avoided.
+    """
+    candidates = np.flatnonzero(contact)
+    if candidates.size == 0:
+        raise RunFileError("no step with the wheel in contact")
+    lo, hi = xc[candidates].min(), xc[candidates].max()
+    targets = lo + (np.arange(count) + 0.5) / count * (hi - lo)
+    return np.array([candidates[np.argmin(np.abs(xc[candidates] - t))] for t in targets])
+
+
+def _patch_panel(ax, xi, eta, value, stick, levels, cmap):
+    """One normalised-patch panel; falls back to a scatter when the mesh is one strip."""
+    try:
+        tri = Triangulation(xi, eta)
+        art = ax.tricontourf(tri, value, levels=levels, cmap=cmap, extend="both")
+        if stick is not None and 0 < stick.mean() < 1:
+            ax.tricontour(tri, stick.astype(float), levels=[0.5], colors="k", linewidths=1)
+    except (ValueError, RuntimeError):
+        art = ax.scatter(xi, eta, c=value, cmap=cmap, vmin=levels[0], vmax=levels[-1], s=12)
+    t = np.linspace(0, 2 * np.pi, 200)
+    ax.plot(np.cos(t), np.sin(t), "k-", lw=0.6)
+    ax.set_aspect("equal")
+    ax.set(xlim=(-1.05, 1.05), ylim=(-1.05, 1.05), xlabel="ξ = x/a  (leading edge →)")
+    return art
+
+
+def traction_snapshots(run: Run, pass_index: int, out_dir: Path, count: int = 4) -> Path:
+    """traction_x / (mu p0) over the normalised patch at ``count`` steps, plus their position."""
+    mu = run.friction_coefficient
+    with run.contact(pass_index) as ct:
+        ct = ct.load()
+    xc = values_in(ct["x_c"], "mm")
+    contact = contact_mask(ct)
+    steps = snapshot_steps(xc, contact, count)
+    xi, eta = ct["xi"].values, ct["eta"].values
+    p0 = values_in(ct["max_pressure"], "Pa")[steps]
+    qx = values_in(ct["traction_x"], "Pa")[steps]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = qx / (mu * p0[:, None])
+    lim = float(np.nanmax(np.abs(ratio))) if np.isfinite(ratio).any() else 0.0
+    levels = MaxNLocator(nbins=20, symmetric=True).tick_values(-lim, lim) if lim > 0 else np.linspace(-1, 1, 21)
+    stick = ct["stick"].values[steps] if "stick" in ct else [None] * count
+
+    fig = Figure(figsize=(3.2 * count, 6), layout="constrained")
+    grid = fig.add_gridspec(2, count, height_ratios=(1, 2.2))
+    top = fig.add_subplot(grid[0, :])
+    top.plot(xc, values_in(ct["normal_force"], "kN"), color="0.3")
+    top.set(xlabel="patch centre x_c (mm)", ylabel="normal force (kN)")
+    top.grid(alpha=0.3)
+    art = None
+    for k, s in enumerate(steps):
+        top.axvline(xc[s], color="C3", lw=1)
+        top.annotate(str(k + 1), (xc[s], 1.0), xycoords=("data", "axes fraction"),
+                     ha="center", va="bottom", color="C3")
+        ax = fig.add_subplot(grid[1, k])
+        art = _patch_panel(ax, xi, eta, ratio[k], stick[k], levels, "RdBu_r")
+        t_ms = float(values_in(ct["time"], "ms")[s])
+        ax.set_title(f"{k + 1}: x_c = {xc[s]:.1f} mm\nt = {t_ms:.3f} ms", fontsize=9)
+        if k == 0:
+            ax.set_ylabel("η = y/b")
+    fig.colorbar(art, ax=fig.axes[1:], label=f"traction_x / (μ p0),  μ = {mu:g}", shrink=0.8)
+    fig.suptitle(_title(run, "Longitudinal traction (black: stick/slip boundary)", pass_index))
+    return _save(fig, out_dir, "traction_snapshots.png")
+
+
+# ---------------------------------------------------------------- optional figures
+
+def _find_spectrum(run: Run):
+    """The first ``spectrum(pass, <wavelength>)`` variable in ``passes`` or ``rail``."""
+    for opener in (run.pass_table, run.rail):
+        with opener() as ds:
+            spec = ds.get("spectrum")
+            if spec is not None and spec.ndim == 2 and "pass" in spec.dims:
+                return spec.load()
+    return None
+
+
+def spectrum(run: Run, pass_index: int, out_dir: Path) -> Path | None:
+    """spectrum(pass, wavelength) of the chosen passage, if the run file has one."""
+    spec = _find_spectrum(run)
+    if spec is None or pass_index not in spec["pass"].values:
+        return None
+    spec = spec.sel({"pass": pass_index})
+    wl = spec[spec.dims[0]]
+    fig = Figure(figsize=(8, 4), layout="constrained")
+    ax = fig.add_subplot()
+    try:
+        ax.semilogx(values_in(wl, "mm"), spec.values)
+        ax.set_xlabel(f"{wl.name} (mm)")
+    except ValueError:
+        ax.semilogx(wl.values, spec.values)
+        ax.set_xlabel(f"{wl.name} ({wl.attrs.get('units', '?')})")
+    ax.set_ylabel(f"{spec.attrs.get('long_name', 'spectrum')} ({spec.attrs.get('units', '?')})")
+    ax.grid(alpha=0.3, which="both")
+    ax.set_title(_title(run, "Roughness spectrum", pass_index))
+    return _save(fig, out_dir, "spectrum.png")
+
+
+def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
+    """RMS corrugation vs traffic, when more than one passage is recorded."""
+    with run.pass_table() as ps:
+        if "rms_corrugation" not in ps or ps.sizes.get("pass", 0) < 2:
+            return None
+        traffic = ps["traffic"].values if "traffic" in ps else ps["pass"].values
+        rms = values_in(ps["rms_corrugation"], "um")
+    fig = Figure(figsize=(8, 4), layout="constrained")
+    ax = fig.add_subplot()
+    ax.plot(traffic, rms, "o-", ms=3)
+    ax.set(xlabel="traffic (passages)", ylabel="rms corrugation (µm)",
+           title=f"Corrugation growth\ncontact model: {run.contact_model}")
+    ax.grid(alpha=0.3)
+    return _save(fig, out_dir, "rms_corrugation.png")
+
+
+FigureFn = Callable[[Run, int, Path], "Path | None"]
+RAIL_FIGURES: tuple[FigureFn, ...] = (wear_map, wear_centreline)
+CONTACT_FIGURES: tuple[FigureFn, ...] = (loads, traction_snapshots)
+OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth)
+
+
+def make_figures(path, out_dir, pass_index: int | None = None):
+    """Write every figure of one run.
+
+    Returns ``(paths, problems)``: the PNGs written and one message per figure
+    that could not be made.  Raises RunFileError when the file itself is unusable.
+    """
+    run = Run.open(path)
+    pass_index = run.resolve_pass(pass_index)
+    out_dir = Path(out_dir)
+    todo = list(RAIL_FIGURES)
+    problems = []
+    if pass_index in run.contact_passes():
+        todo += CONTACT_FIGURES
+    else:
+        problems.append(f"{run.path}: no contact history for passage {pass_index}; "
+                        "loads.png and traction_snapshots.png skipped")
+    todo += OPTIONAL_FIGURES
+    paths = []
+    for fn in todo:
+        try:
+            written = fn(run, pass_index, out_dir)
+        except (RunFileError, KeyError, ValueError) as err:
+            problems.append(f"{run.path}: {fn.__name__}: {err}")
+            continue
+        if written is not None:
+            paths.append(written)
+    return paths, problems

@@ -1,0 +1,194 @@
+"""Reading corrugation run files (HDF5, netCDF-4 compatible).
+
+The layout (groups ``rail``, ``passes`` and ``contact/pass_NNNNN``) is described
+in ``schema.py`` and in the README.  Structure (which groups exist, root
+attributes) is read with h5py; data are opened as xarray Datasets with the
+h5netcdf engine, so dimension names come from the HDF5 dimension scales.
+
+Note that ``pass`` is a Python keyword: use ``ds["pass"]`` and
+``da.sel({"pass": n})`` rather than attribute access.
+"""
+
+from __future__ import annotations
+
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import h5py
+import numpy as np
+import xarray as xr
+
+RAIL = "rail"
+PASSES = "passes"
+CONTACT = "contact"
+_CONTACT_RE = re.compile(r"^pass_(\d{5,})$")
+
+
+class RunFileError(Exception):
+    """A run file is missing, unreadable or does not follow the layout."""
+
+
+def contact_group(pass_index: int) -> str:
+    """Group path of the contact history of stored passage ``pass_index``."""
+    return f"{CONTACT}/pass_{int(pass_index):05d}"
+
+
+def as_str(value: Any) -> Any:
+    """Decode HDF5 string attributes (bytes, 0-d or 1-element arrays) to str."""
+    if isinstance(value, np.ndarray) and value.size == 1:
+        value = value.reshape(()).item()
+    if isinstance(value, (bytes, np.bytes_)):
+        return value.decode("utf-8", errors="replace")
+    if isinstance(value, np.str_):
+        return str(value)
+    return value
+
+
+def check_run_file(path: str | Path) -> Path:
+    """Return ``path`` as a Path if it is an HDF5 file with a ``rail`` group.
+
+    Raises RunFileError with a message naming the file otherwise.
+    """
+    path = Path(path)
+    if not path.exists():
+        raise RunFileError(f"{path}: no such file")
+    if not path.is_file():
+        raise RunFileError(f"{path}: not a regular file")
+    if not h5py.is_hdf5(path):
+        raise RunFileError(f"{path}: not an HDF5 file (is this a corrugation run file?)")
+    try:
+        with h5py.File(path, "r") as f:
+            has_rail = isinstance(f.get(RAIL), h5py.Group)
+    except OSError as err:  # truncated file, still being written, ...
+        raise RunFileError(f"{path}: cannot be opened: {err}") from err
+    if not has_rail:
+        raise RunFileError(
+            f"{path}: no '{RAIL}' group; not a corrugation run file, "
+            "or the run stopped before writing its results"
+        )
+    return path
+
+
+def open_group(path: str | Path, group: str | None) -> xr.Dataset:
+    """Open one group lazily as an xarray Dataset (use it as a context manager).
+
+    Time-like units ("s") are left as plain floats.
+    """
+    try:
+        return xr.open_dataset(
+            path, engine="h5netcdf", group=group, decode_times=False, decode_timedelta=False
+        )
+    except (OSError, KeyError, ValueError) as err:
+        raise RunFileError(f"{path}: cannot open group {group!r}: {err}") from err
+
+
+def root_attrs(path: str | Path) -> dict[str, Any]:
+    """Root attributes (``config``, ``version``, ``title``, ``contact_model``...)."""
+    with h5py.File(path, "r") as f:
+        return {k: as_str(v) for k, v in f.attrs.items()}
+
+
+def parse_config(text: str, path: str | Path = "<config>") -> dict[str, Any]:
+    """Parse the resolved TOML configuration text stored in the run file."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as err:
+        raise RunFileError(f"{path}: root attribute 'config' is not valid TOML: {err}") from err
+
+
+def friction_coefficient(config: dict[str, Any], path: str | Path = "<config>") -> float:
+    """``material.friction_coefficient`` from a parsed config."""
+    try:
+        return float(config["material"]["friction_coefficient"])
+    except (KeyError, TypeError, ValueError) as err:
+        raise RunFileError(
+            f"{path}: config has no numeric material.friction_coefficient"
+        ) from err
+
+
+def stored_passes(path: str | Path) -> list[int]:
+    """Stored passage indices: values of the ``rail`` group's ``pass`` coordinate."""
+    with h5py.File(path, "r") as f:
+        if RAIL not in f or "pass" not in f[RAIL]:
+            raise RunFileError(f"{path}: group '{RAIL}' has no 'pass' coordinate")
+        return [int(p) for p in np.asarray(f[RAIL]["pass"][()]).ravel()]
+
+
+def contact_passes(path: str | Path) -> list[int]:
+    """Passage indices that have a ``contact/pass_NNNNN`` group, sorted."""
+    with h5py.File(path, "r") as f:
+        grp = f.get(CONTACT)
+        if not isinstance(grp, h5py.Group):
+            return []
+        found = (_CONTACT_RE.match(name) for name in grp)
+        return sorted(int(m.group(1)) for m in found if m)
+
+
+@dataclass
+class Run:
+    """A run file: its path, root attributes and parsed configuration."""
+
+    path: Path
+    attrs: dict[str, Any] = field(repr=False)
+    config: dict[str, Any] = field(repr=False)
+
+    @classmethod
+    def open(cls, path: str | Path) -> "Run":
+        path = check_run_file(path)
+        attrs = root_attrs(path)
+        config = parse_config(str(attrs.get("config", "")), path)
+        return cls(path=path, attrs=attrs, config=config)
+
+    @property
+    def contact_model(self) -> str:
+        return str(self.attrs.get("contact_model", "unknown contact model"))
+
+    @property
+    def friction_coefficient(self) -> float:
+        return friction_coefficient(self.config, self.path)
+
+    def passes(self) -> list[int]:
+        return stored_passes(self.path)
+
+    def contact_passes(self) -> list[int]:
+        return contact_passes(self.path)
+
+    def resolve_pass(self, requested: int | None) -> int:
+        """The requested stored passage, or the last one; error if not stored."""
+        available = self.passes()
+        if not available:
+            raise RunFileError(f"{self.path}: no stored passages in group '{RAIL}'")
+        if requested is None:
+            return available[-1]
+        if requested not in available:
+            raise RunFileError(
+                f"{self.path}: passage {requested} is not stored; stored: {_short(available)}"
+            )
+        return requested
+
+    def rail(self) -> xr.Dataset:
+        return open_group(self.path, RAIL)
+
+    def pass_table(self) -> xr.Dataset:
+        return open_group(self.path, PASSES)
+
+    def contact(self, pass_index: int) -> xr.Dataset:
+        if pass_index not in self.contact_passes():
+            raise RunFileError(
+                f"{self.path}: no group '{contact_group(pass_index)}'; "
+                f"contact histories stored for passages: {_short(self.contact_passes())}"
+            )
+        return open_group(self.path, contact_group(pass_index))
+
+
+def _short(values: list[int], keep: int = 8) -> str:
+    if not values:
+        return "none"
+    if len(values) <= keep:
+        return ", ".join(map(str, values))
+    head = ", ".join(map(str, values[: keep // 2]))
+    tail = ", ".join(map(str, values[-keep // 2 :]))
+    return f"{head}, ..., {tail} ({len(values)} in all)"

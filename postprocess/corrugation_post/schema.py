@@ -1,0 +1,136 @@
+"""The run-file contract, and a checker for it (``python -m corrugation_post check``).
+
+Only required content is listed: extra variables, attributes and groups are
+allowed everywhere.  Contact groups are checked against ``CONTACT_VARS``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from . import io
+
+ROOT_ATTRS = ("config", "version", "title", "contact_model")
+
+# group -> {variable: dims}; coordinates are listed like variables.
+RAIL_VARS = {
+    "x": ("x",), "y": ("y",), "pass": ("pass",),
+    "traffic": ("pass",),
+    "profile": ("pass", "y", "x"),
+    "wear": ("pass", "y", "x"),
+}
+PASSES_VARS = {
+    "pass": ("pass",),
+    "traffic": ("pass",),
+    "rms_corrugation": ("pass",),
+    "cpu_seconds": ("pass",),
+}
+_STEP = ("time", "x_c", "normal_force", "longitudinal_force", "creepage_x", "creepage_y",
+         "spin", "semi_axis_a", "semi_axis_b", "max_pressure", "stick_fraction")
+_ELEMENT = ("xi", "eta", "d_xi", "d_eta")
+_FIELDS = ("pressure", "traction_x", "traction_y", "slip_x", "slip_y", "wear_rate", "stick")
+CONTACT_VARS = {
+    "step": ("step",), "element": ("element",),
+    **{v: ("step",) for v in _STEP},
+    **{v: ("element",) for v in _ELEMENT},
+    **{v: ("step", "element") for v in _FIELDS},
+}
+# Expected units (canonical spelling, see units.normalise).
+UNITS = {
+    "x": "m", "y": "m", "profile": "m", "wear": "m", "rms_corrugation": "m",
+    "cpu_seconds": "s", "time": "s", "x_c": "m", "normal_force": "N",
+    "longitudinal_force": "N", "creepage_x": "1", "creepage_y": "1", "spin": "1/m",
+    "semi_axis_a": "m", "semi_axis_b": "m", "max_pressure": "Pa", "stick_fraction": "1",
+    "xi": "1", "eta": "1", "d_xi": "1", "d_eta": "1",
+    "pressure": "Pa", "traction_x": "Pa", "traction_y": "Pa",
+    "slip_x": "m/s", "slip_y": "m/s", "wear_rate": "m/s", "stick": "1",
+}
+
+
+def expected_groups(path: str | Path) -> dict[str, dict[str, tuple[str, ...]]]:
+    """Group path -> required variables, including every stored contact group."""
+    groups = {io.RAIL: RAIL_VARS, io.PASSES: PASSES_VARS}
+    for p in io.contact_passes(path):
+        groups[io.contact_group(p)] = CONTACT_VARS
+    return groups
+
+
+def check_dataset(ds: xr.Dataset, group: str, required: dict[str, tuple[str, ...]]) -> list[str]:
+    """Problems with one opened group (empty list when it follows the contract)."""
+    from .units import normalise
+
+    problems = []
+    phony = [d for d in ds.dims if str(d).startswith("phony_dim")]
+    if phony:
+        problems.append(f"{group}: dimensions without dimension scales: {phony}")
+    for name, dims in required.items():
+        if name not in ds.variables:
+            problems.append(f"{group}: missing variable '{name}'{dims}")
+        elif tuple(ds[name].dims) != dims:
+            problems.append(f"{group}/{name}: dims {tuple(ds[name].dims)}, expected {dims}")
+    for name, var in ds.variables.items():
+        for attr in ("units", "long_name"):
+            if attr not in var.attrs:
+                problems.append(f"{group}/{name}: no '{attr}' attribute")
+        want = UNITS.get(str(name))
+        if want and "units" in var.attrs and normalise(var.attrs["units"]) != want:
+            problems.append(f"{group}/{name}: units {var.attrs['units']!r}, expected {want!r}")
+    return problems
+
+
+def check_mesh(ds: xr.Dataset, group: str) -> list[str]:
+    """Contact mesh rules: unit-circle elements, strips of equal length, leading edge first."""
+    if not all(v in ds.variables for v in _ELEMENT):
+        return []
+    xi, eta = ds["xi"].values, ds["eta"].values
+    problems = []
+    if np.any(xi**2 + eta**2 > 1.0 + 1e-9):
+        problems.append(f"{group}: element centres outside the unit circle xi^2 + eta^2 <= 1")
+    if np.any(ds["d_xi"].values <= 0) or np.any(ds["d_eta"].values <= 0):
+        problems.append(f"{group}: non-positive d_xi or d_eta")
+    starts = np.flatnonzero(np.r_[True, ~np.isclose(np.diff(eta), 0.0, atol=1e-12)])
+    lengths = np.diff(np.r_[starts, eta.size])
+    if len(set(eta[starts].round(9))) != starts.size:
+        problems.append(f"{group}: elements are not ordered strip by strip")
+    if np.unique(lengths).size > 1:
+        problems.append(f"{group}: strips have different numbers of elements {sorted(set(lengths))}")
+    for s, n in zip(starts, lengths):
+        if n > 1 and np.any(np.diff(xi[s : s + n]) >= 0):
+            problems.append(f"{group}: strip at eta={eta[s]:.3g} not ordered leading edge (xi>0) first")
+            break
+    if "stick" in ds.variables and not np.isin(np.unique(ds["stick"].values), (0, 1)).all():
+        problems.append(f"{group}/stick: values other than 0 and 1")
+    return problems
+
+
+def check_file(path: str | Path) -> list[str]:
+    """All contract problems found in a run file (empty list when it conforms)."""
+    path = io.check_run_file(path)
+    attrs = io.root_attrs(path)
+    problems = [f"root: missing attribute '{a}'" for a in ROOT_ATTRS if a not in attrs]
+    if "config" in attrs:
+        try:
+            cfg = io.parse_config(str(attrs["config"]), path)
+            io.friction_coefficient(cfg, path)
+        except io.RunFileError as err:
+            problems.append(f"root: {err}")
+    groups = expected_groups(path)
+    if len(groups) == 2:
+        problems.append("no contact/pass_NNNNN group")
+    missing = set(io.stored_passes(path)) - set(io.contact_passes(path))
+    if missing:
+        problems.append(f"stored passages without contact group: {sorted(missing)}")
+    for group, required in groups.items():
+        try:
+            with io.open_group(path, group) as ds:
+                problems += check_dataset(ds, group, required)
+                problems += check_mesh(ds, group)
+                for name in ("traffic",):
+                    if name in ds and np.any(np.diff(ds[name].values) < 0):
+                        problems.append(f"{group}/{name}: not cumulative (decreases)")
+        except io.RunFileError as err:
+            problems.append(str(err))
+    return problems

@@ -1,0 +1,52 @@
+"""Test fixtures.
+
+The run file under test is ``$CORRUGATION_RUN_FILE`` when set (a file written
+by the real binary), else a small synthetic one written in ``tmp_path``.
+Some tests always use synthetic files, because they need known values or
+optional variables.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).resolve().parent
+PACKAGE_ROOT = HERE.parent  # /.../postprocess, holding corrugation_post/
+for p in (PACKAGE_ROOT, HERE):
+    if str(p) not in sys.path:
+        sys.path.insert(0, str(p))
+
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+
+from synthetic_run import write_run  # noqa: E402
+
+ENV_VAR = "CORRUGATION_RUN_FILE"
+
+
+@pytest.fixture
+def synthetic_run(tmp_path) -> Path:
+    """A synthetic run file with exactly the required content."""
+    return write_run(tmp_path / "synthetic.h5")
+
+
+@pytest.fixture
+def run_file(tmp_path) -> Path:
+    """The run file under test: $CORRUGATION_RUN_FILE, or a synthetic one."""
+    env = os.environ.get(ENV_VAR)
+    if env:
+        path = Path(env)
+        if not path.is_file():
+            pytest.fail(f"{ENV_VAR}={env}: no such file")
+        return path
+    return write_run(tmp_path / "synthetic.h5")
+
+
+@pytest.fixture
+def package_root() -> Path:
+    return PACKAGE_ROOT

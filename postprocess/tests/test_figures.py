@@ -1,0 +1,86 @@
+"""The figures command writes non-empty PNGs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from corrugation_post import figures
+from corrugation_post.cli import main
+from synthetic_run import write_run
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+REQUIRED = ("wear_map.png", "wear_centreline.png", "loads.png", "traction_snapshots.png")
+
+
+def _assert_png(path: Path):
+    assert path.is_file(), path
+    assert path.stat().st_size > 1000, path
+    assert path.read_bytes()[:8] == PNG_MAGIC, path
+
+
+def test_figures_command_writes_pngs(run_file, tmp_path, capsys):
+    out = tmp_path / "figs"
+    assert main(["figures", str(run_file), "--out", str(out)]) == 0
+    printed = [Path(line) for line in capsys.readouterr().out.split()]
+    for name in REQUIRED:
+        assert out / name in printed
+        _assert_png(out / name)
+
+
+@pytest.mark.parametrize("make", [figures.wear_map, figures.wear_centreline,
+                                  figures.loads, figures.traction_snapshots])
+def test_each_figure_function(run_file, tmp_path, make):
+    from corrugation_post.io import Run
+
+    run = Run.open(run_file)
+    _assert_png(make(run, run.passes()[0], tmp_path))
+
+
+def test_explicit_pass(run_file, tmp_path):
+    from corrugation_post.io import stored_passes
+
+    first = stored_passes(run_file)[0]
+    assert main(["figures", str(run_file), "--out", str(tmp_path), "--pass", str(first)]) == 0
+    for name in REQUIRED:
+        _assert_png(tmp_path / name)
+
+
+def test_unknown_pass_is_an_error(run_file, tmp_path, capsys):
+    assert main(["figures", str(run_file), "--out", str(tmp_path), "--pass", "987654"]) == 2
+    err = capsys.readouterr().err
+    assert "987654" in err and str(run_file) in err
+
+
+def test_optional_and_unknown_variables(tmp_path, capsys):
+    """Extra variables do not break anything; optional ones get their figures."""
+    run = write_run(tmp_path / "extras.h5", extras=True)
+    out = tmp_path / "figs"
+    assert main(["figures", str(run), "--out", str(out)]) == 0
+    printed = capsys.readouterr().out
+    for name in REQUIRED + ("spectrum.png", "rms_corrugation.png"):
+        assert name in printed
+        _assert_png(out / name)
+
+
+def test_snapshot_steps_avoid_loss_of_contact():
+    import numpy as np
+
+    xc = np.linspace(0.0, 100.0, 101)
+    contact = xc > 20
+    steps = figures.snapshot_steps(xc, contact, 4)
+    assert len(steps) == 4 and contact[steps].all()
+    assert np.all(np.diff(xc[steps]) > 15)
+
+
+def test_missing_contact_group_skips_contact_figures(tmp_path, capsys):
+    import h5py
+
+    run = write_run(tmp_path / "nocontact.h5", n_pass=1)
+    with h5py.File(run, "a") as f:
+        del f["contact"]
+    assert main(["figures", str(run), "--out", str(tmp_path / "o")]) == 1
+    captured = capsys.readouterr()
+    assert "wear_map.png" in captured.out and "loads.png" not in captured.out
+    assert "no contact history" in captured.err

@@ -1,0 +1,114 @@
+//! Tangential wheel-rail contact: the patch mesh, the per-step solution, and
+//! the contact models (FASTSIM now; the transient models build on the same
+//! interface).
+//!
+//! Conventions (Kalker; CONTACT): the contact frame (x, y) moves with the
+//! patch centre, x along the rolling direction (+X of the rail), the wheel
+//! rolling in +x at speed V. Creepages are rigid slip velocities of the wheel
+//! relative to the rail divided by V; tractions are those acting on the wheel;
+//! the friction law makes the traction oppose the local slip, so a positive
+//! force on the wheel comes with a negative creepage.
+
+pub mod fastsim;
+pub mod mesh;
+
+pub use mesh::{EllipseMesh, PressureShape};
+
+use crate::hertz::HertzPatch;
+
+/// Rigid creepages.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Creepage {
+    /// Longitudinal creepage xi_x (1).
+    pub x: f64,
+    /// Lateral creepage xi_y (1).
+    pub y: f64,
+    /// Spin creepage (1/m).
+    pub spin: f64,
+}
+
+/// What one contact step needs to know.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepInput {
+    /// Hertz patch of this step.
+    pub patch: HertzPatch,
+    /// Rolling speed V (m/s).
+    pub speed: f64,
+    /// Time since the previous step (s); 0 at the first step of a history.
+    pub dt: f64,
+    /// Coulomb friction coefficient mu (1).
+    pub friction: f64,
+    /// Prescribed longitudinal force on the wheel F_x (N).
+    pub force_x: f64,
+    /// Prescribed lateral creepage (1).
+    pub creepage_y: f64,
+    /// Prescribed spin (1/m).
+    pub spin: f64,
+}
+
+/// Contact fields and resultants of one step, on the mesh elements.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct PatchSolution {
+    /// The creepages found (x) and prescribed (y, spin).
+    pub creepage: Creepage,
+    /// Resultant longitudinal force on the wheel (N).
+    pub force_x: f64,
+    /// Resultant lateral force on the wheel (N).
+    pub force_y: f64,
+    /// Normal pressure p3 at element centres (Pa).
+    pub pressure: Vec<f64>,
+    /// Tangential traction on the wheel, x (Pa).
+    pub traction_x: Vec<f64>,
+    /// Tangential traction on the wheel, y (Pa).
+    pub traction_y: Vec<f64>,
+    /// Local slip velocity of the wheel relative to the rail, x (m/s).
+    pub slip_x: Vec<f64>,
+    /// Local slip velocity, y (m/s).
+    pub slip_y: Vec<f64>,
+    /// Element in stick (adhesion).
+    pub stick: Vec<bool>,
+}
+
+impl PatchSolution {
+    /// Fraction of elements in stick (1).
+    pub fn stick_fraction(&self) -> f64 {
+        self.stick.iter().filter(|s| **s).count() as f64 / self.stick.len().max(1) as f64
+    }
+}
+
+/// Failure of a contact solve.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum ContactError {
+    /// The prescribed force cannot be transmitted by friction.
+    #[error(
+        "longitudinal force {force:.6e} N reaches the friction limit mu N = {limit:.6e} N (full sliding)"
+    )]
+    ForceExceedsFriction {
+        /// Prescribed force (N).
+        force: f64,
+        /// mu N (N).
+        limit: f64,
+    },
+    /// The creepage search did not converge.
+    #[error("creepage search for F_x = {force:.6e} N did not converge: {reason}")]
+    NoConvergence {
+        /// Prescribed force (N).
+        force: f64,
+        /// What went wrong.
+        reason: String,
+    },
+}
+
+/// A tangential contact model advanced step by step along a passage.
+///
+/// Steady models ignore `dt` and the history; transient models keep the
+/// previous step's state and must be [`reset`](TangentialSolver::reset) when
+/// the contact history restarts (new passage, contact loss).
+pub trait TangentialSolver {
+    /// Solves the tangential problem of one step with the force prescribed.
+    fn step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError>;
+    /// Forgets the contact history.
+    fn reset(&mut self);
+    /// The mesh the fields are given on.
+    fn mesh(&self) -> &EllipseMesh;
+}

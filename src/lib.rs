@@ -1,0 +1,14 @@
+//! `corrugation`: prediction of rail corrugation with a non-stationary
+//! wheel-rail contact model (Baeza, Vila, Roda, Fayos, Wear 265 (2008)
+//! 1156-1162), closing the loop from transient contact to long-term growth.
+//!
+//! Model chain of one wheel passage: imposed loads along the rail
+//! ([`loads`]) -> Hertz normal contact ([`hertz`]) -> tangential contact
+//! ([`contact`]) -> Archard wear on the rail surface ([`wear`]), driven by
+//! [`passage`]. [`config`] turns TOML into validated [`params`]; [`output`]
+//! writes netCDF-4 compatible HDF5.
+
+pub mod contact;
+pub mod creep_coefficients;
+pub mod hertz;
+pub mod numerics;

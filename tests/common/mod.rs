@@ -1,0 +1,36 @@
+//! Shared fixtures of the integration tests: the source paper's parameters.
+#![allow(dead_code)]
+
+use corrugation::creep_coefficients::{CreepCoefficients, creep_coefficients};
+use corrugation::hertz::{Curvatures, Elastic, HertzShape};
+
+/// E = 210 GPa, nu = 0.3 (paper Table 1).
+pub const STEEL: Elastic = Elastic {
+    young_modulus: 2.1e11,
+    poisson_ratio: 0.3,
+};
+
+/// Paper Table 1 wheel/rail geometry; `concave` selects the sign of the
+/// 0.409 m wheel-profile radius.
+pub fn paper_shape(concave: bool) -> HertzShape {
+    let r = if concave { -0.409 } else { 0.409 };
+    HertzShape::new(Curvatures::wheel_on_rail(0.5, r, 0.3), STEEL).unwrap()
+}
+
+/// Kalker coefficients of the paper's patch.
+pub fn paper_coefficients(concave: bool) -> CreepCoefficients {
+    creep_coefficients(paper_shape(concave).aspect(), STEEL.poisson_ratio).unwrap()
+}
+
+/// Relative difference |x - y| / |y|.
+pub fn rel(x: f64, y: f64) -> f64 {
+    (x - y).abs() / y.abs()
+}
+
+/// Rows of a whitespace-separated table file, skipping `#` comments.
+pub fn table(text: &str) -> Vec<Vec<String>> {
+    text.lines()
+        .filter(|l| !l.trim_start().starts_with('#') && !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(str::to_string).collect())
+        .collect()
+}
