@@ -11,4 +11,8 @@
 pub mod contact;
 pub mod creep_coefficients;
 pub mod hertz;
+pub mod loads;
 pub mod numerics;
+pub mod output;
+pub mod passage;
+pub mod wear;

@@ -15,7 +15,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 from matplotlib.tri import Triangulation
 
-from .io import PASSES, RAIL, Run, RunFileError
+from .io import Run, RunFileError
 from .units import values_in
 
 DPI = 150
@@ -275,7 +275,10 @@ def make_figures(path, out_dir, pass_index: int | None = None):
     for fn in todo:
         try:
             written = fn(run, pass_index, out_dir)
-        except (RunFileError, KeyError, ValueError) as err:
+        except KeyError as err:
+            problems.append(f"{run.path}: {fn.__name__}: missing variable {err}")
+            continue
+        except (RunFileError, ValueError) as err:
             problems.append(f"{run.path}: {fn.__name__}: {err}")
             continue
         if written is not None:

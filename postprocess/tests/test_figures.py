@@ -84,3 +84,17 @@ def test_missing_contact_group_skips_contact_figures(tmp_path, capsys):
     captured = capsys.readouterr()
     assert "wear_map.png" in captured.out and "loads.png" not in captured.out
     assert "no contact history" in captured.err
+
+
+def test_missing_variable_is_reported_and_other_figures_still_made(tmp_path, capsys):
+    import h5py
+
+    run = write_run(tmp_path / "broken.h5", n_pass=1)
+    with h5py.File(run, "a") as f:
+        del f["contact/pass_00000/semi_axis_b"]
+    out = tmp_path / "o"
+    assert main(["figures", str(run), "--out", str(out)]) == 1
+    captured = capsys.readouterr()
+    assert "semi_axis_b" in captured.err and str(run) in captured.err
+    for name in ("wear_map.png", "wear_centreline.png", "traction_snapshots.png"):
+        _assert_png(out / name)

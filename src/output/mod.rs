@@ -1,0 +1,5 @@
+//! Output: a generic netCDF-4 compatible HDF5 writer ([`netcdf`]) and the
+//! run-file layout of DESIGN.md section 4 ([`run_file`]).
+
+mod h5ds;
+pub mod netcdf;

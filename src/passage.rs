@@ -1,0 +1,310 @@
+//! One wheel passage over the rail stretch: the model chain of DESIGN.md
+//! section 2 at every time step.
+//!
+//! For each patch position `X_c = start + n h` (time `t = n h / V`):
+//! imposed loads `N(X_c)`, `F_x(X_c)` -> Hertz patch -> tangential solution
+//! with `F_x` prescribed -> Archard rates at the element centres -> wear of
+//! the interval since the previous step on the rail grid (linearly
+//! interpolated sub-steps). The kernel knows nothing of files or terminals:
+//! progress is reported through a callback.
+
+use crate::contact::{ContactError, PatchSolution, StepInput, TangentialSolver};
+use crate::hertz::{HertzError, HertzShape};
+use crate::loads::ImposedLoads;
+use crate::wear::{PatchWear, RailGrid, WearDeposit, archard_rates};
+use ndarray::Array2;
+
+/// Kinematics, loads and discretisation of one passage (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassageSpec {
+    /// Rolling speed V (m/s).
+    pub speed: f64,
+    /// Coulomb friction coefficient (1).
+    pub friction: f64,
+    /// Prescribed lateral creepage (1).
+    pub creepage_y: f64,
+    /// Prescribed spin (1/m).
+    pub spin: f64,
+    /// Imposed loads along the rail.
+    pub loads: ImposedLoads,
+    /// Patch-centre position at the first step (m).
+    pub start: f64,
+    /// Patch-centre position at the last step (m).
+    pub end: f64,
+    /// Nominal rolled distance per step, V dt (m); adjusted so that `end` is a step.
+    pub step_length: f64,
+    /// Archard coefficient k/H (m^2/N).
+    pub k_over_h: f64,
+    /// Linearly interpolated wear sub-steps per step (>= 1).
+    pub substeps: usize,
+}
+
+impl PassageSpec {
+    /// Number of contact steps (positions), at least 2.
+    pub fn n_steps(&self) -> usize {
+        ((self.end - self.start) / self.step_length).ceil().max(1.0) as usize + 1
+    }
+
+    /// Patch-centre position of step `n` (m).
+    pub fn position(&self, n: usize) -> f64 {
+        self.start + (self.end - self.start) * n as f64 / (self.n_steps() - 1) as f64
+    }
+
+    /// Time step dt (s).
+    pub fn dt(&self) -> f64 {
+        (self.end - self.start) / (self.n_steps() - 1) as f64 / self.speed
+    }
+}
+
+/// Per-step resultants and, optionally, the patch fields.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct PatchHistory {
+    /// Time since the start of the passage (s).
+    pub time: Vec<f64>,
+    /// Patch centre in rail coordinates (m).
+    pub x_c: Vec<f64>,
+    /// Normal force (N).
+    pub normal_force: Vec<f64>,
+    /// Longitudinal force on the wheel (N).
+    pub longitudinal_force: Vec<f64>,
+    /// Longitudinal creepage (1).
+    pub creepage_x: Vec<f64>,
+    /// Lateral creepage (1).
+    pub creepage_y: Vec<f64>,
+    /// Spin (1/m).
+    pub spin: Vec<f64>,
+    /// Semi-axis along the rail (m).
+    pub semi_axis_a: Vec<f64>,
+    /// Semi-axis across the rail (m).
+    pub semi_axis_b: Vec<f64>,
+    /// Hertz maximum pressure (Pa).
+    pub max_pressure: Vec<f64>,
+    /// Fraction of elements in stick (1).
+    pub stick_fraction: Vec<f64>,
+    /// Integral over the patch of the interpolated Archard rate (m^3/s): the
+    /// volume the rail loses per second.
+    pub wear_volume_rate: Vec<f64>,
+    /// Fields on (step, element), when recorded.
+    pub fields: Option<PatchFields>,
+}
+
+/// Contact fields on (step, element).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PatchFields {
+    /// Normal pressure (Pa).
+    pub pressure: Array2<f64>,
+    /// Traction on the wheel, x (Pa).
+    pub traction_x: Array2<f64>,
+    /// Traction on the wheel, y (Pa).
+    pub traction_y: Array2<f64>,
+    /// Slip velocity, x (m/s).
+    pub slip_x: Array2<f64>,
+    /// Slip velocity, y (m/s).
+    pub slip_y: Array2<f64>,
+    /// Archard wear rate (m/s).
+    pub wear_rate: Array2<f64>,
+    /// 1 = stick, 0 = slip.
+    pub stick: Array2<i8>,
+}
+
+impl PatchFields {
+    fn new(steps: usize, elements: usize) -> Self {
+        let z = || Array2::zeros((steps, elements));
+        PatchFields {
+            pressure: z(),
+            traction_x: z(),
+            traction_y: z(),
+            slip_x: z(),
+            slip_y: z(),
+            wear_rate: z(),
+            stick: Array2::zeros((steps, elements)),
+        }
+    }
+
+    fn set(&mut self, n: usize, sol: &PatchSolution, rates: &[f64]) {
+        let rows: [(&mut Array2<f64>, &[f64]); 6] = [
+            (&mut self.pressure, &sol.pressure),
+            (&mut self.traction_x, &sol.traction_x),
+            (&mut self.traction_y, &sol.traction_y),
+            (&mut self.slip_x, &sol.slip_x),
+            (&mut self.slip_y, &sol.slip_y),
+            (&mut self.wear_rate, rates),
+        ];
+        for (field, values) in rows {
+            field
+                .row_mut(n)
+                .iter_mut()
+                .zip(values)
+                .for_each(|(d, s)| *d = *s);
+        }
+        self.stick
+            .row_mut(n)
+            .iter_mut()
+            .zip(&sol.stick)
+            .for_each(|(d, s)| *d = i8::from(*s));
+    }
+}
+
+/// Result of one passage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassageResult {
+    /// Wear depth on the rail grid, shape (ny, nx) (m, positive = removed).
+    pub wear: Array2<f64>,
+    /// Per-step history of the patch.
+    pub history: PatchHistory,
+}
+
+/// Why a passage stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum PassageError {
+    /// The normal problem has no solution at this step.
+    #[error("step {step} at X = {x:.6e} m: normal force N = {normal_force:.6e} N: {source}")]
+    Normal {
+        /// Step index.
+        step: usize,
+        /// Patch position (m).
+        x: f64,
+        /// Normal force (N).
+        normal_force: f64,
+        /// Cause.
+        source: HertzError,
+    },
+    /// The tangential solver failed at this step.
+    #[error(
+        "step {step} at X = {x:.6e} m (N = {normal_force:.6e} N, F_x = {force_x:.6e} N): {source}"
+    )]
+    Tangential {
+        /// Step index.
+        step: usize,
+        /// Patch position (m).
+        x: f64,
+        /// Normal force (N).
+        normal_force: f64,
+        /// Prescribed longitudinal force (N).
+        force_x: f64,
+        /// Cause.
+        source: ContactError,
+    },
+    /// A result is not finite (never written to the output).
+    #[error("step {step} at X = {x:.6e} m: non-finite {what} in the contact solution")]
+    NonFinite {
+        /// Step index.
+        step: usize,
+        /// Patch position (m).
+        x: f64,
+        /// Which quantity.
+        what: &'static str,
+    },
+}
+
+/// Runs one passage; `progress(done, total)` is called after every step.
+pub fn run_passage(
+    spec: &PassageSpec,
+    shape: &HertzShape,
+    solver: &mut dyn TangentialSolver,
+    deposit: &WearDeposit,
+    grid: &RailGrid,
+    record_fields: bool,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<PassageResult, PassageError> {
+    let steps = spec.n_steps();
+    let dt = spec.dt();
+    let n_el = solver.mesh().len();
+    let mut wear = Array2::zeros((grid.ny, grid.nx));
+    let mut h = PatchHistory {
+        fields: record_fields.then(|| PatchFields::new(steps, n_el)),
+        ..Default::default()
+    };
+    let mut previous: Option<(f64, f64, f64, Vec<f64>)> = None;
+    solver.reset();
+    for n in 0..steps {
+        let x = spec.position(n);
+        let normal_force = spec.loads.normal_force_at(x);
+        let force_x = spec.loads.longitudinal_force_at(x);
+        let patch = shape
+            .patch(normal_force)
+            .map_err(|source| PassageError::Normal {
+                step: n,
+                x,
+                normal_force,
+                source,
+            })?;
+        let input = StepInput {
+            patch,
+            speed: spec.speed,
+            dt: if n == 0 { 0.0 } else { dt },
+            friction: spec.friction,
+            force_x,
+            creepage_y: spec.creepage_y,
+            spin: spec.spin,
+        };
+        let sol = solver
+            .step(&input)
+            .map_err(|source| PassageError::Tangential {
+                step: n,
+                x,
+                normal_force,
+                force_x,
+                source,
+            })?;
+        check_finite(&sol, n, x)?;
+        let rates = archard_rates(spec.k_over_h, &sol);
+        if let Some((x0, a0, b0, r0)) = &previous {
+            let from = PatchWear {
+                x_c: *x0,
+                a: *a0,
+                b: *b0,
+                rates: r0,
+            };
+            let to = PatchWear {
+                x_c: x,
+                a: patch.a,
+                b: patch.b,
+                rates: &rates,
+            };
+            deposit.accumulate(grid, &mut wear, &from, &to, dt, spec.substeps);
+        }
+        h.time.push(n as f64 * dt);
+        h.x_c.push(x);
+        h.normal_force.push(normal_force);
+        h.longitudinal_force.push(sol.force_x);
+        h.creepage_x.push(sol.creepage.x);
+        h.creepage_y.push(sol.creepage.y);
+        h.spin.push(sol.creepage.spin);
+        h.semi_axis_a.push(patch.a);
+        h.semi_axis_b.push(patch.b);
+        h.max_pressure.push(patch.p0);
+        h.stick_fraction.push(sol.stick_fraction());
+        h.wear_volume_rate
+            .push(deposit.integral(&rates, patch.a, patch.b));
+        if let Some(f) = h.fields.as_mut() {
+            f.set(n, &sol, &rates);
+        }
+        previous = Some((x, patch.a, patch.b, rates));
+        progress(n + 1, steps);
+    }
+    Ok(PassageResult { wear, history: h })
+}
+
+fn check_finite(sol: &PatchSolution, step: usize, x: f64) -> Result<(), PassageError> {
+    let fields: [(&'static str, &[f64]); 5] = [
+        ("pressure", &sol.pressure),
+        ("traction_x", &sol.traction_x),
+        ("traction_y", &sol.traction_y),
+        ("slip_x", &sol.slip_x),
+        ("slip_y", &sol.slip_y),
+    ];
+    for (what, v) in fields {
+        if v.iter().any(|x| !x.is_finite()) {
+            return Err(PassageError::NonFinite { step, x, what });
+        }
+    }
+    if !sol.creepage.x.is_finite() {
+        return Err(PassageError::NonFinite {
+            step,
+            x,
+            what: "creepage",
+        });
+    }
+    Ok(())
+}
