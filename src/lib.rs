@@ -8,11 +8,15 @@
 //! [`passage`]. [`config`] turns TOML into validated [`params`]; [`output`]
 //! writes netCDF-4 compatible HDF5.
 
+pub mod config;
 pub mod contact;
 pub mod creep_coefficients;
 pub mod hertz;
 pub mod loads;
+pub mod metrics;
 pub mod numerics;
 pub mod output;
+pub mod params;
 pub mod passage;
+pub mod run;
 pub mod wear;

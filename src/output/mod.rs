@@ -3,3 +3,4 @@
 
 mod h5ds;
 pub mod netcdf;
+pub mod run_file;

@@ -1,0 +1,409 @@
+//! Scene configuration: TOML text -> validated [`Scene`].
+//!
+//! Every key is documented in the README (section "Configuration"). Unknown
+//! keys, missing keys, wrong types and out-of-range values are all collected
+//! and reported together, each naming its dotted key and the allowed range;
+//! then the cross-checks that need several keys (curvature sign, load
+//! amplitudes against the mean, the friction limit, wavelengths against the
+//! rail grid, Kalker's table range) run on the keys that were valid.
+
+mod overrides;
+mod reader;
+
+use crate::contact::PressureShape;
+use crate::creep_coefficients::creep_coefficients;
+use crate::hertz::{Elastic, HertzShape};
+use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};
+use crate::params::{
+    ContactModelKind, ContactParams, Geometry, Material, OutputParams, RailParams, Scene,
+};
+use reader::{Range, Section};
+use std::fmt;
+use std::path::Path;
+use toml::{Table, Value};
+
+/// One problem with one key.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConfigError {
+    /// Dotted key (or `--set ...`).
+    pub key: String,
+    /// What is wrong and what is allowed.
+    pub message: String,
+}
+
+impl ConfigError {
+    /// A new error on `key`.
+    pub fn new(key: &str, message: String) -> Self {
+        ConfigError {
+            key: key.to_string(),
+            message,
+        }
+    }
+}
+
+impl fmt::Display for ConfigError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.key, self.message)
+    }
+}
+
+/// All problems found in a config.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConfigErrors {
+    /// Where the config came from.
+    pub source: String,
+    /// The problems, in reading order.
+    pub errors: Vec<ConfigError>,
+}
+
+impl fmt::Display for ConfigErrors {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "invalid config {} ({} problem{}):",
+            self.source,
+            self.errors.len(),
+            if self.errors.len() == 1 { "" } else { "s" }
+        )?;
+        for e in &self.errors {
+            writeln!(f, "  - {e}")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for ConfigErrors {}
+
+/// A validated scene and its resolved config (defaults filled in).
+#[derive(Debug, Clone)]
+pub struct Resolved {
+    /// The typed parameters.
+    pub scene: Scene,
+    /// The resolved config as TOML text (stored in the run file).
+    pub toml: String,
+}
+
+/// Reads and validates the config file at `path` with `--set` overrides.
+pub fn load_file(path: &Path, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
+    let source = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| ConfigErrors {
+        source: source.clone(),
+        errors: vec![ConfigError::new("file", format!("cannot read: {e}"))],
+    })?;
+    load_str(&text, &source, overrides)
+}
+
+/// Validates config `text` (from `source`, for messages) with overrides.
+pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
+    let fail = |errors| ConfigErrors {
+        source: source.to_string(),
+        errors,
+    };
+    let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
+        fail(vec![ConfigError::new(
+            "TOML syntax",
+            e.to_string().trim().replace('\n', " "),
+        )])
+    })?;
+    let mut errors: Vec<ConfigError> = overrides
+        .iter()
+        .filter_map(|o| overrides::apply(&mut root, o).err())
+        .collect();
+    let (scene, resolved) = read_scene(root, &mut errors);
+    match scene {
+        Some(scene) if errors.is_empty() => Ok(Resolved {
+            scene,
+            toml: toml::to_string(&resolved).expect("resolved config serialises"),
+        }),
+        _ => Err(fail(errors)),
+    }
+}
+
+/// Sections and their readers, in the order they are documented.
+fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>, Table) {
+    let mut resolved = Table::new();
+    fn section<'e>(root: &mut Table, name: &str, errors: &'e mut Vec<ConfigError>) -> Section<'e> {
+        Section::new(root, "", name, errors)
+    }
+
+    let mut s = section(&mut root, "material", errors);
+    let young = s.f64("young_modulus", None, Range::Positive);
+    let nu = s.f64("poisson_ratio", None, Range::ClosedOpen(0.0, 0.5));
+    let mu = s.f64("friction_coefficient", None, Range::OpenClosed(0.0, 1.0));
+    resolved.insert("material".into(), Value::Table(s.finish()));
+
+    let mut s = section(&mut root, "geometry", errors);
+    let wheel_radius = s.f64("wheel_radius", None, Range::Positive);
+    let profile = s.f64("wheel_profile_radius", None, Range::NonZeroOrInf);
+    let rail_head = s.f64("rail_head_radius", None, Range::PositiveOrInf);
+    resolved.insert("geometry".into(), Value::Table(s.finish()));
+
+    let mut s = section(&mut root, "rolling", errors);
+    let speed = s.f64("speed", None, Range::OpenClosed(0.0, 200.0));
+    let creepage_y = s.f64("creepage_y", Some(0.0), Range::Closed(-0.1, 0.1));
+    let spin = s.f64("spin", Some(0.0), Range::Closed(-100.0, 100.0));
+    resolved.insert("rolling".into(), Value::Table(s.finish()));
+
+    let mut s = section(&mut root, "load", errors);
+    let normal = s.f64("normal_force", None, Range::Positive);
+    let longitudinal = s.f64("longitudinal_force", None, Range::Finite);
+    let harmonics = s.array_of_tables("harmonics", read_harmonic);
+    resolved.insert("load".into(), Value::Table(s.finish()));
+
+    let mut s = section(&mut root, "contact", errors);
+    let model = s.choice("model", Some("fastsim"), &["fastsim"]);
+    let nx = s.usize("elements_x", Some(20), 2, 200);
+    let ny = s.usize("elements_y", Some(20), 2, 200);
+    let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
+    let bound = s.choice(
+        "fastsim_bound",
+        Some("parabolic"),
+        &["parabolic", "elliptic"],
+    );
+    resolved.insert("contact".into(), Value::Table(s.finish()));
+
+    let mut s = section(&mut root, "wear", errors);
+    let k_over_h = s.f64("k_over_h", None, Range::NonNegative);
+    let substeps = s.usize("substeps", Some(4), 1, 64);
+    resolved.insert("wear".into(), Value::Table(s.finish()));
+
+    let mut s = section(&mut root, "passage", errors);
+    let start = s.f64("start", None, Range::Finite);
+    let end = s.f64("end", None, Range::Finite);
+    let step_length = s.f64("step_length", None, Range::OpenClosed(0.0, 0.01));
+    resolved.insert("passage".into(), Value::Table(s.finish()));
+
+    let mut s = section(&mut root, "rail", errors);
+    let x_min = s.f64("x_min", None, Range::Finite);
+    let x_max = s.f64("x_max", None, Range::Finite);
+    let dx = s.f64("dx", None, Range::OpenClosed(0.0, 0.01));
+    let dy = s.f64("dy", None, Range::OpenClosed(0.0, 0.01));
+    let half_width = s.f64("half_width", None, Range::OpenClosed(0.0, 0.1));
+    resolved.insert("rail".into(), Value::Table(s.finish()));
+
+    let mut s = section(&mut root, "output", errors);
+    let store_fields = s.bool("store_fields", true);
+    let title = s.string("title", "");
+    resolved.insert("output".into(), Value::Table(s.finish()));
+
+    for (k, _) in root {
+        errors.push(ConfigError::new(&k, "unknown section or key".into()));
+    }
+
+    // Everything below needs the keys it combines to be valid.
+    let (Some(young), Some(nu), Some(mu), Some(wheel_radius), Some(profile), Some(rail_head)) =
+        (young, nu, mu, wheel_radius, profile, rail_head)
+    else {
+        return (None, resolved);
+    };
+    let material = Material {
+        elastic: Elastic {
+            young_modulus: young,
+            poisson_ratio: nu,
+        },
+        friction: mu,
+    };
+    let geometry = Geometry {
+        wheel_radius,
+        wheel_profile_radius: profile,
+        rail_head_radius: rail_head,
+    };
+    let shape = check_geometry(&material, &geometry, errors);
+
+    let (
+        Some(speed),
+        Some(creepage_y),
+        Some(spin),
+        Some(normal),
+        Some(longitudinal),
+        Some(harmonics),
+    ) = (speed, creepage_y, spin, normal, longitudinal, harmonics)
+    else {
+        return (None, resolved);
+    };
+    let loads = ImposedLoads {
+        normal_force: normal,
+        longitudinal_force: longitudinal,
+        harmonics,
+    };
+    check_loads(&loads, mu, dx, errors);
+
+    let (Some(_model), Some(nx), Some(ny), Some(eps), Some(bound)) = (model, nx, ny, eps, bound)
+    else {
+        return (None, resolved);
+    };
+    let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(step_length)) =
+        (k_over_h, substeps, start, end, step_length)
+    else {
+        return (None, resolved);
+    };
+    if end <= start {
+        errors.push(ConfigError::new(
+            "passage.end",
+            format!("= {end} must be > passage.start = {start}"),
+        ));
+    } else if (end - start) / step_length > 1e6 {
+        errors.push(ConfigError::new(
+            "passage.step_length",
+            format!(
+                "gives {:.0} steps; at most 1e6 allowed",
+                (end - start) / step_length
+            ),
+        ));
+    }
+    let (
+        Some(x_min),
+        Some(x_max),
+        Some(dx),
+        Some(dy),
+        Some(half_width),
+        Some(store_fields),
+        Some(title),
+    ) = (x_min, x_max, dx, dy, half_width, store_fields, title)
+    else {
+        return (None, resolved);
+    };
+    if x_max <= x_min {
+        errors.push(ConfigError::new(
+            "rail.x_max",
+            format!("= {x_max} must be > rail.x_min = {x_min}"),
+        ));
+    } else if ((x_max - x_min) / dx) * (2.0 * half_width / dy) > 5e7 {
+        errors.push(ConfigError::new("rail.dx", "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into()));
+    }
+    if let Some(shape) = shape {
+        if let Ok(p) = shape.patch(loads.max_normal_force()) {
+            if half_width < p.b {
+                errors.push(ConfigError::new(
+                    "rail.half_width",
+                    format!("= {half_width} m is narrower than the largest patch half-width b = {:.4e} m; it must be >= b", p.b),
+                ));
+            }
+        }
+    }
+    let scene = Scene {
+        material,
+        geometry,
+        speed,
+        creepage_y,
+        spin,
+        loads,
+        contact: ContactParams {
+            model: ContactModelKind::Fastsim,
+            elements_x: nx,
+            elements_y: ny,
+            regularisation: eps,
+            fastsim_bound: if bound == "elliptic" {
+                PressureShape::Hertz
+            } else {
+                PressureShape::Parabolic
+            },
+        },
+        k_over_h,
+        wear_substeps: substeps,
+        start,
+        end,
+        step_length,
+        rail: RailParams {
+            x_min,
+            x_max,
+            dx,
+            dy,
+            half_width,
+        },
+        output: OutputParams {
+            store_fields,
+            title,
+        },
+    };
+    (Some(scene), resolved)
+}
+
+fn read_harmonic(s: &mut Section) -> Option<Harmonic> {
+    let quantity = s.choice("quantity", None, &["normal_force", "longitudinal_force"]);
+    let amplitude = s.f64("amplitude", None, Range::NonNegative);
+    let wavelength = s.f64("wavelength", None, Range::OpenClosed(0.0, 1000.0));
+    let phase = s.f64("phase", Some(0.0), Range::Finite);
+    let quantity = if quantity? == "normal_force" {
+        LoadQuantity::NormalForce
+    } else {
+        LoadQuantity::LongitudinalForce
+    };
+    Some(Harmonic {
+        quantity,
+        amplitude: amplitude?,
+        wavelength: wavelength?,
+        phase: phase?,
+    })
+}
+
+fn check_geometry(
+    material: &Material,
+    geometry: &Geometry,
+    errors: &mut Vec<ConfigError>,
+) -> Option<HertzShape> {
+    let c = geometry.curvatures();
+    if c.b <= 0.0 {
+        errors.push(ConfigError::new(
+            "geometry.wheel_profile_radius",
+            format!(
+                "= {} m gives a lateral curvature sum B = {:.4e} 1/m <= 0 (a concave wheel profile must have |radius| > geometry.rail_head_radius = {} m)",
+                geometry.wheel_profile_radius, c.b, geometry.rail_head_radius
+            ),
+        ));
+        return None;
+    }
+    let shape = match HertzShape::new(c, material.elastic) {
+        Ok(s) => s,
+        Err(e) => {
+            errors.push(ConfigError::new("geometry", e.to_string()));
+            return None;
+        }
+    };
+    if let Err(e) = creep_coefficients(shape.aspect(), material.elastic.poisson_ratio) {
+        errors.push(ConfigError::new(
+            "geometry",
+            format!("the Hertz patch is outside Kalker's creep-coefficient table: {e}"),
+        ));
+    }
+    Some(shape)
+}
+
+fn check_loads(loads: &ImposedLoads, mu: f64, rail_dx: Option<f64>, errors: &mut Vec<ConfigError>) {
+    let n_min = loads.min_normal_force();
+    if n_min <= 0.0 {
+        errors.push(ConfigError::new(
+            "load.harmonics",
+            format!(
+                "normal-force amplitudes sum to {:.6e} N, which must be < load.normal_force = {:.6e} N (contact loss is not supported by this model)",
+                loads.normal_force - n_min,
+                loads.normal_force
+            ),
+        ));
+        return;
+    }
+    let f_max = loads.max_longitudinal_force();
+    if f_max >= mu * n_min {
+        errors.push(ConfigError::new(
+            "load.longitudinal_force",
+            format!(
+                "|F_x| reaches {f_max:.6e} N, which must be < mu * min N = {:.6e} N (full sliding)",
+                mu * n_min
+            ),
+        ));
+    }
+    if let Some(dx) = rail_dx {
+        for (i, h) in loads.harmonics.iter().enumerate() {
+            if h.wavelength < 2.0 * dx {
+                errors.push(ConfigError::new(
+                    &format!("load.harmonics[{i}].wavelength"),
+                    format!(
+                        "= {} m is shorter than two rail-grid cells (2 * rail.dx = {} m)",
+                        h.wavelength,
+                        2.0 * dx
+                    ),
+                ));
+            }
+        }
+    }
+}

@@ -1,0 +1,311 @@
+//! Typed, range-checked reading of one TOML section, collecting every error
+//! (unknown key, missing key, wrong type, out of range) instead of stopping at
+//! the first, and recording the resolved value (defaults filled in).
+
+use super::ConfigError;
+use toml::{Table, Value};
+
+/// Allowed range of a number, with its description for error messages.
+#[derive(Debug, Clone, Copy)]
+pub enum Range {
+    /// Any finite value.
+    Finite,
+    /// > 0, finite.
+    Positive,
+    /// > 0, infinity allowed.
+    PositiveOrInf,
+    /// >= 0, finite.
+    NonNegative,
+    /// Non-zero, infinity allowed (signed radii).
+    NonZeroOrInf,
+    /// lo <= v <= hi.
+    Closed(f64, f64),
+    /// lo < v <= hi.
+    OpenClosed(f64, f64),
+    /// lo <= v < hi.
+    ClosedOpen(f64, f64),
+}
+
+impl Range {
+    fn contains(self, v: f64) -> bool {
+        match self {
+            Range::Finite => v.is_finite(),
+            Range::Positive => v > 0.0 && v.is_finite(),
+            Range::PositiveOrInf => v > 0.0,
+            Range::NonNegative => v >= 0.0 && v.is_finite(),
+            Range::NonZeroOrInf => v != 0.0 && !v.is_nan(),
+            Range::Closed(lo, hi) => (lo..=hi).contains(&v),
+            Range::OpenClosed(lo, hi) => v > lo && v <= hi,
+            Range::ClosedOpen(lo, hi) => v >= lo && v < hi,
+        }
+    }
+
+    fn describe(self) -> String {
+        match self {
+            Range::Finite => "a finite number".into(),
+            Range::Positive => "a finite number > 0".into(),
+            Range::PositiveOrInf => "a number > 0 or inf".into(),
+            Range::NonNegative => "a finite number >= 0".into(),
+            Range::NonZeroOrInf => "a non-zero number or +-inf".into(),
+            Range::Closed(lo, hi) => format!("a number in [{lo}, {hi}]"),
+            Range::OpenClosed(lo, hi) => format!("a number in ({lo}, {hi}]"),
+            Range::ClosedOpen(lo, hi) => format!("a number in [{lo}, {hi})"),
+        }
+    }
+}
+
+/// Reader of one section (a TOML table) at dotted path `path`.
+pub struct Section<'a> {
+    path: String,
+    table: Table,
+    errors: &'a mut Vec<ConfigError>,
+    /// The resolved section (defaults filled in).
+    pub resolved: Table,
+}
+
+impl<'a> Section<'a> {
+    /// Takes `name` out of `parent` (a missing section reads as empty).
+    pub fn new(
+        parent: &mut Table,
+        prefix: &str,
+        name: &str,
+        errors: &'a mut Vec<ConfigError>,
+    ) -> Self {
+        let path = if prefix.is_empty() {
+            name.to_string()
+        } else {
+            format!("{prefix}.{name}")
+        };
+        let table = match parent.remove(name) {
+            None => Table::new(),
+            Some(Value::Table(t)) => t,
+            Some(other) => {
+                errors.push(ConfigError::new(
+                    &path,
+                    format!("must be a table, found {}", other.type_str()),
+                ));
+                Table::new()
+            }
+        };
+        Section {
+            path,
+            table,
+            errors,
+            resolved: Table::new(),
+        }
+    }
+
+    /// A section from an already extracted table (array elements).
+    pub fn from_table(path: String, table: Table, errors: &'a mut Vec<ConfigError>) -> Self {
+        Section {
+            path,
+            table,
+            errors,
+            resolved: Table::new(),
+        }
+    }
+
+    /// Dotted name of `key` in this section.
+    pub fn key(&self, key: &str) -> String {
+        format!("{}.{key}", self.path)
+    }
+
+    /// Records an error on `key`.
+    pub fn error(&mut self, key: &str, message: String) {
+        let k = self.key(key);
+        self.errors.push(ConfigError::new(&k, message));
+    }
+
+    /// A number in `range`; `default` when absent (None = required).
+    /// Returns None when missing or invalid (the error is recorded).
+    pub fn f64(&mut self, key: &str, default: Option<f64>, range: Range) -> Option<f64> {
+        let v = match self.table.remove(key) {
+            None => match default {
+                Some(d) => d,
+                None => {
+                    self.error(key, format!("missing; expected {}", range.describe()));
+                    return None;
+                }
+            },
+            Some(Value::Float(f)) => f,
+            Some(Value::Integer(i)) => i as f64,
+            Some(other) => {
+                self.error(
+                    key,
+                    format!(
+                        "expected {}, found {} `{other}`",
+                        range.describe(),
+                        other.type_str()
+                    ),
+                );
+                return None;
+            }
+        };
+        if !range.contains(v) {
+            self.error(
+                key,
+                format!("= {v} is out of range; expected {}", range.describe()),
+            );
+            return None;
+        }
+        self.resolved.insert(key.into(), Value::Float(v));
+        Some(v)
+    }
+
+    /// An integer in `[lo, hi]`.
+    pub fn usize(
+        &mut self,
+        key: &str,
+        default: Option<usize>,
+        lo: usize,
+        hi: usize,
+    ) -> Option<usize> {
+        let expect = format!("an integer in [{lo}, {hi}]");
+        let v = match self.table.remove(key) {
+            None => match default {
+                Some(d) => d as i64,
+                None => {
+                    self.error(key, format!("missing; expected {expect}"));
+                    return None;
+                }
+            },
+            Some(Value::Integer(i)) => i,
+            Some(other) => {
+                self.error(
+                    key,
+                    format!("expected {expect}, found {} `{other}`", other.type_str()),
+                );
+                return None;
+            }
+        };
+        if v < lo as i64 || v > hi as i64 {
+            self.error(key, format!("= {v} is out of range; expected {expect}"));
+            return None;
+        }
+        self.resolved.insert(key.into(), Value::Integer(v));
+        Some(v as usize)
+    }
+
+    /// One of the `allowed` strings.
+    pub fn choice(&mut self, key: &str, default: Option<&str>, allowed: &[&str]) -> Option<String> {
+        let expect = format!(
+            "one of {}",
+            allowed
+                .iter()
+                .map(|a| format!("\"{a}\""))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        let v = match self.table.remove(key) {
+            None => match default {
+                Some(d) => d.to_string(),
+                None => {
+                    self.error(key, format!("missing; expected {expect}"));
+                    return None;
+                }
+            },
+            Some(Value::String(s)) => s,
+            Some(other) => {
+                self.error(
+                    key,
+                    format!("expected {expect}, found {} `{other}`", other.type_str()),
+                );
+                return None;
+            }
+        };
+        if !allowed.contains(&v.as_str()) {
+            self.error(key, format!("= \"{v}\" is not allowed; expected {expect}"));
+            return None;
+        }
+        self.resolved.insert(key.into(), Value::String(v.clone()));
+        Some(v)
+    }
+
+    /// A boolean.
+    pub fn bool(&mut self, key: &str, default: bool) -> Option<bool> {
+        let v = match self.table.remove(key) {
+            None => default,
+            Some(Value::Boolean(b)) => b,
+            Some(other) => {
+                self.error(
+                    key,
+                    format!(
+                        "expected true or false, found {} `{other}`",
+                        other.type_str()
+                    ),
+                );
+                return None;
+            }
+        };
+        self.resolved.insert(key.into(), Value::Boolean(v));
+        Some(v)
+    }
+
+    /// Free text.
+    pub fn string(&mut self, key: &str, default: &str) -> Option<String> {
+        let v = match self.table.remove(key) {
+            None => default.to_string(),
+            Some(Value::String(s)) => s,
+            Some(other) => {
+                self.error(
+                    key,
+                    format!("expected a string, found {} `{other}`", other.type_str()),
+                );
+                return None;
+            }
+        };
+        self.resolved.insert(key.into(), Value::String(v.clone()));
+        Some(v)
+    }
+
+    /// An array of tables (e.g. `[[load.harmonics]]`); each element is read
+    /// with `read` as section `key[i]`.
+    pub fn array_of_tables<T>(
+        &mut self,
+        key: &str,
+        mut read: impl FnMut(&mut Section) -> Option<T>,
+    ) -> Option<Vec<T>> {
+        let items = match self.table.remove(key) {
+            None => Vec::new(),
+            Some(Value::Array(a)) => a,
+            Some(other) => {
+                self.error(
+                    key,
+                    format!("expected an array of tables, found {}", other.type_str()),
+                );
+                return None;
+            }
+        };
+        let mut out = Vec::new();
+        let mut resolved = Vec::new();
+        let mut ok = true;
+        for (i, item) in items.into_iter().enumerate() {
+            let path = format!("{}[{i}]", self.key(key));
+            let Value::Table(t) = item else {
+                self.errors
+                    .push(ConfigError::new(&path, "expected a table".into()));
+                ok = false;
+                continue;
+            };
+            let mut s = Section::from_table(path, t, self.errors);
+            let v = read(&mut s);
+            resolved.push(Value::Table(s.finish()));
+            match v {
+                Some(v) => out.push(v),
+                None => ok = false,
+            }
+        }
+        self.resolved.insert(key.into(), Value::Array(resolved));
+        ok.then_some(out)
+    }
+
+    /// Reports the keys nobody asked for and returns the resolved section.
+    pub fn finish(self) -> Table {
+        for (k, _) in self.table {
+            let key = format!("{}.{k}", self.path);
+            self.errors
+                .push(ConfigError::new(&key, "unknown key".into()));
+        }
+        self.resolved
+    }
+}

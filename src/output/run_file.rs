@@ -1,0 +1,309 @@
+//! The run-file layout of DESIGN.md section 4, written atomically (temporary
+//! file, fsync, rename) so that a reader never sees a half-written file.
+//!
+//! * root attributes: `title`, `version`, `contact_model`, `config` (the
+//!   resolved TOML);
+//! * group `rail`: coordinates `x`, `y`, `pass`; `traffic(pass)`,
+//!   `profile(pass, y, x)`, `wear(pass, y, x)`;
+//! * group `passes`: one row per simulated passage;
+//! * group `contact/pass_NNNNN`: the patch history of a stored passage.
+
+use super::netcdf::{NcError, NcGroup, write_atomically};
+use crate::contact::EllipseMesh;
+use crate::passage::PatchHistory;
+use crate::wear::RailGrid;
+use ndarray::{Array1, Array2, Array3, ArrayView1};
+use std::path::Path;
+
+/// One simulated passage's summary row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassRow {
+    /// Passage index (0-based).
+    pub index: i64,
+    /// Real passages represented up to and including this one (1).
+    pub traffic: f64,
+    /// Real passages this simulated one stands for (1).
+    pub traffic_scale: f64,
+    /// rms of the corrugation on the centre line after this passage (m).
+    pub rms_corrugation: f64,
+    /// Volume removed from the rail grid by this passage, unscaled (m^3).
+    pub removed_volume: f64,
+    /// CPU time of the passage (s).
+    pub cpu_seconds: f64,
+}
+
+/// A stored rail state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RailSnapshot {
+    /// Passage index.
+    pub index: i64,
+    /// Real passages represented (1).
+    pub traffic: f64,
+    /// Surface height change, shape (ny, nx) (m, wear negative).
+    pub profile: Array2<f64>,
+    /// Wear depth of this passage, shape (ny, nx) (m, positive).
+    pub wear: Array2<f64>,
+}
+
+/// Everything a run file holds.
+#[derive(Debug, Clone)]
+pub struct RunRecord<'a> {
+    /// Title of the run.
+    pub title: &'a str,
+    /// Contact model name.
+    pub contact_model: &'a str,
+    /// Resolved config TOML.
+    pub config: &'a str,
+    /// Rail grid.
+    pub grid: &'a RailGrid,
+    /// Contact mesh (normalised).
+    pub mesh: &'a EllipseMesh,
+    /// Rows of group `passes`.
+    pub passes: &'a [PassRow],
+    /// Stored rail states.
+    pub rail: &'a [RailSnapshot],
+    /// Stored patch histories: (passage index, history).
+    pub contact: &'a [(i64, &'a PatchHistory)],
+}
+
+/// Writes `record` to `path` atomically.
+pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
+    write_atomically(path, |root| {
+        root.attr_str("title", record.title)?;
+        root.attr_str("version", env!("CARGO_PKG_VERSION"))?;
+        root.attr_str("program", "corrugation")?;
+        root.attr_str("contact_model", record.contact_model)?;
+        root.attr_str("config", record.config)?;
+        write_rail(&root.group("rail")?, record)?;
+        write_passes(&root.group("passes")?, record.passes)?;
+        let contact = root.group("contact")?;
+        for (index, history) in record.contact {
+            write_history(
+                &contact.group(&format!("pass_{index:05}"))?,
+                history,
+                record.mesh,
+            )?;
+        }
+        Ok(())
+    })
+}
+
+fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
+    let grid = r.grid;
+    g.coord_f64("x", &grid.xs(), "m", "position along the rail", false)?;
+    g.coord_f64(
+        "y",
+        &grid.ys(),
+        "m",
+        "lateral position on the rail head",
+        false,
+    )?;
+    let idx: Vec<i64> = r.rail.iter().map(|s| s.index).collect();
+    g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
+    let traffic: Array1<f64> = r.rail.iter().map(|s| s.traffic).collect();
+    g.var_f64(
+        "traffic",
+        &["pass"],
+        traffic.view().into_dyn(),
+        "1",
+        "real wheel passages represented",
+    )?;
+    let stack = |f: &dyn Fn(&RailSnapshot) -> &Array2<f64>| {
+        let mut a = Array3::zeros((r.rail.len(), grid.ny, grid.nx));
+        for (k, s) in r.rail.iter().enumerate() {
+            a.index_axis_mut(ndarray::Axis(0), k).assign(f(s));
+        }
+        a
+    };
+    let profile = stack(&|s| &s.profile);
+    g.var_f64(
+        "profile",
+        &["pass", "y", "x"],
+        profile.view().into_dyn(),
+        "m",
+        "rail surface height change after the passage (wear negative)",
+    )?;
+    let wear = stack(&|s| &s.wear);
+    g.var_f64(
+        "wear",
+        &["pass", "y", "x"],
+        wear.view().into_dyn(),
+        "m",
+        "wear depth of one simulated passage (unscaled by traffic)",
+    )?;
+    Ok(())
+}
+
+fn write_passes(g: &NcGroup, rows: &[PassRow]) -> Result<(), NcError> {
+    let idx: Vec<i64> = rows.iter().map(|r| r.index).collect();
+    g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
+    let col = |f: fn(&PassRow) -> f64| -> Array1<f64> { rows.iter().map(f).collect() };
+    let vars: [(&str, Array1<f64>, &str, &str); 5] = [
+        (
+            "traffic",
+            col(|r| r.traffic),
+            "1",
+            "real wheel passages represented",
+        ),
+        (
+            "traffic_scale",
+            col(|r| r.traffic_scale),
+            "1",
+            "real passages per simulated passage",
+        ),
+        (
+            "rms_corrugation",
+            col(|r| r.rms_corrugation),
+            "m",
+            "rms of the centre-line rail profile minus its mean",
+        ),
+        (
+            "removed_volume",
+            col(|r| r.removed_volume),
+            "m3",
+            "volume removed from the rail grid by one simulated passage",
+        ),
+        (
+            "cpu_seconds",
+            col(|r| r.cpu_seconds),
+            "s",
+            "CPU time of the passage",
+        ),
+    ];
+    for (name, v, units, long_name) in vars {
+        g.var_f64(name, &["pass"], v.view().into_dyn(), units, long_name)?;
+    }
+    Ok(())
+}
+
+fn write_history(g: &NcGroup, h: &PatchHistory, mesh: &EllipseMesh) -> Result<(), NcError> {
+    let steps: Vec<i64> = (0..h.time.len() as i64).collect();
+    g.coord_i64("step", &steps, "1", "contact time step", false)?;
+    let elements: Vec<i64> = (0..mesh.len() as i64).collect();
+    g.coord_i64(
+        "element",
+        &elements,
+        "1",
+        "patch element (strip by strip, leading edge first)",
+        false,
+    )?;
+    let per_step: [(&str, &Vec<f64>, &str, &str); 12] = [
+        ("time", &h.time, "s", "time since the start of the passage"),
+        ("x_c", &h.x_c, "m", "patch centre position along the rail"),
+        ("normal_force", &h.normal_force, "N", "normal force"),
+        (
+            "longitudinal_force",
+            &h.longitudinal_force,
+            "N",
+            "longitudinal force on the wheel",
+        ),
+        (
+            "creepage_x",
+            &h.creepage_x,
+            "1",
+            "longitudinal creepage (negative for a positive force on the wheel)",
+        ),
+        ("creepage_y", &h.creepage_y, "1", "lateral creepage"),
+        ("spin", &h.spin, "1/m", "spin creepage"),
+        (
+            "semi_axis_a",
+            &h.semi_axis_a,
+            "m",
+            "contact semi-axis along the rail",
+        ),
+        (
+            "semi_axis_b",
+            &h.semi_axis_b,
+            "m",
+            "contact semi-axis across the rail",
+        ),
+        (
+            "max_pressure",
+            &h.max_pressure,
+            "Pa",
+            "Hertz maximum pressure p0",
+        ),
+        (
+            "stick_fraction",
+            &h.stick_fraction,
+            "1",
+            "fraction of elements in stick",
+        ),
+        (
+            "wear_volume_rate",
+            &h.wear_volume_rate,
+            "m3/s",
+            "patch integral of the Archard wear rate",
+        ),
+    ];
+    for (name, v, units, long_name) in per_step {
+        g.var_f64(
+            name,
+            &["step"],
+            ArrayView1::from(v.as_slice()).into_dyn(),
+            units,
+            long_name,
+        )?;
+    }
+    let d_xi: Vec<f64> = (0..mesh.len()).map(|k| mesh.d_xi[mesh.strip(k)]).collect();
+    let d_eta = vec![mesh.d_eta; mesh.len()];
+    let per_element: [(&str, &Vec<f64>, &str); 4] = [
+        ("xi", &mesh.xi, "element centre x / a"),
+        ("eta", &mesh.eta, "element centre y / b"),
+        ("d_xi", &d_xi, "element length along x / a"),
+        ("d_eta", &d_eta, "strip width / b"),
+    ];
+    for (name, v, long_name) in per_element {
+        g.var_f64(
+            name,
+            &["element"],
+            ArrayView1::from(v.as_slice()).into_dyn(),
+            "1",
+            long_name,
+        )?;
+    }
+    if let Some(f) = &h.fields {
+        let dims = ["step", "element"];
+        let fields: [(&str, &Array2<f64>, &str, &str); 6] = [
+            ("pressure", &f.pressure, "Pa", "normal pressure"),
+            (
+                "traction_x",
+                &f.traction_x,
+                "Pa",
+                "longitudinal traction on the wheel",
+            ),
+            (
+                "traction_y",
+                &f.traction_y,
+                "Pa",
+                "lateral traction on the wheel",
+            ),
+            (
+                "slip_x",
+                &f.slip_x,
+                "m/s",
+                "longitudinal slip velocity of the wheel relative to the rail",
+            ),
+            (
+                "slip_y",
+                &f.slip_y,
+                "m/s",
+                "lateral slip velocity of the wheel relative to the rail",
+            ),
+            ("wear_rate", &f.wear_rate, "m/s", "Archard wear rate"),
+        ];
+        for (name, v, units, long_name) in fields {
+            g.var_f64(name, &dims, v.view().into_dyn(), units, long_name)?;
+        }
+        g.var_i8(
+            "stick",
+            &dims,
+            f.stick.view().into_dyn(),
+            "1",
+            "adhesion flag",
+        )?;
+        g.var_attr_str("stick", "flag_values", "0 1")?;
+        g.var_attr_str("stick", "flag_meanings", "slip stick")?;
+    }
+    Ok(())
+}

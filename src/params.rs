@@ -1,0 +1,125 @@
+//! The typed, validated parameters of a scene: what the kernels receive.
+//! Built from a config by [`crate::config`]; SI units throughout.
+
+use crate::contact::PressureShape;
+use crate::hertz::{Curvatures, Elastic};
+use crate::loads::ImposedLoads;
+
+/// Tangential contact model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactModelKind {
+    /// Kalker's FASTSIM (steady, simplified theory).
+    Fastsim,
+}
+
+impl ContactModelKind {
+    /// Config name of the model.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactModelKind::Fastsim => "fastsim",
+        }
+    }
+}
+
+/// Materials and friction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Material {
+    /// Elastic constants of wheel and rail (identical).
+    pub elastic: Elastic,
+    /// Coulomb friction coefficient mu (1).
+    pub friction: f64,
+}
+
+/// Wheel and rail geometry.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Geometry {
+    /// Wheel rolling radius (m).
+    pub wheel_radius: f64,
+    /// Lateral wheel-profile radius (m; negative concave, inf flat).
+    pub wheel_profile_radius: f64,
+    /// Lateral rail-head radius (m).
+    pub rail_head_radius: f64,
+}
+
+impl Geometry {
+    /// Hertz curvature sums A, B (1/m).
+    pub fn curvatures(&self) -> Curvatures {
+        Curvatures::wheel_on_rail(
+            self.wheel_radius,
+            self.wheel_profile_radius,
+            self.rail_head_radius,
+        )
+    }
+}
+
+/// Contact model and its discretisation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactParams {
+    /// The tangential model.
+    pub model: ContactModelKind,
+    /// Elements per strip along x.
+    pub elements_x: usize,
+    /// Strips along y.
+    pub elements_y: usize,
+    /// Regularisation velocity eps of the Coulomb law (m/s), transient models.
+    pub regularisation: f64,
+    /// Traction bound of FASTSIM.
+    pub fastsim_bound: PressureShape,
+}
+
+/// Rail-surface grid.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RailParams {
+    /// First grid node along the rail (m).
+    pub x_min: f64,
+    /// Last grid node along the rail (m).
+    pub x_max: f64,
+    /// Node spacing along the rail (m).
+    pub dx: f64,
+    /// Node spacing across the rail (m).
+    pub dy: f64,
+    /// Lateral half-width of the grid (m).
+    pub half_width: f64,
+}
+
+/// Output options.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputParams {
+    /// Store the contact fields on (step, element).
+    pub store_fields: bool,
+    /// Title written to the run file.
+    pub title: String,
+}
+
+/// A whole validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Materials.
+    pub material: Material,
+    /// Geometry.
+    pub geometry: Geometry,
+    /// Rolling speed V (m/s).
+    pub speed: f64,
+    /// Prescribed lateral creepage (1).
+    pub creepage_y: f64,
+    /// Prescribed spin (1/m).
+    pub spin: f64,
+    /// Imposed loads.
+    pub loads: ImposedLoads,
+    /// Contact model.
+    pub contact: ContactParams,
+    /// Archard coefficient k/H (m^2/N).
+    pub k_over_h: f64,
+    /// Wear sub-steps per contact step.
+    pub wear_substeps: usize,
+    /// First patch-centre position (m).
+    pub start: f64,
+    /// Last patch-centre position (m).
+    pub end: f64,
+    /// Rolled distance per contact step (m).
+    pub step_length: f64,
+    /// Rail grid.
+    pub rail: RailParams,
+    /// Output.
+    pub output: OutputParams,
+}
