@@ -33,6 +33,7 @@ pub enum CreepTableError {
     Poisson(f64),
 }
 
+#[allow(clippy::approx_constant)] // table values, not pi
 /// Rows [nu = 0, 0.25, 0.5] x [C11, C22, C23], for a/b = 0.1, 0.2, ... 1.0.
 const A_OVER_B: [[[f64; 3]; 3]; 10] = [
     [

@@ -11,6 +11,7 @@ const V: f64 = 27.78;
 
 /// Rolls a patch of constant semi-axes and rates over the grid from `x0` to
 /// `x1` in steps of `h`.
+#[allow(clippy::too_many_arguments)]
 fn roll(
     dep: &WearDeposit,
     grid: &RailGrid,

@@ -271,15 +271,13 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     } else if ((x_max - x_min) / dx) * (2.0 * half_width / dy) > 5e7 {
         errors.push(ConfigError::new("rail.dx", "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into()));
     }
-    if let Some(shape) = shape {
-        if let Ok(p) = shape.patch(loads.max_normal_force()) {
-            if half_width < p.b {
-                errors.push(ConfigError::new(
-                    "rail.half_width",
-                    format!("= {half_width} m is narrower than the largest patch half-width b = {:.4e} m; it must be >= b", p.b),
-                ));
-            }
-        }
+    if let Some(p) = shape.and_then(|s| s.patch(loads.max_normal_force()).ok())
+        && half_width < p.b
+    {
+        errors.push(ConfigError::new(
+            "rail.half_width",
+            format!("= {half_width} m is narrower than the largest patch half-width b = {:.4e} m; it must be >= b", p.b),
+        ));
     }
     let scene = Scene {
         material,

@@ -1,0 +1,173 @@
+//! End to end through the binary: check, run, the run file's contents against
+//! the physics invariants, determinism, and bad input leaving files intact.
+use corrugation::output::netcdf::{read_attr_str, read_f64, read_i8};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const BIN: &str = env!("CARGO_BIN_EXE_corrugation");
+/// A cheap version of a paper scene for the tests.
+const FAST: [&str; 6] = [
+    "--set",
+    "contact.elements_x=10",
+    "--set",
+    "contact.elements_y=10",
+    "--set",
+    "rail.dx=2e-4",
+];
+
+fn corrugation(args: &[&str]) -> Output {
+    Command::new(BIN).args(args).output().expect("binary runs")
+}
+
+fn config(name: &str) -> String {
+    format!("{}/configs/{name}.toml", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn run_to(dir: &Path, name: &str, scene: &str) -> PathBuf {
+    let out = dir.join(name);
+    let c = config(scene);
+    let mut args = vec!["run", c.as_str(), "-o", out.to_str().unwrap()];
+    args.extend(FAST);
+    let o = corrugation(&args);
+    assert!(
+        o.status.success(),
+        "run failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    out
+}
+
+#[test]
+fn check_prints_derived_quantities() {
+    let o = corrugation(&["check", &config("paper_normal_30mm")]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    // Concave reading at 100 kN: a = 5.96 mm, b = 10.22 mm, p0 = 785 MPa.
+    assert!(text.contains("a = 5.9566 mm"), "{text}");
+    assert!(text.contains("b = 10.2157 mm"), "{text}");
+    assert!(text.contains("p0 = 784.6 MPa"), "{text}");
+    assert!(text.contains("491 steps"), "{text}");
+}
+
+#[test]
+fn run_file_satisfies_invariants() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = run_to(dir.path(), "n15.h5", "paper_normal_15mm");
+    let g = "contact/pass_00000";
+    let x_c = read_f64(&f, g, "x_c").unwrap();
+    let n = read_f64(&f, g, "normal_force").unwrap();
+    let fx = read_f64(&f, g, "longitudinal_force").unwrap();
+    let a = read_f64(&f, g, "semi_axis_a").unwrap();
+    let b = read_f64(&f, g, "semi_axis_b").unwrap();
+    let p = read_f64(&f, g, "pressure").unwrap();
+    let tx = read_f64(&f, g, "traction_x").unwrap();
+    let ty = read_f64(&f, g, "traction_y").unwrap();
+    let w = read_f64(&f, g, "wear_rate").unwrap();
+    let stick = read_i8(&f, g, "stick").unwrap();
+    let sx = read_f64(&f, g, "slip_x").unwrap();
+    let d_xi = read_f64(&f, g, "d_xi").unwrap();
+    let d_eta = read_f64(&f, g, "d_eta").unwrap();
+    assert_eq!(p.shape()[1], 100);
+    for s in 0..x_c.len() {
+        // Imposed loads: N = 100 kN + 45 kN sin(2 pi X / 15 mm), F_x = 20 kN.
+        let expected_n = 1e5 + 4.5e4 * (2.0 * std::f64::consts::PI * x_c[s] / 0.015).sin();
+        assert!((n[s] - expected_n).abs() < 1e-6, "N at step {s}");
+        assert!(
+            (fx[s] - 2e4).abs() < 1e-6 * 2e4,
+            "force balance F_x at step {s}: {}",
+            fx[s]
+        );
+        let mut force_n = 0.0;
+        let mut force_x = 0.0;
+        for k in 0..100 {
+            let area = d_xi[k] * d_eta[k] * a[s] * b[s];
+            force_n += p[[s, k]] * area;
+            force_x += tx[[s, k]] * area;
+            let t = tx[[s, k]].hypot(ty[[s, k]]);
+            assert!(
+                t <= 0.4 * p[[s, k]] * (1.0 + 1e-12),
+                "|p| <= mu p3 at step {s} element {k}"
+            );
+            assert!(w[[s, k]] >= 0.0);
+            assert!(stick[[s, k]] == 0 || stick[[s, k]] == 1);
+            if stick[[s, k]] == 1 {
+                assert_eq!(sx[[s, k]], 0.0);
+            }
+        }
+        assert!(
+            (force_n - n[s]).abs() < 1e-9 * n[s],
+            "normal force balance at step {s}"
+        );
+        assert!(
+            (force_x - fx[s]).abs() < 1e-9 * 2e4,
+            "tangential force balance at step {s}"
+        );
+    }
+    // Rail: wear positive, profile = -wear for one passage, rms recorded.
+    let wear = read_f64(&f, "rail", "wear").unwrap();
+    let profile = read_f64(&f, "rail", "profile").unwrap();
+    assert!(wear.iter().all(|v| *v >= 0.0) && wear.iter().any(|v| *v > 0.0));
+    assert!(wear.iter().zip(profile.iter()).all(|(w, p)| *p == -*w));
+    let rms = read_f64(&f, "passes", "rms_corrugation").unwrap();
+    assert!(rms[0] > 0.0);
+    let cfg = read_attr_str(&f, "/", "config").unwrap();
+    assert!(
+        cfg.contains("elements_x = 10"),
+        "resolved config with overrides stored"
+    );
+}
+
+#[test]
+fn same_config_same_result_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let f1 = run_to(dir.path(), "a.h5", "paper_longitudinal_15mm");
+    let f2 = run_to(dir.path(), "b.h5", "paper_longitudinal_15mm");
+    for (g, v) in [
+        ("rail", "wear"),
+        ("contact/pass_00000", "creepage_x"),
+        ("contact/pass_00000", "slip_x"),
+        ("contact/pass_00000", "wear_rate"),
+    ] {
+        let (x, y) = (read_f64(&f1, g, v).unwrap(), read_f64(&f2, g, v).unwrap());
+        assert!(
+            x.iter()
+                .zip(y.iter())
+                .all(|(a, b)| a.to_bits() == b.to_bits()),
+            "{g}/{v} differs"
+        );
+    }
+}
+
+#[test]
+fn bad_config_exits_2_and_keeps_existing_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("keep.h5");
+    std::fs::write(&out, b"previous results").unwrap();
+    let c = config("paper_normal_30mm");
+    let o = corrugation(&[
+        "run",
+        &c,
+        "-o",
+        out.to_str().unwrap(),
+        "--set",
+        "material.friction_coefficient=3",
+        "--set",
+        "contact.elements_x=1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(
+            "material.friction_coefficient: = 3 is out of range; expected a number in (0, 1]"
+        ),
+        "{err}"
+    );
+    assert!(
+        err.contains("contact.elements_x: = 1 is out of range"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&out).unwrap(), b"previous results");
+    let o = corrugation(&["check", "/nonexistent/scene.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent/scene.toml"));
+}

@@ -1,0 +1,231 @@
+//! Bad input: a corpus of bad configs, each with the message it must
+//! produce; all problems reported at once; property test of overrides.
+use corrugation::config::load_str;
+use proptest::prelude::*;
+
+const BASE: &str = include_str!("../configs/paper_normal_30mm.toml");
+
+fn errors(text: &str, set: &[&str]) -> Vec<String> {
+    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    match load_str(text, "test.toml", &set) {
+        Ok(_) => Vec::new(),
+        Err(e) => e.errors.iter().map(|e| e.to_string()).collect(),
+    }
+}
+
+#[test]
+fn paper_configs_are_valid() {
+    for (name, text) in [
+        ("paper_steady", include_str!("../configs/paper_steady.toml")),
+        ("paper_normal_30mm", BASE),
+        (
+            "paper_normal_15mm",
+            include_str!("../configs/paper_normal_15mm.toml"),
+        ),
+        (
+            "paper_longitudinal_30mm",
+            include_str!("../configs/paper_longitudinal_30mm.toml"),
+        ),
+        (
+            "paper_longitudinal_15mm",
+            include_str!("../configs/paper_longitudinal_15mm.toml"),
+        ),
+    ] {
+        assert_eq!(errors(text, &[]), Vec::<String>::new(), "{name}");
+    }
+}
+
+#[test]
+fn corpus_of_bad_values() {
+    // (override, expected fragment of the single error message)
+    let corpus: &[(&str, &str)] = &[
+        (
+            "material.friction_coefficient=0",
+            "material.friction_coefficient: = 0 is out of range; expected a number in (0, 1]",
+        ),
+        (
+            "material.friction_coefficient=1.5",
+            "material.friction_coefficient: = 1.5 is out of range; expected a number in (0, 1]",
+        ),
+        (
+            "material.poisson_ratio=0.5",
+            "material.poisson_ratio: = 0.5 is out of range; expected a number in [0, 0.5)",
+        ),
+        (
+            "material.young_modulus=-1",
+            "material.young_modulus: = -1 is out of range; expected a finite number > 0",
+        ),
+        (
+            "material.young_modulus=\"steel\"",
+            "material.young_modulus: expected a finite number > 0, found string",
+        ),
+        (
+            "load.normal_force=0",
+            "load.normal_force: = 0 is out of range; expected a finite number > 0",
+        ),
+        (
+            "load.normal_force=nan",
+            "load.normal_force: = NaN is out of range",
+        ),
+        (
+            "load.harmonics[0].amplitude=1e5",
+            "load.harmonics: normal-force amplitudes sum to 1.000000e5 N, which must be < load.normal_force",
+        ),
+        (
+            "load.longitudinal_force=30e3",
+            "load.longitudinal_force: |F_x| reaches 3.000000e4 N, which must be < mu * min N = 2.200000e4 N",
+        ),
+        (
+            "load.harmonics[0].wavelength=1.5e-4",
+            "load.harmonics[0].wavelength: = 0.00015 m is shorter than two rail-grid cells (2 * rail.dx = 0.0002 m)",
+        ),
+        (
+            "load.harmonics[0].quantity=lateral_force",
+            "load.harmonics[0].quantity: = \"lateral_force\" is not allowed; expected one of \"normal_force\", \"longitudinal_force\"",
+        ),
+        (
+            "contact.model=exact-transient",
+            "contact.model: = \"exact-transient\" is not allowed; expected one of \"fastsim\"",
+        ),
+        (
+            "contact.elements_x=1",
+            "contact.elements_x: = 1 is out of range; expected an integer in [2, 200]",
+        ),
+        (
+            "contact.elements_y=2.5",
+            "contact.elements_y: expected an integer in [2, 200], found float",
+        ),
+        (
+            "contact.fastsim_bound=square",
+            "contact.fastsim_bound: = \"square\" is not allowed",
+        ),
+        (
+            "geometry.wheel_profile_radius=-0.2",
+            "geometry.wheel_profile_radius: = -0.2 m gives a lateral curvature sum B",
+        ),
+        (
+            "geometry.wheel_profile_radius=0",
+            "geometry.wheel_profile_radius: = 0 is out of range; expected a non-zero number or +-inf",
+        ),
+        (
+            "geometry.wheel_radius=0.01",
+            "outside Kalker's creep-coefficient table",
+        ),
+        (
+            "rolling.speed=0",
+            "rolling.speed: = 0 is out of range; expected a number in (0, 200]",
+        ),
+        (
+            "passage.end=-0.05",
+            "passage.end: = -0.05 must be > passage.start = -0.03",
+        ),
+        (
+            "passage.step_length=0",
+            "passage.step_length: = 0 is out of range",
+        ),
+        ("rail.x_max=-1", "rail.x_max: = -1 must be > rail.x_min = 0"),
+        (
+            "rail.dy=0.2",
+            "rail.dy: = 0.2 is out of range; expected a number in (0, 0.01]",
+        ),
+        (
+            "wear.substeps=0",
+            "wear.substeps: = 0 is out of range; expected an integer in [1, 64]",
+        ),
+        (
+            "wear.k_over_h=-1e-14",
+            "wear.k_over_h: = -0.00000000000001 is out of range; expected a finite number >= 0",
+        ),
+        (
+            "output.store_fields=1",
+            "output.store_fields: expected true or false, found integer",
+        ),
+        ("material.colour=1", "material.colour: unknown key"),
+        ("solver.tolerance=1", "solver: unknown section or key"),
+    ];
+    for (set, expected) in corpus {
+        // Wide rail grid so the large-amplitude case reports only its own problem.
+        let e = errors(BASE, &[set, "rail.half_width=0.05"]);
+        assert_eq!(e.len(), 1, "--set {set}: expected one error, got {e:?}");
+        assert!(
+            e[0].contains(expected),
+            "--set {set}:\n  got      {}\n  expected {expected}",
+            e[0]
+        );
+    }
+}
+
+#[test]
+fn missing_keys_and_syntax() {
+    let e = errors(
+        &BASE.replace("young_modulus = 2.1e11          # Pa\n", ""),
+        &[],
+    );
+    assert_eq!(
+        e,
+        vec!["material.young_modulus: missing; expected a finite number > 0".to_string()]
+    );
+    let e = errors("[material\nx = 1", &[]);
+    assert!(e[0].starts_with("TOML syntax:"), "{e:?}");
+    let e = errors(BASE, &["rail.half_width=0.005"]);
+    assert_eq!(e, vec!["rail.half_width: = 0.005 m is narrower than the largest patch half-width b = 1.1563e-2 m; it must be >= b".to_string()]);
+    let e = errors(BASE, &["friction=0.3"]);
+    assert!(
+        e[0].contains("--set friction=0.3: the key must be a dotted path"),
+        "{e:?}"
+    );
+}
+
+#[test]
+fn all_problems_reported_at_once() {
+    let e = errors(
+        BASE,
+        &[
+            "material.friction_coefficient=2",
+            "contact.elements_x=0",
+            "rail.dy=-1",
+            "wear.colour=1",
+        ],
+    );
+    assert_eq!(e.len(), 4, "{e:?}");
+    for key in [
+        "material.friction_coefficient",
+        "contact.elements_x",
+        "rail.dy",
+        "wear.colour",
+    ] {
+        assert!(
+            e.iter().any(|m| m.starts_with(key)),
+            "{key} missing in {e:?}"
+        );
+    }
+}
+
+#[test]
+fn resolved_config_round_trips() {
+    let r = load_str(BASE, "base", &["contact.elements_x=12".into()]).unwrap();
+    let again = load_str(&r.toml, "resolved", &[]).unwrap();
+    assert_eq!(again.scene, r.scene);
+    assert_eq!(r.scene.contact.elements_x, 12);
+    assert!(r.toml.contains("substeps = 4"), "defaults are written out");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+    /// Any numeric override either validates or is rejected with an error
+    /// naming the overridden key; never a panic.
+    #[test]
+    fn numeric_overrides_never_panic(key in prop::sample::select(vec![
+        "material.young_modulus", "material.poisson_ratio", "material.friction_coefficient",
+        "geometry.wheel_radius", "geometry.wheel_profile_radius", "geometry.rail_head_radius",
+        "rolling.speed", "load.normal_force", "load.longitudinal_force", "load.harmonics[0].amplitude",
+        "load.harmonics[0].wavelength", "passage.step_length", "rail.dx", "rail.half_width", "wear.k_over_h",
+    ]), value in prop_oneof![any::<f64>(), -1e6..1e6f64, -1.0..1.0f64]) {
+        let set = format!("{key}={value:e}").replace("inf", "inf").replace("NaN", "nan");
+        let e = errors(BASE, &[&set]);
+        let section = key.split('.').next().unwrap();
+        for m in &e {
+            prop_assert!(m.starts_with(section) || m.starts_with("load") || m.starts_with("geometry") || m.starts_with("rail"), "{set}: {m}");
+        }
+    }
+}
