@@ -125,6 +125,13 @@ def loads(run: Run, pass_index: int, out_dir: Path) -> Path:
     for ax in axes:
         _shade_loss_of_contact(ax, xc, contact)
         ax.grid(alpha=0.3)
+        # A constant force prescribed to round-off must not plot as noise
+        # around an offset.
+        ax.ticklabel_format(axis="y", useOffset=False, style="plain")
+        lo, hi = ax.get_ylim()
+        if hi - lo < 1e-6 * max(abs(lo), abs(hi), 1e-30):
+            mid = 0.5 * (lo + hi)
+            ax.set_ylim(mid - 0.05 * abs(mid) - 1e-12, mid + 0.05 * abs(mid) + 1e-12)
     axes[-1].set_xlabel("patch centre x_c (mm)")
     fig.suptitle(_title(run, "Contact loads", pass_index))
     return _save(fig, out_dir, "loads.png")

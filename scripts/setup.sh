@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs what corrugation needs on a Debian machine that has a Rust
+# toolchain, gcc and python3: HDF5 (libhdf5-dev, pkg-config) from Debian,
+# and a Python venv (.venv) with the post-processing packages from PyPI.
+# Idempotent: does nothing that is already done.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+as_root() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
+apt_updated=0
+apt_install() {
+  if [ "$apt_updated" -eq 0 ]; then as_root apt-get update -qq; apt_updated=1; fi
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$@" >/dev/null
+}
+
+if ! { command -v pkg-config >/dev/null && pkg-config --exists hdf5; } && [ ! -f /usr/include/hdf5/serial/hdf5.h ]; then
+  echo "setup: installing HDF5 (libhdf5-dev) from Debian" >&2
+  apt_install libhdf5-dev pkg-config
+fi
+
+if [ ! -x .venv/bin/python ]; then
+  if ! python3 -m venv .venv 2>/dev/null; then
+    echo "setup: installing python3-venv from Debian" >&2
+    rm -rf .venv
+    apt_install python3-venv
+    python3 -m venv .venv
+  fi
+fi
+stamp=.venv/.requirements.sha256
+want=$(sha256sum postprocess/requirements.txt | cut -d' ' -f1)
+if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
+  echo "setup: installing Python packages (postprocess/requirements.txt)" >&2
+  .venv/bin/python -m pip install -q --upgrade pip
+  .venv/bin/python -m pip install -q -r postprocess/requirements.txt
+  echo "$want" > "$stamp"
+fi

@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Sets up (scripts/setup.sh) and runs every test: formatting, the Rust tests
+# (unit, integration, doc), then the Python post-processing tests on a run
+# file produced by the binary.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/setup.sh
+cargo fmt --check
+cargo test --all-targets
+cargo test --doc
+run_dir=target/test-run
+mkdir -p "$run_dir"
+cargo run --quiet -- run configs/paper_normal_15mm.toml -o "$run_dir/paper_normal_15mm.h5" \
+  --set contact.elements_x=12 --set contact.elements_y=12
+CORRUGATION_RUN_FILE="$PWD/$run_dir/paper_normal_15mm.h5" .venv/bin/python -m pytest -q postprocess/tests
