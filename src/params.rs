@@ -10,6 +10,10 @@ use crate::loads::ImposedLoads;
 pub enum ContactModelKind {
     /// Kalker's FASTSIM (steady, simplified theory).
     Fastsim,
+    /// The paper's non-stationary model with Kalker's exact theory.
+    ExactTransient,
+    /// The same time stepping with the simplified (Winkler) elastic model.
+    SimplifiedTransient,
 }
 
 impl ContactModelKind {
@@ -17,7 +21,21 @@ impl ContactModelKind {
     pub fn name(self) -> &'static str {
         match self {
             ContactModelKind::Fastsim => "fastsim",
+            ContactModelKind::ExactTransient => "exact-transient",
+            ContactModelKind::SimplifiedTransient => "simplified-transient",
         }
+    }
+
+    /// All models, in the order of the config documentation.
+    pub const ALL: [ContactModelKind; 3] = [
+        ContactModelKind::ExactTransient,
+        ContactModelKind::SimplifiedTransient,
+        ContactModelKind::Fastsim,
+    ];
+
+    /// Whether the model carries a contact history between steps.
+    pub fn is_transient(self) -> bool {
+        self != ContactModelKind::Fastsim
     }
 }
 

@@ -81,6 +81,8 @@ pub struct PatchHistory {
     pub max_pressure: Vec<f64>,
     /// Fraction of elements in stick (1).
     pub stick_fraction: Vec<f64>,
+    /// Newton-Raphson iterations of the contact solve (0 for FASTSIM).
+    pub newton_iterations: Vec<f64>,
     /// Integral over the patch of the interpolated Archard rate (m^3/s): the
     /// volume the rail loses per second.
     pub wear_volume_rate: Vec<f64>,
@@ -232,7 +234,7 @@ pub fn run_passage(
         let input = StepInput {
             patch,
             speed: spec.speed,
-            dt: if n == 0 { 0.0 } else { dt },
+            dt,
             friction: spec.friction,
             force_x,
             creepage_y: spec.creepage_y,
@@ -275,6 +277,7 @@ pub fn run_passage(
         h.semi_axis_b.push(patch.b);
         h.max_pressure.push(patch.p0);
         h.stick_fraction.push(sol.stick_fraction());
+        h.newton_iterations.push(sol.iterations as f64);
         h.wear_volume_rate
             .push(deposit.integral(&rates, patch.a, patch.b));
         if let Some(f) = h.fields.as_mut() {

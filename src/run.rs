@@ -4,7 +4,9 @@
 
 use crate::config::Resolved;
 use crate::contact::fastsim::Fastsim;
-use crate::contact::{EllipseMesh, TangentialSolver};
+use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
+use crate::contact::transient::{ElasticModel, Transient};
+use crate::contact::{EllipseMesh, PressureShape, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
 use crate::hertz::{HertzPatch, HertzShape};
 use crate::metrics::rms_corrugation;
@@ -86,6 +88,35 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
                 c.fastsim_bound,
                 coefficients,
                 scene.material.elastic.shear_modulus(),
+            ))
+        }
+        ContactModelKind::ExactTransient => {
+            let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
+            let el = scene.material.elastic;
+            let exact =
+                ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
+            Box::new(Transient::new(
+                mesh,
+                ElasticModel::Exact(exact),
+                PressureShape::Hertz,
+                c.regularisation,
+            ))
+        }
+        ContactModelKind::SimplifiedTransient => {
+            let el = scene.material.elastic;
+            let coefficients =
+                creep_coefficients(shape.aspect(), el.poisson_ratio).expect("validated aspect");
+            let g = el.shear_modulus();
+            let winkler = WinklerElastic {
+                l1_unit: 8.0 / (3.0 * coefficients.c11 * g),
+                l2_unit: 8.0 / (3.0 * coefficients.c22 * g),
+            };
+            let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
+            Box::new(Transient::new(
+                mesh,
+                ElasticModel::Winkler(winkler),
+                c.fastsim_bound,
+                c.regularisation,
             ))
         }
     }

@@ -84,8 +84,8 @@ fn corpus_of_bad_values() {
             "load.harmonics[0].quantity: = \"lateral_force\" is not allowed; expected one of \"normal_force\", \"longitudinal_force\"",
         ),
         (
-            "contact.model=exact-transient",
-            "contact.model: = \"exact-transient\" is not allowed; expected one of \"fastsim\"",
+            "contact.model=implicit",
+            "contact.model: = \"implicit\" is not allowed; expected one of \"exact-transient\", \"simplified-transient\", \"fastsim\"",
         ),
         (
             "contact.elements_x=1",

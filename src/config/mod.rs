@@ -151,7 +151,11 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     resolved.insert("load".into(), Value::Table(s.finish()));
 
     let mut s = section(&mut root, "contact", errors);
-    let model = s.choice("model", Some("fastsim"), &["fastsim"]);
+    let model = s.choice(
+        "model",
+        Some("fastsim"),
+        &ContactModelKind::ALL.map(ContactModelKind::name),
+    );
     let nx = s.usize("elements_x", Some(20), 2, 200);
     let ny = s.usize("elements_y", Some(20), 2, 200);
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
@@ -228,10 +232,14 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     };
     check_loads(&loads, mu, dx, errors);
 
-    let (Some(_model), Some(nx), Some(ny), Some(eps), Some(bound)) = (model, nx, ny, eps, bound)
+    let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound)) = (model, nx, ny, eps, bound)
     else {
         return (None, resolved);
     };
+    let model = ContactModelKind::ALL
+        .into_iter()
+        .find(|m| m.name() == model)
+        .expect("validated choice");
     let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(step_length)) =
         (k_over_h, substeps, start, end, step_length)
     else {
@@ -287,7 +295,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         spin,
         loads,
         contact: ContactParams {
-            model: ContactModelKind::Fastsim,
+            model,
             elements_x: nx,
             elements_y: ny,
             regularisation: eps,

@@ -10,7 +10,9 @@
 //! force on the wheel comes with a negative creepage.
 
 pub mod fastsim;
+pub mod influence;
 pub mod mesh;
+pub mod transient;
 
 pub use mesh::{EllipseMesh, PressureShape};
 
@@ -34,7 +36,8 @@ pub struct StepInput {
     pub patch: HertzPatch,
     /// Rolling speed V (m/s).
     pub speed: f64,
-    /// Time since the previous step (s); 0 at the first step of a history.
+    /// Time step dt (s): the patch has moved by `speed * dt` since the
+    /// previous step of the history (if the solver has one).
     pub dt: f64,
     /// Coulomb friction coefficient mu (1).
     pub friction: f64,
@@ -67,6 +70,8 @@ pub struct PatchSolution {
     pub slip_y: Vec<f64>,
     /// Element in stick (adhesion).
     pub stick: Vec<bool>,
+    /// Newton-Raphson iterations of the solve (0 for FASTSIM).
+    pub iterations: usize,
 }
 
 impl PatchSolution {

@@ -1,0 +1,406 @@
+//! The non-stationary (transient) tangential contact model of Baeza, Vila,
+//! Roda and Fayos, Wear 265 (2008) 1156-1162, section 2 (Eqs. 1-7), after
+//! Kalker's non-stationary theory (Kalker 1990, ch. 5).
+//!
+//! Kinematics (Eq. 3, 5) for element J of the current Paul-Hashemi mesh:
+//!
+//! ```text
+//! s_J = V w_J(xi) + (u_J - u_o,J) / dt,    w_J = (xi_x - phi y_J, xi_y + phi x_J)
+//! ```
+//!
+//! with `u = C p` the displacement difference of the two bodies (exact or
+//! Winkler elastic model, [`elastic`]) and `u_o,J` the displacement the same
+//! material point had one step earlier. Regularised Coulomb friction (Eq. 6):
+//!
+//! ```text
+//! p_J = -(2/pi) atan(|s_J| / eps) mu p3_J s_J / |s_J|
+//! ```
+//!
+//! Substituting gives the nonlinear system of Eq. 7 in the local slips; with
+//! the longitudinal force prescribed, `sum_K p_x,K A_K = F_x` closes it with
+//! the creepage `xi_x` as an extra unknown. It is solved by Newton-Raphson
+//! (dense LU with faer for the exact model, 2 x 2 blocks for Winkler, the
+//! creepage eliminated by bordering), warm-started from the previous step,
+//! with a backtracking line search. A step that does not converge is retried
+//! by continuation in eps (100 eps, 10 eps, eps); if it still fails the error
+//! names the residual history. A virgin start (no history) is the Cattaneo
+//! shift problem: `u_o = 0` and the rigid shift over the step is `V xi dt`.
+
+pub mod elastic;
+
+use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
+use super::{ContactError, Creepage, PatchSolution, StepInput, TangentialSolver};
+use elastic::{ExactElastic, PatchFrame, WinklerElastic};
+use faer::Mat;
+use faer::linalg::solvers::Solve;
+use std::f64::consts::PI;
+
+/// An element counts as stick when its slip speed is below this many eps
+/// (its traction is then below (2/pi) atan(10) = 94 % of mu p3).
+pub const STICK_SLIP_FACTOR: f64 = 10.0;
+
+/// Elastic model of the transient solver.
+#[derive(Debug, Clone)]
+pub enum ElasticModel {
+    /// Kalker's exact theory (half-space influence coefficients).
+    Exact(ExactElastic),
+    /// Kalker's simplified theory (Winkler, u = L p).
+    Winkler(WinklerElastic),
+}
+
+/// State carried from one step to the next.
+#[derive(Debug, Clone)]
+struct History {
+    frame: PatchFrame,
+    /// Tractions, interleaved (Pa).
+    p: Vec<f64>,
+    /// Slips, interleaved (m/s).
+    s: Vec<f64>,
+    /// Creepage xi_x.
+    xi: f64,
+}
+
+/// Transient tangential solver.
+#[derive(Debug, Clone)]
+pub struct Transient {
+    mesh: EllipseMesh,
+    model: ElasticModel,
+    shape: PressureShape,
+    eps: f64,
+    max_iterations: usize,
+    history: Option<History>,
+}
+
+/// The friction law p = -mu p3 f(|s|) s with f(q) = (2/pi) atan(q/eps) / q,
+/// and its Jacobian D = -dp/ds = mu p3 (f I + f'(q)/q s s^T).
+fn friction(s: [f64; 2], mu_p3: f64, eps: f64) -> ([f64; 2], [f64; 3]) {
+    let q = s[0].hypot(s[1]);
+    let z = q / eps;
+    let (f, fp_over_q) = if z < 1e-4 {
+        // Series: f = 2/(pi eps) (1 - z^2/3), f'/q = -4/(3 pi eps^3).
+        (
+            2.0 / (PI * eps) * (1.0 - z * z / 3.0),
+            -4.0 / (3.0 * PI * eps.powi(3)),
+        )
+    } else {
+        let g = 2.0 / PI * z.atan();
+        let gp = 2.0 / (PI * eps) / (1.0 + z * z);
+        (g / q, (gp * q - g) / (q * q * q))
+    };
+    let p = [-mu_p3 * f * s[0], -mu_p3 * f * s[1]];
+    let d = [
+        mu_p3 * (f + fp_over_q * s[0] * s[0]),
+        mu_p3 * fp_over_q * s[0] * s[1],
+        mu_p3 * (f + fp_over_q * s[1] * s[1]),
+    ];
+    (p, d)
+}
+
+/// Residuals of one Newton evaluation.
+struct Eval {
+    p: Vec<f64>,
+    /// D blocks (xx, xy, yy) per element.
+    d: Vec<[f64; 3]>,
+    r: Vec<f64>,
+    r_force: f64,
+}
+
+impl Transient {
+    /// A transient solver on an `nx` x `ny` mesh with regularisation `eps`
+    /// (m/s) and the pressure shape `shape`.
+    pub fn new(mesh: EllipseMesh, model: ElasticModel, shape: PressureShape, eps: f64) -> Self {
+        Transient {
+            mesh,
+            model,
+            shape,
+            eps,
+            max_iterations: 60,
+            history: None,
+        }
+    }
+
+    /// Rigid slip per unit speed at element k.
+    fn rigid(&self, k: usize, frame: PatchFrame, cr: Creepage) -> [f64; 2] {
+        let (x, y) = (self.mesh.xi[k] * frame.a, self.mesh.eta[k] * frame.b);
+        [cr.x - cr.spin * y, cr.y + cr.spin * x]
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn evaluate(
+        &self,
+        input: &StepInput,
+        frame: PatchFrame,
+        p3: &[f64],
+        area: &[f64],
+        u_o: &[f64],
+        s: &[f64],
+        xi: f64,
+        eps: f64,
+    ) -> Eval {
+        let n = self.mesh.len();
+        let mu = input.friction;
+        let mut p = vec![0.0; 2 * n];
+        let mut d = vec![[0.0; 3]; n];
+        for k in 0..n {
+            let (pk, dk) = friction([s[2 * k], s[2 * k + 1]], mu * p3[k], eps);
+            p[2 * k] = pk[0];
+            p[2 * k + 1] = pk[1];
+            d[k] = dk;
+        }
+        let mut u = vec![0.0; 2 * n];
+        match &self.model {
+            ElasticModel::Exact(e) => e.displacement(frame.a, &p, &mut u),
+            ElasticModel::Winkler(w) => {
+                let (l1, l2) = w.flexibility(frame.a);
+                for k in 0..n {
+                    u[2 * k] = l1 * p[2 * k];
+                    u[2 * k + 1] = l2 * p[2 * k + 1];
+                }
+            }
+        }
+        let cr = Creepage {
+            x: xi,
+            y: input.creepage_y,
+            spin: input.spin,
+        };
+        let mut r = vec![0.0; 2 * n];
+        for k in 0..n {
+            let w = self.rigid(k, frame, cr);
+            for c in 0..2 {
+                let i = 2 * k + c;
+                r[i] = s[i] - input.speed * w[c] - (u[i] - u_o[i]) / input.dt;
+            }
+        }
+        let force: f64 = (0..n).map(|k| p[2 * k] * area[k]).sum();
+        let r_force = (force - input.force_x) / (mu * input.patch.normal_force);
+        Eval { p, d, r, r_force }
+    }
+
+    /// Solves J y = rhs for the two right-hand sides (columns of `rhs`).
+    fn solve_linear(&self, frame: PatchFrame, dt: f64, d: &[[f64; 3]], rhs: &mut Mat<f64>) -> bool {
+        let n = self.mesh.len();
+        match &self.model {
+            ElasticModel::Exact(e) => {
+                let c = e.unit_matrix();
+                let scale = frame.a / dt;
+                let j = Mat::from_fn(2 * n, 2 * n, |r, col| {
+                    let k = col / 2;
+                    let dk = d[k];
+                    let (c0, c1) = (c[(r, 2 * k)], c[(r, 2 * k + 1)]);
+                    let v = if col % 2 == 0 {
+                        c0 * dk[0] + c1 * dk[1]
+                    } else {
+                        c0 * dk[1] + c1 * dk[2]
+                    };
+                    scale * v + if r == col { 1.0 } else { 0.0 }
+                });
+                j.partial_piv_lu().solve_in_place(rhs.as_mut());
+            }
+            ElasticModel::Winkler(w) => {
+                let (l1, l2) = w.flexibility(frame.a);
+                for k in 0..n {
+                    let dk = d[k];
+                    // J_k = I + (1/dt) diag(l1, l2) D_k.
+                    let (j00, j01) = (1.0 + l1 * dk[0] / dt, l1 * dk[1] / dt);
+                    let (j10, j11) = (l2 * dk[1] / dt, 1.0 + l2 * dk[2] / dt);
+                    let det = j00 * j11 - j01 * j10;
+                    for col in 0..2 {
+                        let (b0, b1) = (rhs[(2 * k, col)], rhs[(2 * k + 1, col)]);
+                        rhs[(2 * k, col)] = (j11 * b0 - j01 * b1) / det;
+                        rhs[(2 * k + 1, col)] = (j00 * b1 - j10 * b0) / det;
+                    }
+                }
+            }
+        }
+        (0..rhs.nrows()).all(|i| rhs[(i, 0)].is_finite() && rhs[(i, 1)].is_finite())
+    }
+
+    /// Newton-Raphson at regularisation `eps` from (s, xi); Ok(iterations) or
+    /// Err(residual history).
+    #[allow(clippy::too_many_arguments)]
+    fn newton(
+        &self,
+        input: &StepInput,
+        frame: PatchFrame,
+        p3: &[f64],
+        area: &[f64],
+        u_o: &[f64],
+        s: &mut [f64],
+        xi: &mut f64,
+        eps: f64,
+    ) -> Result<usize, Vec<f64>> {
+        let n = self.mesh.len();
+        let v = input.speed;
+        let tol = 1e-4 * eps;
+        let merit = |e: &Eval| e.r.iter().map(|r| (r / v).powi(2)).sum::<f64>() + e.r_force.powi(2);
+        let mut history = Vec::new();
+        let mut ev = self.evaluate(input, frame, p3, area, u_o, s, *xi, eps);
+        for it in 0..self.max_iterations {
+            let r_max = ev.r.iter().fold(0.0f64, |m, r| m.max(r.abs()));
+            history.push(r_max);
+            if r_max < tol && ev.r_force.abs() < 1e-10 {
+                return Ok(it);
+            }
+            let mut rhs = Mat::from_fn(2 * n, 2, |i, c| {
+                if c == 0 {
+                    -ev.r[i]
+                } else if i % 2 == 0 {
+                    v
+                } else {
+                    0.0
+                }
+            });
+            if !self.solve_linear(frame, input.dt, &ev.d, &mut rhs) {
+                return Err(history);
+            }
+            // Force row: h = d(R_F)/ds = -(A_k/(mu N)) (D_xx, D_xy) per element.
+            let scale = input.friction * input.patch.normal_force;
+            let (mut h1, mut h2) = (0.0, 0.0);
+            for k in 0..n {
+                let (hx, hy) = (-area[k] * ev.d[k][0] / scale, -area[k] * ev.d[k][1] / scale);
+                h1 += hx * rhs[(2 * k, 0)] + hy * rhs[(2 * k + 1, 0)];
+                h2 += hx * rhs[(2 * k, 1)] + hy * rhs[(2 * k + 1, 1)];
+            }
+            let dxi = -(ev.r_force + h1) / h2;
+            if !dxi.is_finite() {
+                return Err(history);
+            }
+            let m0 = merit(&ev);
+            let mut t = 1.0;
+            let s0 = s.to_vec();
+            let xi0 = *xi;
+            loop {
+                for i in 0..2 * n {
+                    s[i] = s0[i] + t * (rhs[(i, 0)] + dxi * rhs[(i, 1)]);
+                }
+                *xi = xi0 + t * dxi;
+                let trial = self.evaluate(input, frame, p3, area, u_o, s, *xi, eps);
+                if merit(&trial) < (1.0 - 1e-4 * t) * m0 || t < 1e-3 {
+                    ev = trial;
+                    break;
+                }
+                t *= 0.5;
+            }
+        }
+        Err(history)
+    }
+
+    fn solve_step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
+        let n = self.mesh.len();
+        let patch = &input.patch;
+        let force = input.force_x;
+        let limit = input.friction * patch.normal_force;
+        if force.abs() >= limit {
+            return Err(ContactError::ForceExceedsFriction { force, limit });
+        }
+        if !(input.dt > 0.0) {
+            return Err(ContactError::NoConvergence {
+                force,
+                reason: format!("transient models need a time step > 0, got {}", input.dt),
+            });
+        }
+        let frame = PatchFrame {
+            a: patch.a,
+            b: patch.b,
+        };
+        let p3 = pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b);
+        let area: Vec<f64> = (0..n)
+            .map(|k| self.mesh.area(k) * patch.a * patch.b)
+            .collect();
+        let mut u_o = vec![0.0; 2 * n];
+        let (mut s, mut xi) = match &self.history {
+            Some(h) => {
+                let shift = input.speed * input.dt;
+                match &self.model {
+                    ElasticModel::Exact(e) => {
+                        e.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o)
+                    }
+                    ElasticModel::Winkler(w) => {
+                        w.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o)
+                    }
+                }
+                (h.s.clone(), h.xi)
+            }
+            None => (vec![0.0; 2 * n], 0.0),
+        };
+        let mut log = Vec::new();
+        let (s_start, xi_start) = (s.clone(), xi);
+        let mut iterations = 0;
+        let mut converged = false;
+        for eps in [self.eps, 100.0 * self.eps, 10.0 * self.eps, self.eps] {
+            match self.newton(input, frame, &p3, &area, &u_o, &mut s, &mut xi, eps) {
+                Ok(it) => {
+                    iterations += it;
+                    if eps == self.eps {
+                        converged = true;
+                        break;
+                    }
+                }
+                Err(h) => {
+                    iterations += h.len();
+                    log.push(format!(
+                        "eps {eps:.1e}: max |R| {:.3e} -> {:.3e} m/s in {} iterations",
+                        h[0],
+                        h[h.len() - 1],
+                        h.len()
+                    ));
+                    if eps == self.eps && log.len() == 1 {
+                        // First failure: restart the continuation from the warm start.
+                        s.clone_from(&s_start);
+                        xi = xi_start;
+                    }
+                }
+            }
+        }
+        if !converged {
+            return Err(ContactError::NoConvergence {
+                force,
+                reason: format!(
+                    "Newton-Raphson on the local slips failed: {}",
+                    log.join("; ")
+                ),
+            });
+        }
+        let ev = self.evaluate(input, frame, &p3, &area, &u_o, &s, xi, self.eps);
+        let mut sol = PatchSolution {
+            creepage: Creepage {
+                x: xi,
+                y: input.creepage_y,
+                spin: input.spin,
+            },
+            pressure: p3,
+            traction_x: (0..n).map(|k| ev.p[2 * k]).collect(),
+            traction_y: (0..n).map(|k| ev.p[2 * k + 1]).collect(),
+            slip_x: (0..n).map(|k| s[2 * k]).collect(),
+            slip_y: (0..n).map(|k| s[2 * k + 1]).collect(),
+            stick: (0..n)
+                .map(|k| s[2 * k].hypot(s[2 * k + 1]) < STICK_SLIP_FACTOR * self.eps)
+                .collect(),
+            iterations,
+            ..Default::default()
+        };
+        sol.force_x = self.mesh.integrate(&sol.traction_x, patch.a, patch.b);
+        sol.force_y = self.mesh.integrate(&sol.traction_y, patch.a, patch.b);
+        self.history = Some(History {
+            frame,
+            p: ev.p,
+            s,
+            xi,
+        });
+        Ok(sol)
+    }
+}
+
+impl TangentialSolver for Transient {
+    fn step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
+        self.solve_step(input)
+    }
+
+    fn reset(&mut self) {
+        self.history = None;
+    }
+
+    fn mesh(&self) -> &EllipseMesh {
+        &self.mesh
+    }
+}
