@@ -36,16 +36,8 @@ pub enum CreepTableError {
 #[allow(clippy::approx_constant)] // table values, not pi
 /// Rows [nu = 0, 0.25, 0.5] x [C11, C22, C23], for a/b = 0.1, 0.2, ... 1.0.
 const A_OVER_B: [[[f64; 3]; 3]; 10] = [
-    [
-        [2.51, 2.51, 0.334],
-        [3.31, 2.52, 0.473],
-        [4.85, 2.53, 0.731],
-    ],
-    [
-        [2.59, 2.59, 0.483],
-        [3.37, 2.63, 0.603],
-        [4.81, 2.66, 0.809],
-    ],
+    [[2.51, 2.51, 0.334], [3.31, 2.52, 0.473], [4.85, 2.53, 0.731]],
+    [[2.59, 2.59, 0.483], [3.37, 2.63, 0.603], [4.81, 2.66, 0.809]],
     [[2.68, 2.68, 0.607], [3.44, 2.75, 0.715], [4.8, 2.81, 0.889]],
     [[2.78, 2.78, 0.72], [3.53, 2.88, 0.823], [4.82, 2.98, 0.977]],
     [[2.88, 2.88, 0.827], [3.62, 3.01, 0.929], [4.83, 3.14, 1.07]],
@@ -71,11 +63,7 @@ const B_OVER_A: [[[f64; 3]; 3]; 9] = [
 
 /// Table row at g = 0.1 (i + 1) of the lower (a/b <= 1) or upper half.
 fn row(upper: bool, i: usize) -> &'static [[f64; 3]; 3] {
-    if upper && i < 9 {
-        &B_OVER_A[i]
-    } else {
-        &A_OVER_B[i]
-    }
+    if upper && i < 9 { &B_OVER_A[i] } else { &A_OVER_B[i] }
 }
 
 /// Quadratic Lagrange interpolation in nu through nu = 0, 0.25, 0.5.
@@ -101,13 +89,8 @@ pub fn creep_coefficients(a_over_b: f64, nu: f64) -> Result<CreepCoefficients, C
     let pos = (g * 10.0 - 1.0).clamp(0.0, 9.0);
     let i = (pos.floor() as usize).min(8);
     let t = pos - i as f64;
-    let c =
-        |k: usize| (1.0 - t) * in_nu(row(upper, i), nu, k) + t * in_nu(row(upper, i + 1), nu, k);
-    Ok(CreepCoefficients {
-        c11: c(0),
-        c22: c(1),
-        c23: c(2),
-    })
+    let c = |k: usize| (1.0 - t) * in_nu(row(upper, i), nu, k) + t * in_nu(row(upper, i + 1), nu, k);
+    Ok(CreepCoefficients { c11: c(0), c22: c(1), c23: c(2) })
 }
 
 #[cfg(test)]
@@ -117,11 +100,7 @@ mod tests {
     #[test]
     fn reproduces_table_nodes() {
         let c = creep_coefficients(0.5, 0.25).unwrap();
-        assert!(
-            (c.c11 - 3.62).abs() < 1e-12
-                && (c.c22 - 3.01).abs() < 1e-12
-                && (c.c23 - 0.929).abs() < 1e-12
-        );
+        assert!((c.c11 - 3.62).abs() < 1e-12 && (c.c22 - 3.01).abs() < 1e-12 && (c.c23 - 0.929).abs() < 1e-12);
         let c = creep_coefficients(2.0, 0.5).unwrap();
         assert!((c.c11 - 6.11).abs() < 1e-12 && (c.c23 - 2.96).abs() < 1e-12);
         let c = creep_coefficients(1.0, 0.0).unwrap();
@@ -140,10 +119,9 @@ mod tests {
         // CONTACT (shared reference README) prints L1, L2, L3 for the paper's
         // patches; L1 = 8a/(3 C11 G), L2 = 8a/(3 C22 G), L3 = pi a sqrt(a/b)/(4 C23 G).
         let g = 80769.23; // N/mm^2
-        for (a, b, l1, l2, l3) in [
-            (8.067, 3.991, 5.026e-5, 5.272e-5, 4.107e-5),
-            (5.957, 10.22, 5.049e-5, 6.243e-5, 4.261e-5),
-        ] {
+        for (a, b, l1, l2, l3) in
+            [(8.067, 3.991, 5.026e-5, 5.272e-5, 4.107e-5), (5.957, 10.22, 5.049e-5, 6.243e-5, 4.261e-5)]
+        {
             let c = creep_coefficients(a / b, 0.3).unwrap();
             let rel = |x: f64, y: f64| ((x - y) / y).abs();
             assert!(rel(8.0 * a / (3.0 * c.c11 * g), l1) < 0.005, "L1 {a}");
@@ -155,13 +133,7 @@ mod tests {
 
     #[test]
     fn out_of_range_is_error() {
-        assert_eq!(
-            creep_coefficients(0.05, 0.3),
-            Err(CreepTableError::Aspect(0.05))
-        );
-        assert_eq!(
-            creep_coefficients(1.0, 0.6),
-            Err(CreepTableError::Poisson(0.6))
-        );
+        assert_eq!(creep_coefficients(0.05, 0.3), Err(CreepTableError::Aspect(0.05)));
+        assert_eq!(creep_coefficients(1.0, 0.6), Err(CreepTableError::Poisson(0.6)));
     }
 }

@@ -66,10 +66,7 @@ impl Elastic {
 
     /// Elastic constants from shear modulus G (Pa) and Poisson's ratio.
     pub fn from_shear(shear_modulus: f64, poisson_ratio: f64) -> Self {
-        Elastic {
-            young_modulus: 2.0 * shear_modulus * (1.0 + poisson_ratio),
-            poisson_ratio,
-        }
+        Elastic { young_modulus: 2.0 * shear_modulus * (1.0 + poisson_ratio), poisson_ratio }
     }
 }
 
@@ -88,15 +85,8 @@ impl Curvatures {
     /// `A = 1 / (2 R_wheel)`; `B = (1/R_rail_head + 1/R_wheel_profile) / 2`,
     /// with radii signed: positive convex, negative concave, infinite flat.
     /// Radii in m, curvatures in 1/m.
-    pub fn wheel_on_rail(
-        wheel_radius: f64,
-        wheel_profile_radius: f64,
-        rail_head_radius: f64,
-    ) -> Self {
-        Curvatures {
-            a: 0.5 / wheel_radius,
-            b: 0.5 * (1.0 / rail_head_radius + 1.0 / wheel_profile_radius),
-        }
+    pub fn wheel_on_rail(wheel_radius: f64, wheel_profile_radius: f64, rail_head_radius: f64) -> Self {
+        Curvatures { a: 0.5 / wheel_radius, b: 0.5 * (1.0 / rail_head_radius + 1.0 / wheel_profile_radius) }
     }
 
     /// Checks that both curvature sums are positive.
@@ -133,11 +123,7 @@ impl HertzPatch {
     /// Hertz pressure at (x, y) in patch coordinates (m); zero outside (Pa).
     pub fn pressure(&self, x: f64, y: f64) -> f64 {
         let r2 = (x / self.a).powi(2) + (y / self.b).powi(2);
-        if r2 < 1.0 {
-            self.p0 * (1.0 - r2).sqrt()
-        } else {
-            0.0
-        }
+        if r2 < 1.0 { self.p0 * (1.0 - r2).sqrt() } else { 0.0 }
     }
 
     /// Semi-axis ratio a/b (1).
@@ -187,11 +173,7 @@ impl HertzShape {
         curv.validate()?;
         let long_is_x = curv.a <= curv.b;
         // ratio = C_short / C_long >= 1 (the long axis has the smaller curvature).
-        let ratio = if long_is_x {
-            curv.b / curv.a
-        } else {
-            curv.a / curv.b
-        };
+        let ratio = if long_is_x { curv.b / curv.a } else { curv.a / curv.b };
         let kp2 = if (ratio - 1.0).abs() < 1e-14 {
             1.0
         } else {
@@ -200,12 +182,7 @@ impl HertzShape {
             let mut tol = ShapeTolerance { iterations: 0 };
             find_root_brent(1e-14, 1.0, f, &mut tol).map_err(|_| HertzError::TooElongated(ratio))?
         };
-        Ok(HertzShape {
-            curv,
-            elastic,
-            kp2,
-            long_is_x,
-        })
+        Ok(HertzShape { curv, elastic, kp2, long_is_x })
     }
 
     /// Semi-axis ratio a/b (1), independent of N.
@@ -220,28 +197,14 @@ impl HertzShape {
             return Err(HertzError::NoContact(normal_force));
         }
         let e_star = self.elastic.contact_modulus();
-        let c_long = if self.long_is_x {
-            self.curv.a
-        } else {
-            self.curv.b
-        };
+        let c_long = if self.long_is_x { self.curv.a } else { self.curv.b };
         let long = (normal_force * rd(0.0, self.kp2, 1.0) / (2.0 * PI * e_star * c_long)).cbrt();
         let short = long * self.kp2.sqrt();
-        let (a, b) = if self.long_is_x {
-            (long, short)
-        } else {
-            (short, long)
-        };
+        let (a, b) = if self.long_is_x { (long, short) } else { (short, long) };
         let p0 = 3.0 * normal_force / (2.0 * PI * a * b);
         let k_integral = ellipk(1.0 - self.kp2).expect("K argument in range");
         let approach = p0 * short * k_integral / e_star;
-        Ok(HertzPatch {
-            a,
-            b,
-            p0,
-            approach,
-            normal_force,
-        })
+        Ok(HertzPatch { a, b, p0, approach, normal_force })
     }
 }
 
@@ -250,10 +213,7 @@ mod tests {
     use super::*;
 
     fn steel() -> Elastic {
-        Elastic {
-            young_modulus: 2.1e11,
-            poisson_ratio: 0.3,
-        }
+        Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 }
     }
 
     fn rel(x: f64, y: f64) -> f64 {
@@ -275,20 +235,8 @@ mod tests {
     #[test]
     fn nearly_circular_is_continuous() {
         let el = steel();
-        let c = HertzShape::new(Curvatures { a: 2.0, b: 2.0 }, el)
-            .unwrap()
-            .patch(1e4)
-            .unwrap();
-        let n = HertzShape::new(
-            Curvatures {
-                a: 2.0,
-                b: 2.0 * (1.0 + 1e-9),
-            },
-            el,
-        )
-        .unwrap()
-        .patch(1e4)
-        .unwrap();
+        let c = HertzShape::new(Curvatures { a: 2.0, b: 2.0 }, el).unwrap().patch(1e4).unwrap();
+        let n = HertzShape::new(Curvatures { a: 2.0, b: 2.0 * (1.0 + 1e-9) }, el).unwrap().patch(1e4).unwrap();
         assert!(rel(n.a, c.a) < 1e-8 && rel(n.approach, c.approach) < 1e-8);
     }
 }

@@ -46,11 +46,7 @@ pub struct ImposedLoads {
 
 impl ImposedLoads {
     fn sum(&self, q: LoadQuantity, x: f64) -> f64 {
-        self.harmonics
-            .iter()
-            .filter(|h| h.quantity == q)
-            .map(|h| h.at(x))
-            .sum()
+        self.harmonics.iter().filter(|h| h.quantity == q).map(|h| h.at(x)).sum()
     }
 
     /// Normal force N at patch position `x` (m), in N.
@@ -79,11 +75,7 @@ impl ImposedLoads {
     }
 
     fn amplitude_sum(&self, q: LoadQuantity) -> f64 {
-        self.harmonics
-            .iter()
-            .filter(|h| h.quantity == q)
-            .map(|h| h.amplitude.abs())
-            .sum()
+        self.harmonics.iter().filter(|h| h.quantity == q).map(|h| h.amplitude.abs()).sum()
     }
 }
 
@@ -106,9 +98,6 @@ mod tests {
         assert!((l.normal_force_at(0.0075) - 1.45e5).abs() < 1e-6);
         assert!((l.normal_force_at(0.0225) - 0.55e5).abs() < 1e-6);
         assert_eq!(l.longitudinal_force_at(0.01), 2e4);
-        assert_eq!(
-            (l.min_normal_force(), l.max_normal_force()),
-            (0.55e5, 1.45e5)
-        );
+        assert_eq!((l.min_normal_force(), l.max_normal_force()), (0.55e5, 1.45e5));
     }
 }

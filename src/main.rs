@@ -52,11 +52,7 @@ fn main() -> ExitCode {
             }
             Err(code) => code,
         },
-        Command::Run {
-            config,
-            output,
-            set,
-        } => {
+        Command::Run { config, output, set } => {
             let resolved = match load(&config, &set) {
                 Ok(r) => r,
                 Err(code) => return code,
@@ -75,10 +71,7 @@ fn load(path: &Path, set: &[String]) -> Result<Resolved, ExitCode> {
 }
 
 fn default_output(config: &Path) -> PathBuf {
-    let stem = config
-        .file_stem()
-        .map(|s| s.to_os_string())
-        .unwrap_or_else(|| "run".into());
+    let stem = config.file_stem().map(|s| s.to_os_string()).unwrap_or_else(|| "run".into());
     PathBuf::from(stem).with_extension("h5")
 }
 
@@ -114,11 +107,11 @@ fn print_check(r: &Resolved) {
     println!("config OK");
     println!("contact model      {}", s.contact.model.name());
     println!("Hertz a/b          {:.4}", d.shape.aspect());
-    for (label, p) in [
-        ("mean", d.patch_mean),
-        ("min", d.patch_min),
-        ("max", d.patch_max),
-    ] {
+    if d.patch_min.is_none() {
+        println!("contact loss       N <= 0 on part of the stretch (min N = {:.4e} N): no patch there", s.loads.min_normal_force());
+    }
+    for (label, p) in [("mean", Some(d.patch_mean)), ("min", d.patch_min), ("max", Some(d.patch_max))] {
+        let Some(p) = p else { continue };
         println!(
             "Hertz at {label:<4} N   N = {:.4e} N: a = {:.4} mm, b = {:.4} mm, p0 = {:.1} MPa, approach = {:.4} mm",
             p.normal_force,
@@ -147,13 +140,7 @@ fn print_check(r: &Resolved) {
         p.substeps
     );
     let g = &d.grid;
-    println!(
-        "rail grid          {} x {} nodes, dx = {:.4} mm, dy = {:.4} mm",
-        g.nx,
-        g.ny,
-        mm(g.dx),
-        mm(g.dy)
-    );
+    println!("rail grid          {} x {} nodes, dx = {:.4} mm, dy = {:.4} mm", g.nx, g.ny, mm(g.dx), mm(g.dy));
     // Cost model measured on 2 cores (README, Performance): FASTSIM ~ 25
     // solves of 12 ns per element per step; wear ~ 40 ns per node visit.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;

@@ -26,15 +26,11 @@ mod tests {
         let grid = RailGrid::new(0.0, 0.03, 1e-4, 0.01, 1e-3);
         let mut p = Array2::zeros((grid.ny, grid.nx));
         for i in 0..grid.nx - 1 {
-            p[[centre_row(&grid), i]] =
-                1e-6 * (2.0 * std::f64::consts::PI * grid.x(i) / 0.03).sin() - 3e-6;
+            p[[centre_row(&grid), i]] = 1e-6 * (2.0 * std::f64::consts::PI * grid.x(i) / 0.03).sin() - 3e-6;
         }
         // The last node closes the period; drop it from the mean.
         let line = p.slice(ndarray::s![.., ..grid.nx - 1]).to_owned();
-        let g2 = RailGrid {
-            nx: grid.nx - 1,
-            ..grid.clone()
-        };
+        let g2 = RailGrid { nx: grid.nx - 1, ..grid.clone() };
         assert!((rms_corrugation(line.view(), &g2) - 1e-6 / 2f64.sqrt()).abs() < 1e-12);
     }
 }

@@ -31,12 +31,7 @@ impl Convergency<f64> for Tolerance {
 
 /// Brent's method on a bracket `[lo, hi]` (Brent, *Algorithms for
 /// Minimization without Derivatives*, 1973, ch. 4).
-pub fn brent<F: FnMut(f64) -> f64>(
-    lo: f64,
-    hi: f64,
-    f: F,
-    tol: Tolerance,
-) -> Result<f64, SearchError> {
+pub fn brent<F: FnMut(f64) -> f64>(lo: f64, hi: f64, f: F, tol: Tolerance) -> Result<f64, SearchError> {
     let mut tol = tol;
     find_root_brent(lo, hi, f, &mut tol)
 }

@@ -27,11 +27,8 @@ impl ContactModelKind {
     }
 
     /// All models, in the order of the config documentation.
-    pub const ALL: [ContactModelKind; 3] = [
-        ContactModelKind::ExactTransient,
-        ContactModelKind::SimplifiedTransient,
-        ContactModelKind::Fastsim,
-    ];
+    pub const ALL: [ContactModelKind; 3] =
+        [ContactModelKind::ExactTransient, ContactModelKind::SimplifiedTransient, ContactModelKind::Fastsim];
 
     /// Whether the model carries a contact history between steps.
     pub fn is_transient(self) -> bool {
@@ -62,11 +59,7 @@ pub struct Geometry {
 impl Geometry {
     /// Hertz curvature sums A, B (1/m).
     pub fn curvatures(&self) -> Curvatures {
-        Curvatures::wheel_on_rail(
-            self.wheel_radius,
-            self.wheel_profile_radius,
-            self.rail_head_radius,
-        )
+        Curvatures::wheel_on_rail(self.wheel_radius, self.wheel_profile_radius, self.rail_head_radius)
     }
 }
 

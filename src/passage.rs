@@ -81,6 +81,8 @@ pub struct PatchHistory {
     pub max_pressure: Vec<f64>,
     /// Fraction of elements in stick (1).
     pub stick_fraction: Vec<f64>,
+    /// 1 when wheel and rail are in contact (N > 0), 0 otherwise.
+    pub in_contact: Vec<f64>,
     /// Newton-Raphson iterations of the contact solve (0 for FASTSIM).
     pub newton_iterations: Vec<f64>,
     /// Integral over the patch of the interpolated Archard rate (m^3/s): the
@@ -109,6 +111,31 @@ pub struct PatchFields {
     pub stick: Array2<i8>,
 }
 
+impl PatchHistory {
+    /// Records a step without contact: zero patch, forces, creepages and
+    /// fields (the fields' rows stay zero).
+    fn push_no_contact(&mut self, time: f64, x: f64, normal_force: f64) {
+        self.in_contact.push(0.0);
+        self.time.push(time);
+        self.x_c.push(x);
+        self.normal_force.push(normal_force);
+        for v in [
+            &mut self.longitudinal_force,
+            &mut self.creepage_x,
+            &mut self.creepage_y,
+            &mut self.spin,
+            &mut self.semi_axis_a,
+            &mut self.semi_axis_b,
+            &mut self.max_pressure,
+            &mut self.stick_fraction,
+            &mut self.newton_iterations,
+            &mut self.wear_volume_rate,
+        ] {
+            v.push(0.0);
+        }
+    }
+}
+
 impl PatchFields {
     fn new(steps: usize, elements: usize) -> Self {
         let z = || Array2::zeros((steps, elements));
@@ -133,17 +160,9 @@ impl PatchFields {
             (&mut self.wear_rate, rates),
         ];
         for (field, values) in rows {
-            field
-                .row_mut(n)
-                .iter_mut()
-                .zip(values)
-                .for_each(|(d, s)| *d = *s);
+            field.row_mut(n).iter_mut().zip(values).for_each(|(d, s)| *d = *s);
         }
-        self.stick
-            .row_mut(n)
-            .iter_mut()
-            .zip(&sol.stick)
-            .for_each(|(d, s)| *d = i8::from(*s));
+        self.stick.row_mut(n).iter_mut().zip(&sol.stick).for_each(|(d, s)| *d = i8::from(*s));
     }
 }
 
@@ -172,9 +191,7 @@ pub enum PassageError {
         source: HertzError,
     },
     /// The tangential solver failed at this step.
-    #[error(
-        "step {step} at X = {x:.6e} m (N = {normal_force:.6e} N, F_x = {force_x:.6e} N): {source}"
-    )]
+    #[error("step {step} at X = {x:.6e} m (N = {normal_force:.6e} N, F_x = {force_x:.6e} N): {source}")]
     Tangential {
         /// Step index.
         step: usize,
@@ -213,24 +230,24 @@ pub fn run_passage(
     let dt = spec.dt();
     let n_el = solver.mesh().len();
     let mut wear = Array2::zeros((grid.ny, grid.nx));
-    let mut h = PatchHistory {
-        fields: record_fields.then(|| PatchFields::new(steps, n_el)),
-        ..Default::default()
-    };
+    let mut h = PatchHistory { fields: record_fields.then(|| PatchFields::new(steps, n_el)), ..Default::default() };
     let mut previous: Option<(f64, f64, f64, Vec<f64>)> = None;
     solver.reset();
     for n in 0..steps {
         let x = spec.position(n);
         let normal_force = spec.loads.normal_force_at(x);
         let force_x = spec.loads.longitudinal_force_at(x);
-        let patch = shape
-            .patch(normal_force)
-            .map_err(|source| PassageError::Normal {
-                step: n,
-                x,
-                normal_force,
-                source,
-            })?;
+        if normal_force <= 0.0 {
+            // Contact loss: no patch, no traction, no wear; the contact
+            // history restarts when contact returns (a virgin Cattaneo step).
+            solver.reset();
+            previous = None;
+            h.push_no_contact(n as f64 * dt, x, normal_force);
+            progress(n + 1, steps);
+            continue;
+        }
+        let patch =
+            shape.patch(normal_force).map_err(|source| PassageError::Normal { step: n, x, normal_force, source })?;
         let input = StepInput {
             patch,
             speed: spec.speed,
@@ -240,32 +257,21 @@ pub fn run_passage(
             creepage_y: spec.creepage_y,
             spin: spec.spin,
         };
-        let sol = solver
-            .step(&input)
-            .map_err(|source| PassageError::Tangential {
-                step: n,
-                x,
-                normal_force,
-                force_x,
-                source,
-            })?;
+        let sol = solver.step(&input).map_err(|source| PassageError::Tangential {
+            step: n,
+            x,
+            normal_force,
+            force_x,
+            source,
+        })?;
         check_finite(&sol, n, x)?;
         let rates = archard_rates(spec.k_over_h, &sol);
         if let Some((x0, a0, b0, r0)) = &previous {
-            let from = PatchWear {
-                x_c: *x0,
-                a: *a0,
-                b: *b0,
-                rates: r0,
-            };
-            let to = PatchWear {
-                x_c: x,
-                a: patch.a,
-                b: patch.b,
-                rates: &rates,
-            };
+            let from = PatchWear { x_c: *x0, a: *a0, b: *b0, rates: r0 };
+            let to = PatchWear { x_c: x, a: patch.a, b: patch.b, rates: &rates };
             deposit.accumulate(grid, &mut wear, &from, &to, dt, spec.substeps);
         }
+        h.in_contact.push(1.0);
         h.time.push(n as f64 * dt);
         h.x_c.push(x);
         h.normal_force.push(normal_force);
@@ -278,8 +284,7 @@ pub fn run_passage(
         h.max_pressure.push(patch.p0);
         h.stick_fraction.push(sol.stick_fraction());
         h.newton_iterations.push(sol.iterations as f64);
-        h.wear_volume_rate
-            .push(deposit.integral(&rates, patch.a, patch.b));
+        h.wear_volume_rate.push(deposit.integral(&rates, patch.a, patch.b));
         if let Some(f) = h.fields.as_mut() {
             f.set(n, &sol, &rates);
         }
@@ -303,11 +308,7 @@ fn check_finite(sol: &PatchSolution, step: usize, x: f64) -> Result<(), PassageE
         }
     }
     if !sol.creepage.x.is_finite() {
-        return Err(PassageError::NonFinite {
-            step,
-            x,
-            what: "creepage",
-        });
+        return Err(PassageError::NonFinite { step, x, what: "creepage" });
     }
     Ok(())
 }

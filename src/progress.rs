@@ -20,22 +20,14 @@ impl Progress {
         let bar = std::io::stderr().is_terminal().then(|| {
             let b = ProgressBar::new(total);
             b.set_style(
-                ProgressStyle::with_template(
-                    "{msg} [{bar:40}] {pos}/{len} steps, {elapsed} elapsed, ETA {eta}",
-                )
-                .expect("valid template")
-                .progress_chars("=> "),
+                ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} steps, {elapsed} elapsed, ETA {eta}")
+                    .expect("valid template")
+                    .progress_chars("=> "),
             );
             b.set_message(label.to_string());
             b
         });
-        Progress {
-            bar,
-            total,
-            label: label.to_string(),
-            next_log: 0,
-            start: Instant::now(),
-        }
+        Progress { bar, total, label: label.to_string(), next_log: 0, start: Instant::now() }
     }
 
     /// Sets the number of units done.

@@ -24,8 +24,8 @@ pub struct Derived {
     pub shape: HertzShape,
     /// Patch at the mean, smallest and largest normal force.
     pub patch_mean: HertzPatch,
-    /// Patch at the smallest normal force.
-    pub patch_min: HertzPatch,
+    /// Patch at the smallest normal force (None when contact is lost).
+    pub patch_min: Option<HertzPatch>,
     /// Patch at the largest normal force.
     pub patch_max: HertzPatch,
     /// The passage discretisation.
@@ -47,8 +47,7 @@ pub enum RunError {
 
 /// Derived quantities of a validated scene.
 pub fn derive(scene: &Scene) -> Derived {
-    let shape = HertzShape::new(scene.geometry.curvatures(), scene.material.elastic)
-        .expect("validated geometry");
+    let shape = HertzShape::new(scene.geometry.curvatures(), scene.material.elastic).expect("validated geometry");
     let patch = |n: f64| shape.patch(n).expect("validated loads keep N > 0");
     let loads = &scene.loads;
     let passage = PassageSpec {
@@ -67,7 +66,7 @@ pub fn derive(scene: &Scene) -> Derived {
     Derived {
         shape,
         patch_mean: patch(loads.normal_force),
-        patch_min: patch(loads.min_normal_force()),
+        patch_min: shape.patch(loads.min_normal_force()).ok(),
         patch_max: patch(loads.max_normal_force()),
         passage,
         grid: RailGrid::new(r.x_min, r.x_max, r.dx, r.half_width, r.dy),
@@ -80,8 +79,7 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
     match c.model {
         ContactModelKind::Fastsim => {
             let coefficients =
-                creep_coefficients(shape.aspect(), scene.material.elastic.poisson_ratio)
-                    .expect("validated aspect");
+                creep_coefficients(shape.aspect(), scene.material.elastic.poisson_ratio).expect("validated aspect");
             Box::new(Fastsim::new(
                 c.elements_x,
                 c.elements_y,
@@ -93,31 +91,19 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
         ContactModelKind::ExactTransient => {
             let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
             let el = scene.material.elastic;
-            let exact =
-                ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
-            Box::new(Transient::new(
-                mesh,
-                ElasticModel::Exact(exact),
-                PressureShape::Hertz,
-                c.regularisation,
-            ))
+            let exact = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
+            Box::new(Transient::new(mesh, ElasticModel::Exact(exact), PressureShape::Hertz, c.regularisation))
         }
         ContactModelKind::SimplifiedTransient => {
             let el = scene.material.elastic;
-            let coefficients =
-                creep_coefficients(shape.aspect(), el.poisson_ratio).expect("validated aspect");
+            let coefficients = creep_coefficients(shape.aspect(), el.poisson_ratio).expect("validated aspect");
             let g = el.shear_modulus();
             let winkler = WinklerElastic {
                 l1_unit: 8.0 / (3.0 * coefficients.c11 * g),
                 l2_unit: 8.0 / (3.0 * coefficients.c22 * g),
             };
             let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
-            Box::new(Transient::new(
-                mesh,
-                ElasticModel::Winkler(winkler),
-                c.fastsim_bound,
-                c.regularisation,
-            ))
+            Box::new(Transient::new(mesh, ElasticModel::Winkler(winkler), c.fastsim_bound, c.regularisation))
         }
     }
 }
@@ -147,15 +133,8 @@ pub fn run_scene(
     let mesh: EllipseMesh = solver.mesh().clone();
     let deposit = WearDeposit::new(&mesh);
     let clock = cpu_time::ProcessTime::now();
-    let result = run_passage(
-        &d.passage,
-        &d.shape,
-        solver.as_mut(),
-        &deposit,
-        &d.grid,
-        scene.output.store_fields,
-        progress,
-    )?;
+    let result =
+        run_passage(&d.passage, &d.shape, solver.as_mut(), &deposit, &d.grid, scene.output.store_fields, progress)?;
     let cpu_seconds = clock.elapsed().as_secs_f64();
     let profile = result.wear.mapv(|w| -w);
     let removed_volume = result.wear.sum() * d.grid.dx * d.grid.dy;
@@ -167,18 +146,9 @@ pub fn run_scene(
         removed_volume,
         cpu_seconds,
     }];
-    let rail = [RailSnapshot {
-        index: 0,
-        traffic: 1.0,
-        profile,
-        wear: result.wear.clone(),
-    }];
+    let rail = [RailSnapshot { index: 0, traffic: 1.0, profile, wear: result.wear.clone() }];
     let contact = [(0, &result.history)];
-    let title = if scene.output.title.is_empty() {
-        "corrugation run"
-    } else {
-        scene.output.title.as_str()
-    };
+    let title = if scene.output.title.is_empty() { "corrugation run" } else { scene.output.title.as_str() };
     write_run_file(
         out,
         &RunRecord {
@@ -193,10 +163,5 @@ pub fn run_scene(
         },
     )?;
     let max_wear = result.wear.iter().cloned().fold(0.0, f64::max);
-    Ok(RunSummary {
-        passage: result,
-        cpu_seconds,
-        removed_volume,
-        max_wear,
-    })
+    Ok(RunSummary { passage: result, cpu_seconds, removed_volume, max_wear })
 }

@@ -6,14 +6,7 @@ use std::process::{Command, Output};
 
 const BIN: &str = env!("CARGO_BIN_EXE_corrugation");
 /// A cheap version of a paper scene for the tests.
-const FAST: [&str; 6] = [
-    "--set",
-    "contact.elements_x=10",
-    "--set",
-    "contact.elements_y=10",
-    "--set",
-    "rail.dx=2e-4",
-];
+const FAST: [&str; 6] = ["--set", "contact.elements_x=10", "--set", "contact.elements_y=10", "--set", "rail.dx=2e-4"];
 
 fn corrugation(args: &[&str]) -> Output {
     Command::new(BIN).args(args).output().expect("binary runs")
@@ -29,11 +22,7 @@ fn run_to(dir: &Path, name: &str, scene: &str) -> PathBuf {
     let mut args = vec!["run", c.as_str(), "-o", out.to_str().unwrap()];
     args.extend(FAST);
     let o = corrugation(&args);
-    assert!(
-        o.status.success(),
-        "run failed: {}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    assert!(o.status.success(), "run failed: {}", String::from_utf8_lossy(&o.stderr));
     out
 }
 
@@ -72,11 +61,7 @@ fn run_file_satisfies_invariants() {
         // Imposed loads: N = 100 kN + 45 kN sin(2 pi X / 15 mm), F_x = 20 kN.
         let expected_n = 1e5 + 4.5e4 * (2.0 * std::f64::consts::PI * x_c[s] / 0.015).sin();
         assert!((n[s] - expected_n).abs() < 1e-6, "N at step {s}");
-        assert!(
-            (fx[s] - 2e4).abs() < 1e-6 * 2e4,
-            "force balance F_x at step {s}: {}",
-            fx[s]
-        );
+        assert!((fx[s] - 2e4).abs() < 1e-6 * 2e4, "force balance F_x at step {s}: {}", fx[s]);
         let mut force_n = 0.0;
         let mut force_x = 0.0;
         for k in 0..100 {
@@ -84,24 +69,15 @@ fn run_file_satisfies_invariants() {
             force_n += p[[s, k]] * area;
             force_x += tx[[s, k]] * area;
             let t = tx[[s, k]].hypot(ty[[s, k]]);
-            assert!(
-                t <= 0.4 * p[[s, k]] * (1.0 + 1e-12),
-                "|p| <= mu p3 at step {s} element {k}"
-            );
+            assert!(t <= 0.4 * p[[s, k]] * (1.0 + 1e-12), "|p| <= mu p3 at step {s} element {k}");
             assert!(w[[s, k]] >= 0.0);
             assert!(stick[[s, k]] == 0 || stick[[s, k]] == 1);
             if stick[[s, k]] == 1 {
                 assert_eq!(sx[[s, k]], 0.0);
             }
         }
-        assert!(
-            (force_n - n[s]).abs() < 1e-9 * n[s],
-            "normal force balance at step {s}"
-        );
-        assert!(
-            (force_x - fx[s]).abs() < 1e-9 * 2e4,
-            "tangential force balance at step {s}"
-        );
+        assert!((force_n - n[s]).abs() < 1e-9 * n[s], "normal force balance at step {s}");
+        assert!((force_x - fx[s]).abs() < 1e-9 * 2e4, "tangential force balance at step {s}");
     }
     // Rail: wear positive, profile = -wear for one passage, rms recorded.
     let wear = read_f64(&f, "rail", "wear").unwrap();
@@ -111,10 +87,7 @@ fn run_file_satisfies_invariants() {
     let rms = read_f64(&f, "passes", "rms_corrugation").unwrap();
     assert!(rms[0] > 0.0);
     let cfg = read_attr_str(&f, "/", "config").unwrap();
-    assert!(
-        cfg.contains("elements_x = 10"),
-        "resolved config with overrides stored"
-    );
+    assert!(cfg.contains("elements_x = 10"), "resolved config with overrides stored");
 }
 
 #[test]
@@ -129,12 +102,7 @@ fn same_config_same_result_bit_for_bit() {
         ("contact/pass_00000", "wear_rate"),
     ] {
         let (x, y) = (read_f64(&f1, g, v).unwrap(), read_f64(&f2, g, v).unwrap());
-        assert!(
-            x.iter()
-                .zip(y.iter())
-                .all(|(a, b)| a.to_bits() == b.to_bits()),
-            "{g}/{v} differs"
-        );
+        assert!(x.iter().zip(y.iter()).all(|(a, b)| a.to_bits() == b.to_bits()), "{g}/{v} differs");
     }
 }
 
@@ -156,16 +124,8 @@ fn bad_config_exits_2_and_keeps_existing_output() {
     ]);
     assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains(
-            "material.friction_coefficient: = 3 is out of range; expected a number in (0, 1]"
-        ),
-        "{err}"
-    );
-    assert!(
-        err.contains("contact.elements_x: = 1 is out of range"),
-        "{err}"
-    );
+    assert!(err.contains("material.friction_coefficient: = 3 is out of range; expected a number in (0, 1]"), "{err}");
+    assert!(err.contains("contact.elements_x: = 1 is out of range"), "{err}");
     assert_eq!(std::fs::read(&out).unwrap(), b"previous results");
     let o = corrugation(&["check", "/nonexistent/scene.toml"]);
     assert_eq!(o.status.code(), Some(2));

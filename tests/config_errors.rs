@@ -18,18 +18,9 @@ fn paper_configs_are_valid() {
     for (name, text) in [
         ("paper_steady", include_str!("../configs/paper_steady.toml")),
         ("paper_normal_30mm", BASE),
-        (
-            "paper_normal_15mm",
-            include_str!("../configs/paper_normal_15mm.toml"),
-        ),
-        (
-            "paper_longitudinal_30mm",
-            include_str!("../configs/paper_longitudinal_30mm.toml"),
-        ),
-        (
-            "paper_longitudinal_15mm",
-            include_str!("../configs/paper_longitudinal_15mm.toml"),
-        ),
+        ("paper_normal_15mm", include_str!("../configs/paper_normal_15mm.toml")),
+        ("paper_longitudinal_30mm", include_str!("../configs/paper_longitudinal_30mm.toml")),
+        ("paper_longitudinal_15mm", include_str!("../configs/paper_longitudinal_15mm.toml")),
     ] {
         assert_eq!(errors(text, &[]), Vec::<String>::new(), "{name}");
     }
@@ -47,29 +38,14 @@ fn corpus_of_bad_values() {
             "material.friction_coefficient=1.5",
             "material.friction_coefficient: = 1.5 is out of range; expected a number in (0, 1]",
         ),
-        (
-            "material.poisson_ratio=0.5",
-            "material.poisson_ratio: = 0.5 is out of range; expected a number in [0, 0.5)",
-        ),
-        (
-            "material.young_modulus=-1",
-            "material.young_modulus: = -1 is out of range; expected a finite number > 0",
-        ),
-        (
-            "material.young_modulus=\"steel\"",
-            "material.young_modulus: expected a finite number > 0, found string",
-        ),
-        (
-            "load.normal_force=0",
-            "load.normal_force: = 0 is out of range; expected a finite number > 0",
-        ),
-        (
-            "load.normal_force=nan",
-            "load.normal_force: = NaN is out of range",
-        ),
+        ("material.poisson_ratio=0.5", "material.poisson_ratio: = 0.5 is out of range; expected a number in [0, 0.5)"),
+        ("material.young_modulus=-1", "material.young_modulus: = -1 is out of range; expected a finite number > 0"),
+        ("material.young_modulus=\"steel\"", "material.young_modulus: expected a finite number > 0, found string"),
+        ("load.normal_force=0", "load.normal_force: = 0 is out of range; expected a finite number > 0"),
+        ("load.normal_force=nan", "load.normal_force: = NaN is out of range"),
         (
             "load.harmonics[0].amplitude=1e5",
-            "load.harmonics: normal-force amplitudes sum to 1.000000e5 N, which must be < load.normal_force",
+            "load.harmonics: normal-force amplitudes sum to 1.000000e5 N >= load.normal_force = 1.000000e5 N: contact is lost where N <= 0, which is only allowed with no longitudinal force",
         ),
         (
             "load.longitudinal_force=30e3",
@@ -87,18 +63,9 @@ fn corpus_of_bad_values() {
             "contact.model=implicit",
             "contact.model: = \"implicit\" is not allowed; expected one of \"exact-transient\", \"simplified-transient\", \"fastsim\"",
         ),
-        (
-            "contact.elements_x=1",
-            "contact.elements_x: = 1 is out of range; expected an integer in [2, 200]",
-        ),
-        (
-            "contact.elements_y=2.5",
-            "contact.elements_y: expected an integer in [2, 200], found float",
-        ),
-        (
-            "contact.fastsim_bound=square",
-            "contact.fastsim_bound: = \"square\" is not allowed",
-        ),
+        ("contact.elements_x=1", "contact.elements_x: = 1 is out of range; expected an integer in [2, 200]"),
+        ("contact.elements_y=2.5", "contact.elements_y: expected an integer in [2, 200], found float"),
+        ("contact.fastsim_bound=square", "contact.fastsim_bound: = \"square\" is not allowed"),
         (
             "geometry.wheel_profile_radius=-0.2",
             "geometry.wheel_profile_radius: = -0.2 m gives a lateral curvature sum B",
@@ -107,39 +74,15 @@ fn corpus_of_bad_values() {
             "geometry.wheel_profile_radius=0",
             "geometry.wheel_profile_radius: = 0 is out of range; expected a non-zero number or +-inf",
         ),
-        (
-            "geometry.wheel_radius=0.01",
-            "outside Kalker's creep-coefficient table",
-        ),
-        (
-            "rolling.speed=0",
-            "rolling.speed: = 0 is out of range; expected a number in (0, 200]",
-        ),
-        (
-            "passage.end=-0.05",
-            "passage.end: = -0.05 must be > passage.start = -0.03",
-        ),
-        (
-            "passage.step_length=0",
-            "passage.step_length: = 0 is out of range",
-        ),
+        ("geometry.wheel_radius=0.01", "outside Kalker's creep-coefficient table"),
+        ("rolling.speed=0", "rolling.speed: = 0 is out of range; expected a number in (0, 200]"),
+        ("passage.end=-0.05", "passage.end: = -0.05 must be > passage.start = -0.03"),
+        ("passage.step_length=0", "passage.step_length: = 0 is out of range"),
         ("rail.x_max=-1", "rail.x_max: = -1 must be > rail.x_min = 0"),
-        (
-            "rail.dy=0.2",
-            "rail.dy: = 0.2 is out of range; expected a number in (0, 0.01]",
-        ),
-        (
-            "wear.substeps=0",
-            "wear.substeps: = 0 is out of range; expected an integer in [1, 64]",
-        ),
-        (
-            "wear.k_over_h=-1e-14",
-            "wear.k_over_h: = -0.00000000000001 is out of range; expected a finite number >= 0",
-        ),
-        (
-            "output.store_fields=1",
-            "output.store_fields: expected true or false, found integer",
-        ),
+        ("rail.dy=0.2", "rail.dy: = 0.2 is out of range; expected a number in (0, 0.01]"),
+        ("wear.substeps=0", "wear.substeps: = 0 is out of range; expected an integer in [1, 64]"),
+        ("wear.k_over_h=-1e-14", "wear.k_over_h: = -0.00000000000001 is out of range; expected a finite number >= 0"),
+        ("output.store_fields=1", "output.store_fields: expected true or false, found integer"),
         ("material.colour=1", "material.colour: unknown key"),
         ("solver.tolerance=1", "solver: unknown section or key"),
     ];
@@ -147,57 +90,34 @@ fn corpus_of_bad_values() {
         // Wide rail grid so the large-amplitude case reports only its own problem.
         let e = errors(BASE, &[set, "rail.half_width=0.05"]);
         assert_eq!(e.len(), 1, "--set {set}: expected one error, got {e:?}");
-        assert!(
-            e[0].contains(expected),
-            "--set {set}:\n  got      {}\n  expected {expected}",
-            e[0]
-        );
+        assert!(e[0].contains(expected), "--set {set}:\n  got      {}\n  expected {expected}", e[0]);
     }
 }
 
 #[test]
 fn missing_keys_and_syntax() {
-    let e = errors(
-        &BASE.replace("young_modulus = 2.1e11          # Pa\n", ""),
-        &[],
-    );
-    assert_eq!(
-        e,
-        vec!["material.young_modulus: missing; expected a finite number > 0".to_string()]
-    );
+    let e = errors(&BASE.replace("young_modulus = 2.1e11          # Pa\n", ""), &[]);
+    assert_eq!(e, vec!["material.young_modulus: missing; expected a finite number > 0".to_string()]);
     let e = errors("[material\nx = 1", &[]);
     assert!(e[0].starts_with("TOML syntax:"), "{e:?}");
     let e = errors(BASE, &["rail.half_width=0.005"]);
-    assert_eq!(e, vec!["rail.half_width: = 0.005 m is narrower than the largest patch half-width b = 1.1563e-2 m; it must be >= b".to_string()]);
-    let e = errors(BASE, &["friction=0.3"]);
-    assert!(
-        e[0].contains("--set friction=0.3: the key must be a dotted path"),
-        "{e:?}"
+    assert_eq!(
+        e,
+        vec![
+            "rail.half_width: = 0.005 m is narrower than the largest patch half-width b = 1.1563e-2 m; it must be >= b"
+                .to_string()
+        ]
     );
+    let e = errors(BASE, &["friction=0.3"]);
+    assert!(e[0].contains("--set friction=0.3: the key must be a dotted path"), "{e:?}");
 }
 
 #[test]
 fn all_problems_reported_at_once() {
-    let e = errors(
-        BASE,
-        &[
-            "material.friction_coefficient=2",
-            "contact.elements_x=0",
-            "rail.dy=-1",
-            "wear.colour=1",
-        ],
-    );
+    let e = errors(BASE, &["material.friction_coefficient=2", "contact.elements_x=0", "rail.dy=-1", "wear.colour=1"]);
     assert_eq!(e.len(), 4, "{e:?}");
-    for key in [
-        "material.friction_coefficient",
-        "contact.elements_x",
-        "rail.dy",
-        "wear.colour",
-    ] {
-        assert!(
-            e.iter().any(|m| m.starts_with(key)),
-            "{key} missing in {e:?}"
-        );
+    for key in ["material.friction_coefficient", "contact.elements_x", "rail.dy", "wear.colour"] {
+        assert!(e.iter().any(|m| m.starts_with(key)), "{key} missing in {e:?}");
     }
 }
 

@@ -11,13 +11,7 @@ const MU: f64 = 0.4;
 const V: f64 = 27.78;
 
 fn fastsim(concave: bool, n: usize, shape: PressureShape) -> Fastsim {
-    Fastsim::new(
-        n,
-        n,
-        shape,
-        paper_coefficients(concave),
-        STEEL.shear_modulus(),
-    )
+    Fastsim::new(n, n, shape, paper_coefficients(concave), STEEL.shear_modulus())
 }
 
 fn input(concave: bool, force_x: f64) -> StepInput {
@@ -48,25 +42,10 @@ fn linear_theory_limit() {
         for bound in [PressureShape::Parabolic, PressureShape::Hertz] {
             let f = Fastsim::new(40, 40, bound, c, g);
             let xi = -1e-7;
-            let s = f.solve_creepage(
-                &p,
-                Creepage {
-                    x: xi,
-                    ..Default::default()
-                },
-                MU,
-                V,
-            );
+            let s = f.solve_creepage(&p, Creepage { x: xi, ..Default::default() }, MU, V);
             let linear = -g * p.a * p.b * c.c11 * xi;
-            assert!(
-                rel(s.force_x, linear) < 0.02,
-                "{curv:?} {bound:?}: {} vs {linear}",
-                s.force_x
-            );
-            assert!(
-                s.stick.iter().all(|x| *x),
-                "all stick at vanishing creepage"
-            );
+            assert!(rel(s.force_x, linear) < 0.02, "{curv:?} {bound:?}: {} vs {linear}", s.force_x);
+            assert!(s.stick.iter().all(|x| *x), "all stick at vanishing creepage");
         }
     }
 }
@@ -77,21 +56,10 @@ fn saturates_to_friction_limit_and_respects_bound() {
         let f = fastsim(true, 20, bound);
         let p = paper_shape(true).patch(1e5).unwrap();
         for xi in [-1e-4, -1e-3, -3e-3, -1e-2, -1.0] {
-            let s = f.solve_creepage(
-                &p,
-                Creepage {
-                    x: xi,
-                    ..Default::default()
-                },
-                MU,
-                V,
-            );
+            let s = f.solve_creepage(&p, Creepage { x: xi, ..Default::default() }, MU, V);
             for k in 0..s.pressure.len() {
                 let t = s.traction_x[k].hypot(s.traction_y[k]);
-                assert!(
-                    t <= MU * s.pressure[k] * (1.0 + 1e-12),
-                    "|p| > mu p3 at {k}"
-                );
+                assert!(t <= MU * s.pressure[k] * (1.0 + 1e-12), "|p| > mu p3 at {k}");
                 if !s.stick[k] {
                     // Slip opposes traction.
                     let dot = s.slip_x[k] * s.traction_x[k] + s.slip_y[k] * s.traction_y[k];
@@ -100,43 +68,12 @@ fn saturates_to_friction_limit_and_respects_bound() {
                     assert_eq!((s.slip_x[k], s.slip_y[k]), (0.0, 0.0));
                 }
             }
-            assert!(
-                s.force_y.abs() < 1e-9 * 1e5,
-                "no lateral force without lateral creepage"
-            );
+            assert!(s.force_y.abs() < 1e-9 * 1e5, "no lateral force without lateral creepage");
         }
-        let full = f.solve_creepage(
-            &p,
-            Creepage {
-                x: -1.0,
-                ..Default::default()
-            },
-            MU,
-            V,
-        );
-        assert!(
-            rel(full.force_x, MU * 1e5) < 1e-12,
-            "full sliding gives mu N: {}",
-            full.force_x
-        );
-        let mirror = f.solve_creepage(
-            &p,
-            Creepage {
-                x: 1e-3,
-                ..Default::default()
-            },
-            MU,
-            V,
-        );
-        let plain = f.solve_creepage(
-            &p,
-            Creepage {
-                x: -1e-3,
-                ..Default::default()
-            },
-            MU,
-            V,
-        );
+        let full = f.solve_creepage(&p, Creepage { x: -1.0, ..Default::default() }, MU, V);
+        assert!(rel(full.force_x, MU * 1e5) < 1e-12, "full sliding gives mu N: {}", full.force_x);
+        let mirror = f.solve_creepage(&p, Creepage { x: 1e-3, ..Default::default() }, MU, V);
+        let plain = f.solve_creepage(&p, Creepage { x: -1e-3, ..Default::default() }, MU, V);
         assert!((mirror.force_x + plain.force_x).abs() < 1e-9 * plain.force_x.abs());
     }
 }
@@ -160,14 +97,8 @@ fn contact_scene_a_steady_creepage() {
         (false, PressureShape::Parabolic, -1.773e-3),
         (true, PressureShape::Parabolic, -1.277e-3),
     ] {
-        let s = fastsim(concave, 60, shape)
-            .solve_force(&input(concave, 2e4))
-            .unwrap();
-        assert!(
-            rel(s.creepage.x, expected) < 0.025,
-            "{concave} {shape:?}: {} vs {expected}",
-            s.creepage.x
-        );
+        let s = fastsim(concave, 60, shape).solve_force(&input(concave, 2e4)).unwrap();
+        assert!(rel(s.creepage.x, expected) < 0.025, "{concave} {shape:?}: {} vs {expected}", s.creepage.x);
         assert!(rel(s.force_x, 2e4) < 1e-9);
     }
 }
@@ -188,30 +119,12 @@ fn contact_scene_b_creep_curves() {
         for (shape, col) in [(PressureShape::Hertz, 4), (PressureShape::Parabolic, 5)] {
             let expected: f64 = r[col].parse().unwrap();
             let f = fastsim(concave, 60, shape);
-            let at_ref = f.solve_creepage(
-                &patch,
-                Creepage {
-                    x: expected,
-                    ..Default::default()
-                },
-                MU,
-                V,
-            );
+            let at_ref = f.solve_creepage(&patch, Creepage { x: expected, ..Default::default() }, MU, V);
             let df = (at_ref.force_x - fx).abs() / (MU * 1e5);
-            assert!(
-                df < 0.015,
-                "{} {frac} {shape:?}: force {} vs {fx}",
-                r[0],
-                at_ref.force_x
-            );
+            assert!(df < 0.015, "{} {frac} {shape:?}: force {} vs {fx}", r[0], at_ref.force_x);
             if shape == PressureShape::Parabolic {
                 let s = f.solve_force(&input(concave, fx)).unwrap();
-                assert!(
-                    rel(s.creepage.x, expected) < 0.025,
-                    "{} {frac}: {} vs {expected}",
-                    r[0],
-                    s.creepage.x
-                );
+                assert!(rel(s.creepage.x, expected) < 0.025, "{} {frac}: {} vs {expected}", r[0], s.creepage.x);
             }
         }
     }
@@ -231,11 +144,7 @@ fn continuum_parabolic_force(xi: f64, a: f64, b: f64, n: f64, l1: f64) -> f64 {
     for j in 0..m {
         let y = -b + (j as f64 + 0.5) * dy;
         let c = a * (1.0 - (y / b).powi(2)).sqrt();
-        let strip = if d < 2.0 * c {
-            2.0 * c * c * d - c * d * d + d.powi(3) / 6.0
-        } else {
-            4.0 * c.powi(3) / 3.0
-        };
+        let strip = if d < 2.0 * c { 2.0 * c * c * d - c * d * d + d.powi(3) / 6.0 } else { 4.0 * c.powi(3) / 3.0 };
         f += MU * k * strip * dy;
     }
     f * -xi.signum()
@@ -247,33 +156,17 @@ fn parabolic_bound_matches_continuum_theory() {
     let p = paper_shape(true).patch(1e5).unwrap();
     let l1 = f.flexibilities(p.a, p.b).l1;
     for xi in [-1e-4, -5e-4, -1.2e-3, -2.5e-3, -5e-3] {
-        let s = f.solve_creepage(
-            &p,
-            Creepage {
-                x: xi,
-                ..Default::default()
-            },
-            MU,
-            V,
-        );
+        let s = f.solve_creepage(&p, Creepage { x: xi, ..Default::default() }, MU, V);
         let exact = continuum_parabolic_force(xi, p.a, p.b, 1e5, l1);
-        assert!(
-            (s.force_x - exact).abs() < 0.003 * MU * 1e5,
-            "xi {xi}: {} vs {exact}",
-            s.force_x
-        );
+        assert!((s.force_x - exact).abs() < 0.003 * MU * 1e5, "xi {xi}: {} vs {exact}", s.force_x);
     }
 }
 
 #[test]
 fn converges_under_refinement() {
     for shape in [PressureShape::Hertz, PressureShape::Parabolic] {
-        let coarse = fastsim(true, 30, shape)
-            .solve_force(&input(true, 2e4))
-            .unwrap();
-        let fine = fastsim(true, 120, shape)
-            .solve_force(&input(true, 2e4))
-            .unwrap();
+        let coarse = fastsim(true, 30, shape).solve_force(&input(true, 2e4)).unwrap();
+        let fine = fastsim(true, 120, shape).solve_force(&input(true, 2e4)).unwrap();
         assert!(rel(coarse.creepage.x, fine.creepage.x) < 0.005, "{shape:?}");
     }
 }

@@ -26,18 +26,8 @@ fn roll(
     let mut w = Array2::zeros((grid.ny, grid.nx));
     let n = ((x1 - x0) / h).round() as usize;
     for k in 0..n {
-        let from = PatchWear {
-            x_c: x0 + k as f64 * h,
-            a,
-            b,
-            rates,
-        };
-        let to = PatchWear {
-            x_c: x0 + (k + 1) as f64 * h,
-            a,
-            b,
-            rates,
-        };
+        let from = PatchWear { x_c: x0 + k as f64 * h, a, b, rates };
+        let to = PatchWear { x_c: x0 + (k + 1) as f64 * h, a, b, rates };
         dep.accumulate(grid, &mut w, &from, &to, h / V, substeps);
     }
     w
@@ -62,20 +52,13 @@ fn uniform_rate_gives_chord_over_speed() {
         let exact = |y: f64| rate * 2.0 * a * (1.0 - (y / b).powi(2)).sqrt() / V;
         let mean_centre = w.row(centre).mean().unwrap();
         centre_errors.push(rel(mean_centre, exact(0.0)));
-        assert!(
-            w.row(0).iter().all(|v| *v == 0.0),
-            "no wear outside the patch"
-        );
+        assert!(w.row(0).iter().all(|v| *v == 0.0), "no wear outside the patch");
         if n == 100 {
             for j in 0..grid.ny {
                 if grid.y(j).abs() <= 0.4 * b {
                     for i in 0..grid.nx {
                         let e = exact(grid.y(j));
-                        assert!(
-                            rel(w[[j, i]], e) < 0.01,
-                            "node ({i},{j}): {} vs {e}",
-                            w[[j, i]]
-                        );
+                        assert!(rel(w[[j, i]], e) < 0.01, "node ({i},{j}): {} vs {e}", w[[j, i]]);
                     }
                 }
             }
@@ -83,38 +66,16 @@ fn uniform_rate_gives_chord_over_speed() {
     }
     // First-order convergence of the centre-line deficit, close to 1/(2 nx).
     for (err, n) in centre_errors.iter().zip([20.0, 40.0, 100.0]) {
-        assert!(
-            (err - 0.5 / n).abs() < 0.25 / n,
-            "centre-line deficit {err} at n = {n}"
-        );
+        assert!((err - 0.5 / n).abs() < 0.25 / n, "centre-line deficit {err} at n = {n}");
     }
 }
 
 fn fastsim_rates(n: usize) -> (EllipseMesh, Vec<f64>, f64, f64) {
     let patch = paper_shape(true).patch(1e5).unwrap();
-    let f = Fastsim::new(
-        n,
-        n,
-        PressureShape::Parabolic,
-        paper_coefficients(true),
-        STEEL.shear_modulus(),
-    );
-    let input = StepInput {
-        patch,
-        speed: V,
-        dt: 0.0,
-        friction: 0.4,
-        force_x: 2e4,
-        creepage_y: 0.0,
-        spin: 0.0,
-    };
+    let f = Fastsim::new(n, n, PressureShape::Parabolic, paper_coefficients(true), STEEL.shear_modulus());
+    let input = StepInput { patch, speed: V, dt: 0.0, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
     let sol = f.solve_force(&input).unwrap();
-    (
-        EllipseMesh::new(n, n),
-        archard_rates(3.4e-14, &sol),
-        patch.a,
-        patch.b,
-    )
+    (EllipseMesh::new(n, n), archard_rates(3.4e-14, &sol), patch.a, patch.b)
 }
 
 #[test]
@@ -130,10 +91,7 @@ fn removed_volume_equals_time_integral_of_patch_wear_rate() {
         let w = roll(&dep, &grid, a, b, &rates, x0, x1, h, 4);
         let removed = w.sum() * grid.dx * grid.dy;
         let expected = dep.integral(&rates, a, b) * (x1 - x0) / V;
-        assert!(
-            rel(removed, expected) < 0.01,
-            "{n}x{n}: {removed:e} vs {expected:e}"
-        );
+        assert!(rel(removed, expected) < 0.01, "{n}x{n}: {removed:e} vs {expected:e}");
     }
 }
 
@@ -147,10 +105,7 @@ fn interpolated_field_converges_to_element_sum() {
         WearDeposit::new(&mesh).integral(&rates, a, b) / mesh.integrate(&rates, a, b)
     };
     let (r20, r40, r80) = (ratio(20), ratio(40), ratio(80));
-    assert!(
-        (1.0 - r20) > (1.0 - r40) && (1.0 - r40) > (1.0 - r80),
-        "{r20} {r40} {r80}"
-    );
+    assert!((1.0 - r20) > (1.0 - r40) && (1.0 - r40) > (1.0 - r80), "{r20} {r40} {r80}");
     assert!((1.0 - r80).abs() < 0.005, "80 x 80: {r80}");
 }
 
@@ -165,36 +120,18 @@ fn substeps_converge() {
     let doubled: Vec<f64> = rates.iter().map(|r| 2.0 * r).collect();
     let depth = |m: usize| {
         let mut w = Array2::zeros((grid.ny, grid.nx));
-        let from = PatchWear {
-            x_c: -0.0005,
-            a,
-            b,
-            rates: &rates,
-        };
-        let to = PatchWear {
-            x_c: 0.0005,
-            a: 1.2 * a,
-            b: 1.2 * b,
-            rates: &doubled,
-        };
+        let from = PatchWear { x_c: -0.0005, a, b, rates: &rates };
+        let to = PatchWear { x_c: 0.0005, a: 1.2 * a, b: 1.2 * b, rates: &doubled };
         dep.accumulate(&grid, &mut w, &from, &to, 1e-3 / V, m);
         w
     };
     let reference = depth(1024);
     let scale = reference.iter().cloned().fold(0.0, f64::max);
-    let err = |m: usize| {
-        (&depth(m) - &reference)
-            .iter()
-            .map(|v| v.abs())
-            .sum::<f64>()
-            / (scale * reference.len() as f64)
-    };
+    let err =
+        |m: usize| (&depth(m) - &reference).iter().map(|v| v.abs()).sum::<f64>() / (scale * reference.len() as f64);
     let errs: Vec<f64> = [2, 4, 8, 16, 32].iter().map(|m| err(*m)).collect();
     for w in errs.windows(2) {
-        assert!(
-            w[1] < 0.75 * w[0],
-            "sub-step errors must decrease: {errs:?}"
-        );
+        assert!(w[1] < 0.75 * w[0], "sub-step errors must decrease: {errs:?}");
     }
     assert!(errs[4] < 0.1 * errs[0], "{errs:?}");
 }

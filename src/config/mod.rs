@@ -14,9 +14,7 @@ use crate::contact::PressureShape;
 use crate::creep_coefficients::creep_coefficients;
 use crate::hertz::{Elastic, HertzShape};
 use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};
-use crate::params::{
-    ContactModelKind, ContactParams, Geometry, Material, OutputParams, RailParams, Scene,
-};
+use crate::params::{ContactModelKind, ContactParams, Geometry, Material, OutputParams, RailParams, Scene};
 use reader::{Range, Section};
 use std::fmt;
 use std::path::Path;
@@ -34,10 +32,7 @@ pub struct ConfigError {
 impl ConfigError {
     /// A new error on `key`.
     pub fn new(key: &str, message: String) -> Self {
-        ConfigError {
-            key: key.to_string(),
-            message,
-        }
+        ConfigError { key: key.to_string(), message }
     }
 }
 
@@ -95,26 +90,16 @@ pub fn load_file(path: &Path, overrides: &[String]) -> Result<Resolved, ConfigEr
 
 /// Validates config `text` (from `source`, for messages) with overrides.
 pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
-    let fail = |errors| ConfigErrors {
-        source: source.to_string(),
-        errors,
-    };
+    let fail = |errors| ConfigErrors { source: source.to_string(), errors };
     let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
-        fail(vec![ConfigError::new(
-            "TOML syntax",
-            e.to_string().trim().replace('\n', " "),
-        )])
+        fail(vec![ConfigError::new("TOML syntax", e.to_string().trim().replace('\n', " "))])
     })?;
-    let mut errors: Vec<ConfigError> = overrides
-        .iter()
-        .filter_map(|o| overrides::apply(&mut root, o).err())
-        .collect();
+    let mut errors: Vec<ConfigError> = overrides.iter().filter_map(|o| overrides::apply(&mut root, o).err()).collect();
     let (scene, resolved) = read_scene(root, &mut errors);
     match scene {
-        Some(scene) if errors.is_empty() => Ok(Resolved {
-            scene,
-            toml: toml::to_string(&resolved).expect("resolved config serialises"),
-        }),
+        Some(scene) if errors.is_empty() => {
+            Ok(Resolved { scene, toml: toml::to_string(&resolved).expect("resolved config serialises") })
+        }
         _ => Err(fail(errors)),
     }
 }
@@ -151,19 +136,11 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     resolved.insert("load".into(), Value::Table(s.finish()));
 
     let mut s = section(&mut root, "contact", errors);
-    let model = s.choice(
-        "model",
-        Some("fastsim"),
-        &ContactModelKind::ALL.map(ContactModelKind::name),
-    );
+    let model = s.choice("model", Some("fastsim"), &ContactModelKind::ALL.map(ContactModelKind::name));
     let nx = s.usize("elements_x", Some(20), 2, 200);
     let ny = s.usize("elements_y", Some(20), 2, 200);
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
-    let bound = s.choice(
-        "fastsim_bound",
-        Some("parabolic"),
-        &["parabolic", "elliptic"],
-    );
+    let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
     resolved.insert("contact".into(), Value::Table(s.finish()));
 
     let mut s = section(&mut root, "wear", errors);
@@ -200,91 +177,57 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     else {
         return (None, resolved);
     };
-    let material = Material {
-        elastic: Elastic {
-            young_modulus: young,
-            poisson_ratio: nu,
-        },
-        friction: mu,
-    };
-    let geometry = Geometry {
-        wheel_radius,
-        wheel_profile_radius: profile,
-        rail_head_radius: rail_head,
-    };
+    let material = Material { elastic: Elastic { young_modulus: young, poisson_ratio: nu }, friction: mu };
+    let geometry = Geometry { wheel_radius, wheel_profile_radius: profile, rail_head_radius: rail_head };
     let shape = check_geometry(&material, &geometry, errors);
 
-    let (
-        Some(speed),
-        Some(creepage_y),
-        Some(spin),
-        Some(normal),
-        Some(longitudinal),
-        Some(harmonics),
-    ) = (speed, creepage_y, spin, normal, longitudinal, harmonics)
+    let (Some(speed), Some(creepage_y), Some(spin), Some(normal), Some(longitudinal), Some(harmonics)) =
+        (speed, creepage_y, spin, normal, longitudinal, harmonics)
     else {
         return (None, resolved);
     };
-    let loads = ImposedLoads {
-        normal_force: normal,
-        longitudinal_force: longitudinal,
-        harmonics,
-    };
+    let loads = ImposedLoads { normal_force: normal, longitudinal_force: longitudinal, harmonics };
     check_loads(&loads, mu, dx, errors);
 
-    let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound)) = (model, nx, ny, eps, bound)
-    else {
+    let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound)) = (model, nx, ny, eps, bound) else {
         return (None, resolved);
     };
-    let model = ContactModelKind::ALL
-        .into_iter()
-        .find(|m| m.name() == model)
-        .expect("validated choice");
+    let model = ContactModelKind::ALL.into_iter().find(|m| m.name() == model).expect("validated choice");
     let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(step_length)) =
         (k_over_h, substeps, start, end, step_length)
     else {
         return (None, resolved);
     };
     if end <= start {
-        errors.push(ConfigError::new(
-            "passage.end",
-            format!("= {end} must be > passage.start = {start}"),
-        ));
+        errors.push(ConfigError::new("passage.end", format!("= {end} must be > passage.start = {start}")));
     } else if (end - start) / step_length > 1e6 {
         errors.push(ConfigError::new(
             "passage.step_length",
-            format!(
-                "gives {:.0} steps; at most 1e6 allowed",
-                (end - start) / step_length
-            ),
+            format!("gives {:.0} steps; at most 1e6 allowed", (end - start) / step_length),
         ));
     }
-    let (
-        Some(x_min),
-        Some(x_max),
-        Some(dx),
-        Some(dy),
-        Some(half_width),
-        Some(store_fields),
-        Some(title),
-    ) = (x_min, x_max, dx, dy, half_width, store_fields, title)
+    let (Some(x_min), Some(x_max), Some(dx), Some(dy), Some(half_width), Some(store_fields), Some(title)) =
+        (x_min, x_max, dx, dy, half_width, store_fields, title)
     else {
         return (None, resolved);
     };
     if x_max <= x_min {
-        errors.push(ConfigError::new(
-            "rail.x_max",
-            format!("= {x_max} must be > rail.x_min = {x_min}"),
-        ));
+        errors.push(ConfigError::new("rail.x_max", format!("= {x_max} must be > rail.x_min = {x_min}")));
     } else if ((x_max - x_min) / dx) * (2.0 * half_width / dy) > 5e7 {
-        errors.push(ConfigError::new("rail.dx", "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into()));
+        errors.push(ConfigError::new(
+            "rail.dx",
+            "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into(),
+        ));
     }
     if let Some(p) = shape.and_then(|s| s.patch(loads.max_normal_force()).ok())
         && half_width < p.b
     {
         errors.push(ConfigError::new(
             "rail.half_width",
-            format!("= {half_width} m is narrower than the largest patch half-width b = {:.4e} m; it must be >= b", p.b),
+            format!(
+                "= {half_width} m is narrower than the largest patch half-width b = {:.4e} m; it must be >= b",
+                p.b
+            ),
         ));
     }
     let scene = Scene {
@@ -299,28 +242,15 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             elements_x: nx,
             elements_y: ny,
             regularisation: eps,
-            fastsim_bound: if bound == "elliptic" {
-                PressureShape::Hertz
-            } else {
-                PressureShape::Parabolic
-            },
+            fastsim_bound: if bound == "elliptic" { PressureShape::Hertz } else { PressureShape::Parabolic },
         },
         k_over_h,
         wear_substeps: substeps,
         start,
         end,
         step_length,
-        rail: RailParams {
-            x_min,
-            x_max,
-            dx,
-            dy,
-            half_width,
-        },
-        output: OutputParams {
-            store_fields,
-            title,
-        },
+        rail: RailParams { x_min, x_max, dx, dy, half_width },
+        output: OutputParams { store_fields, title },
     };
     (Some(scene), resolved)
 }
@@ -330,24 +260,12 @@ fn read_harmonic(s: &mut Section) -> Option<Harmonic> {
     let amplitude = s.f64("amplitude", None, Range::NonNegative);
     let wavelength = s.f64("wavelength", None, Range::OpenClosed(0.0, 1000.0));
     let phase = s.f64("phase", Some(0.0), Range::Finite);
-    let quantity = if quantity? == "normal_force" {
-        LoadQuantity::NormalForce
-    } else {
-        LoadQuantity::LongitudinalForce
-    };
-    Some(Harmonic {
-        quantity,
-        amplitude: amplitude?,
-        wavelength: wavelength?,
-        phase: phase?,
-    })
+    let quantity =
+        if quantity? == "normal_force" { LoadQuantity::NormalForce } else { LoadQuantity::LongitudinalForce };
+    Some(Harmonic { quantity, amplitude: amplitude?, wavelength: wavelength?, phase: phase? })
 }
 
-fn check_geometry(
-    material: &Material,
-    geometry: &Geometry,
-    errors: &mut Vec<ConfigError>,
-) -> Option<HertzShape> {
+fn check_geometry(material: &Material, geometry: &Geometry, errors: &mut Vec<ConfigError>) -> Option<HertzShape> {
     let c = geometry.curvatures();
     if c.b <= 0.0 {
         errors.push(ConfigError::new(
@@ -377,25 +295,21 @@ fn check_geometry(
 
 fn check_loads(loads: &ImposedLoads, mu: f64, rail_dx: Option<f64>, errors: &mut Vec<ConfigError>) {
     let n_min = loads.min_normal_force();
-    if n_min <= 0.0 {
+    let f_max = loads.max_longitudinal_force();
+    if n_min <= 0.0 && f_max > 0.0 {
         errors.push(ConfigError::new(
             "load.harmonics",
             format!(
-                "normal-force amplitudes sum to {:.6e} N, which must be < load.normal_force = {:.6e} N (contact loss is not supported by this model)",
+                "normal-force amplitudes sum to {:.6e} N >= load.normal_force = {:.6e} N: contact is lost where N <= 0, \
+                 which is only allowed with no longitudinal force (|F_x| reaches {f_max:.6e} N)",
                 loads.normal_force - n_min,
                 loads.normal_force
             ),
         ));
-        return;
-    }
-    let f_max = loads.max_longitudinal_force();
-    if f_max >= mu * n_min {
+    } else if n_min > 0.0 && f_max >= mu * n_min {
         errors.push(ConfigError::new(
             "load.longitudinal_force",
-            format!(
-                "|F_x| reaches {f_max:.6e} N, which must be < mu * min N = {:.6e} N (full sliding)",
-                mu * n_min
-            ),
+            format!("|F_x| reaches {f_max:.6e} N, which must be < mu * min N = {:.6e} N (full sliding)", mu * n_min),
         ));
     }
     if let Some(dx) = rail_dx {
@@ -403,11 +317,7 @@ fn check_loads(loads: &ImposedLoads, mu: f64, rail_dx: Option<f64>, errors: &mut
             if h.wavelength < 2.0 * dx {
                 errors.push(ConfigError::new(
                     &format!("load.harmonics[{i}].wavelength"),
-                    format!(
-                        "= {} m is shorter than two rail-grid cells (2 * rail.dx = {} m)",
-                        h.wavelength,
-                        2.0 * dx
-                    ),
+                    format!("= {} m is shorter than two rail-grid cells (2 * rail.dx = {} m)", h.wavelength, 2.0 * dx),
                 ));
             }
         }

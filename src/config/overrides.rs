@@ -10,15 +10,11 @@ use toml::{Table, Value};
 /// Applies one `path=value` override.
 pub fn apply(root: &mut Table, assignment: &str) -> Result<(), ConfigError> {
     let err = |msg: &str| ConfigError::new(&format!("--set {assignment}"), msg.to_string());
-    let (path, raw) = assignment
-        .split_once('=')
-        .ok_or_else(|| err("expected section.key=value"))?;
+    let (path, raw) = assignment.split_once('=').ok_or_else(|| err("expected section.key=value"))?;
     let value = parse_value(raw.trim());
     let parts: Vec<&str> = path.trim().split('.').collect();
     if parts.len() < 2 || parts.iter().any(|p| p.is_empty()) {
-        return Err(err(
-            "the key must be a dotted path such as material.friction_coefficient",
-        ));
+        return Err(err("the key must be a dotted path such as material.friction_coefficient"));
     }
     let mut table = root;
     for (n, part) in parts.iter().enumerate() {
@@ -30,12 +26,8 @@ pub fn apply(root: &mut Table, assignment: &str) -> Result<(), ConfigError> {
                 return Ok(());
             }
             (None, false) => {
-                let entry = table
-                    .entry(name.to_string())
-                    .or_insert_with(|| Value::Table(Table::new()));
-                table = entry
-                    .as_table_mut()
-                    .ok_or_else(|| err(&format!("`{name}` is not a table")))?;
+                let entry = table.entry(name.to_string()).or_insert_with(|| Value::Table(Table::new()));
+                table = entry.as_table_mut().ok_or_else(|| err(&format!("`{name}` is not a table")))?;
             }
             (Some(i), false) => {
                 let array = table
@@ -46,11 +38,7 @@ pub fn apply(root: &mut Table, assignment: &str) -> Result<(), ConfigError> {
                 table = array
                     .get_mut(i)
                     .and_then(Value::as_table_mut)
-                    .ok_or_else(|| {
-                        err(&format!(
-                            "index {i} out of range: `{name}` has {len} elements"
-                        ))
-                    })?;
+                    .ok_or_else(|| err(&format!("index {i} out of range: `{name}` has {len} elements")))?;
             }
             (Some(_), true) => return Err(err("cannot replace a whole array element")),
         }
@@ -69,11 +57,7 @@ fn parse_value(raw: &str) -> Value {
 fn split_index(part: &str) -> Option<(&str, Option<usize>)> {
     match part.split_once('[') {
         None => Some((part, None)),
-        Some((name, rest)) => rest
-            .strip_suffix(']')?
-            .parse()
-            .ok()
-            .map(|i| (name, Some(i))),
+        Some((name, rest)) => rest.strip_suffix(']')?.parse().ok().map(|i| (name, Some(i))),
     }
 }
 
@@ -83,21 +67,14 @@ mod tests {
 
     #[test]
     fn sets_numbers_strings_and_array_elements() {
-        let mut t: Table = "[load]\n[[load.harmonics]]\namplitude = 1.0\n"
-            .parse()
-            .unwrap();
+        let mut t: Table = "[load]\n[[load.harmonics]]\namplitude = 1.0\n".parse().unwrap();
         apply(&mut t, "material.friction_coefficient=0.3").unwrap();
         apply(&mut t, "contact.model=fastsim").unwrap();
         apply(&mut t, "load.harmonics[0].amplitude=3e4").unwrap();
         assert_eq!(t["material"]["friction_coefficient"].as_float(), Some(0.3));
         assert_eq!(t["contact"]["model"].as_str(), Some("fastsim"));
         assert_eq!(t["load"]["harmonics"][0]["amplitude"].as_float(), Some(3e4));
-        assert!(
-            apply(&mut t, "load.harmonics[3].amplitude=1")
-                .unwrap_err()
-                .to_string()
-                .contains("out of range")
-        );
+        assert!(apply(&mut t, "load.harmonics[3].amplitude=1").unwrap_err().to_string().contains("out of range"));
         assert!(apply(&mut t, "nokey").is_err());
     }
 }

@@ -65,44 +65,22 @@ pub struct Section<'a> {
 
 impl<'a> Section<'a> {
     /// Takes `name` out of `parent` (a missing section reads as empty).
-    pub fn new(
-        parent: &mut Table,
-        prefix: &str,
-        name: &str,
-        errors: &'a mut Vec<ConfigError>,
-    ) -> Self {
-        let path = if prefix.is_empty() {
-            name.to_string()
-        } else {
-            format!("{prefix}.{name}")
-        };
+    pub fn new(parent: &mut Table, prefix: &str, name: &str, errors: &'a mut Vec<ConfigError>) -> Self {
+        let path = if prefix.is_empty() { name.to_string() } else { format!("{prefix}.{name}") };
         let table = match parent.remove(name) {
             None => Table::new(),
             Some(Value::Table(t)) => t,
             Some(other) => {
-                errors.push(ConfigError::new(
-                    &path,
-                    format!("must be a table, found {}", other.type_str()),
-                ));
+                errors.push(ConfigError::new(&path, format!("must be a table, found {}", other.type_str())));
                 Table::new()
             }
         };
-        Section {
-            path,
-            table,
-            errors,
-            resolved: Table::new(),
-        }
+        Section { path, table, errors, resolved: Table::new() }
     }
 
     /// A section from an already extracted table (array elements).
     pub fn from_table(path: String, table: Table, errors: &'a mut Vec<ConfigError>) -> Self {
-        Section {
-            path,
-            table,
-            errors,
-            resolved: Table::new(),
-        }
+        Section { path, table, errors, resolved: Table::new() }
     }
 
     /// Dotted name of `key` in this section.
@@ -130,22 +108,12 @@ impl<'a> Section<'a> {
             Some(Value::Float(f)) => f,
             Some(Value::Integer(i)) => i as f64,
             Some(other) => {
-                self.error(
-                    key,
-                    format!(
-                        "expected {}, found {} `{other}`",
-                        range.describe(),
-                        other.type_str()
-                    ),
-                );
+                self.error(key, format!("expected {}, found {} `{other}`", range.describe(), other.type_str()));
                 return None;
             }
         };
         if !range.contains(v) {
-            self.error(
-                key,
-                format!("= {v} is out of range; expected {}", range.describe()),
-            );
+            self.error(key, format!("= {v} is out of range; expected {}", range.describe()));
             return None;
         }
         self.resolved.insert(key.into(), Value::Float(v));
@@ -153,13 +121,7 @@ impl<'a> Section<'a> {
     }
 
     /// An integer in `[lo, hi]`.
-    pub fn usize(
-        &mut self,
-        key: &str,
-        default: Option<usize>,
-        lo: usize,
-        hi: usize,
-    ) -> Option<usize> {
+    pub fn usize(&mut self, key: &str, default: Option<usize>, lo: usize, hi: usize) -> Option<usize> {
         let expect = format!("an integer in [{lo}, {hi}]");
         let v = match self.table.remove(key) {
             None => match default {
@@ -171,10 +133,7 @@ impl<'a> Section<'a> {
             },
             Some(Value::Integer(i)) => i,
             Some(other) => {
-                self.error(
-                    key,
-                    format!("expected {expect}, found {} `{other}`", other.type_str()),
-                );
+                self.error(key, format!("expected {expect}, found {} `{other}`", other.type_str()));
                 return None;
             }
         };
@@ -188,14 +147,7 @@ impl<'a> Section<'a> {
 
     /// One of the `allowed` strings.
     pub fn choice(&mut self, key: &str, default: Option<&str>, allowed: &[&str]) -> Option<String> {
-        let expect = format!(
-            "one of {}",
-            allowed
-                .iter()
-                .map(|a| format!("\"{a}\""))
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
+        let expect = format!("one of {}", allowed.iter().map(|a| format!("\"{a}\"")).collect::<Vec<_>>().join(", "));
         let v = match self.table.remove(key) {
             None => match default {
                 Some(d) => d.to_string(),
@@ -206,10 +158,7 @@ impl<'a> Section<'a> {
             },
             Some(Value::String(s)) => s,
             Some(other) => {
-                self.error(
-                    key,
-                    format!("expected {expect}, found {} `{other}`", other.type_str()),
-                );
+                self.error(key, format!("expected {expect}, found {} `{other}`", other.type_str()));
                 return None;
             }
         };
@@ -227,13 +176,7 @@ impl<'a> Section<'a> {
             None => default,
             Some(Value::Boolean(b)) => b,
             Some(other) => {
-                self.error(
-                    key,
-                    format!(
-                        "expected true or false, found {} `{other}`",
-                        other.type_str()
-                    ),
-                );
+                self.error(key, format!("expected true or false, found {} `{other}`", other.type_str()));
                 return None;
             }
         };
@@ -247,10 +190,7 @@ impl<'a> Section<'a> {
             None => default.to_string(),
             Some(Value::String(s)) => s,
             Some(other) => {
-                self.error(
-                    key,
-                    format!("expected a string, found {} `{other}`", other.type_str()),
-                );
+                self.error(key, format!("expected a string, found {} `{other}`", other.type_str()));
                 return None;
             }
         };
@@ -260,19 +200,12 @@ impl<'a> Section<'a> {
 
     /// An array of tables (e.g. `[[load.harmonics]]`); each element is read
     /// with `read` as section `key[i]`.
-    pub fn array_of_tables<T>(
-        &mut self,
-        key: &str,
-        mut read: impl FnMut(&mut Section) -> Option<T>,
-    ) -> Option<Vec<T>> {
+    pub fn array_of_tables<T>(&mut self, key: &str, mut read: impl FnMut(&mut Section) -> Option<T>) -> Option<Vec<T>> {
         let items = match self.table.remove(key) {
             None => Vec::new(),
             Some(Value::Array(a)) => a,
             Some(other) => {
-                self.error(
-                    key,
-                    format!("expected an array of tables, found {}", other.type_str()),
-                );
+                self.error(key, format!("expected an array of tables, found {}", other.type_str()));
                 return None;
             }
         };
@@ -282,8 +215,7 @@ impl<'a> Section<'a> {
         for (i, item) in items.into_iter().enumerate() {
             let path = format!("{}[{i}]", self.key(key));
             let Value::Table(t) = item else {
-                self.errors
-                    .push(ConfigError::new(&path, "expected a table".into()));
+                self.errors.push(ConfigError::new(&path, "expected a table".into()));
                 ok = false;
                 continue;
             };
@@ -303,8 +235,7 @@ impl<'a> Section<'a> {
     pub fn finish(self) -> Table {
         for (k, _) in self.table {
             let key = format!("{}.{k}", self.path);
-            self.errors
-                .push(ConfigError::new(&key, "unknown key".into()));
+            self.errors.push(ConfigError::new(&key, "unknown key".into()));
         }
         self.resolved
     }

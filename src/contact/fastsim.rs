@@ -63,12 +63,7 @@ impl Fastsim {
         coefficients: CreepCoefficients,
         shear_modulus: f64,
     ) -> Self {
-        Fastsim {
-            mesh: EllipseMesh::new(nx, ny),
-            shape,
-            coefficients,
-            shear_modulus,
-        }
+        Fastsim { mesh: EllipseMesh::new(nx, ny), shape, coefficients, shear_modulus }
     }
 
     /// Flexibilities for the patch semi-axes (m).
@@ -83,23 +78,14 @@ impl Fastsim {
     }
 
     /// Solves the steady problem with all creepages prescribed.
-    pub fn solve_creepage(
-        &self,
-        patch: &HertzPatch,
-        creepage: Creepage,
-        friction: f64,
-        speed: f64,
-    ) -> PatchSolution {
+    pub fn solve_creepage(&self, patch: &HertzPatch, creepage: Creepage, friction: f64, speed: f64) -> PatchSolution {
         let m = &self.mesh;
         let (a, b) = (patch.a, patch.b);
         let flex = self.flexibilities(a, b);
         let c = (a * b).sqrt();
         let norm = (creepage.x.powi(2) + creepage.y.powi(2) + (c * creepage.spin).powi(2)).sqrt();
         let l = if norm > 0.0 {
-            (creepage.x.abs() * flex.l1
-                + creepage.y.abs() * flex.l2
-                + c * creepage.spin.abs() * flex.l3)
-                / norm
+            (creepage.x.abs() * flex.l1 + creepage.y.abs() * flex.l2 + c * creepage.spin.abs() * flex.l3) / norm
         } else {
             flex.l1
         };
@@ -160,17 +146,12 @@ impl Fastsim {
             return Err(ContactError::ForceExceedsFriction { force, limit });
         }
         let at = |xi: f64| {
-            let cr = Creepage {
-                x: xi,
-                y: input.creepage_y,
-                spin: input.spin,
-            };
+            let cr = Creepage { x: xi, y: input.creepage_y, spin: input.spin };
             self.solve_creepage(patch, cr, input.friction, input.speed)
         };
         let residual = |xi: f64| (at(xi).force_x - force) / limit;
         let g = self.shear_modulus;
-        let linear =
-            (force.abs().max(1e-6 * limit)) / (g * patch.a * patch.b * self.coefficients.c11);
+        let linear = (force.abs().max(1e-6 * limit)) / (g * patch.a * patch.b * self.coefficients.c11);
         let r0 = residual(0.0);
         if r0 == 0.0 {
             return Ok(at(0.0));
@@ -183,23 +164,13 @@ impl Fastsim {
             hi *= 2.0;
             grown += 1;
             if grown > 60 {
-                return Err(ContactError::NoConvergence {
-                    force,
-                    reason: format!("no bracket up to xi = {hi:.3e}"),
-                });
+                return Err(ContactError::NoConvergence { force, reason: format!("no bracket up to xi = {hi:.3e}") });
             }
         }
         let lo = if grown == 0 { 0.0 } else { hi / 2.0 };
-        let tol = Tolerance {
-            residual: 1e-12,
-            x_rel: 1e-13,
-            x_abs: 1e-18,
-            max_iter: 200,
-        };
-        let xi = brent(lo, hi, residual, tol).map_err(|e| ContactError::NoConvergence {
-            force,
-            reason: format!("Brent: {e}"),
-        })?;
+        let tol = Tolerance { residual: 1e-12, x_rel: 1e-13, x_abs: 1e-18, max_iter: 200 };
+        let xi = brent(lo, hi, residual, tol)
+            .map_err(|e| ContactError::NoConvergence { force, reason: format!("Brent: {e}") })?;
         Ok(at(xi))
     }
 }

@@ -56,11 +56,7 @@ pub struct Influence {
 
 /// X asinh(Y/|X|), zero on X = 0.
 fn xa(x: f64, y: f64) -> f64 {
-    if x == 0.0 {
-        0.0
-    } else {
-        x * (y / x.abs()).asinh()
-    }
+    if x == 0.0 { 0.0 } else { x * (y / x.abs()).asinh() }
 }
 
 /// The primitives (1/r, X^2/r^3, Y^2/r^3, XY/r^3) at one corner.
@@ -83,11 +79,7 @@ pub fn influence(rect: &Rect, x: f64, y: f64, g: f64, nu: f64) -> Influence {
     let i = |k: usize| c_bb[k] - c_ab[k] - c_ba[k] + c_aa[k];
     // Two bodies: 2 / (2 pi G) = 1 / (pi G).
     let s = 1.0 / (PI * g);
-    Influence {
-        xx: s * ((1.0 - nu) * i(0) + nu * i(1)),
-        xy: s * nu * i(3),
-        yy: s * ((1.0 - nu) * i(0) + nu * i(2)),
-    }
+    Influence { xx: s * ((1.0 - nu) * i(0) + nu * i(1)), xy: s * nu * i(3), yy: s * ((1.0 - nu) * i(0) + nu * i(2)) }
 }
 
 #[cfg(test)]
@@ -108,10 +100,7 @@ mod tests {
         let (dx, dy) = (2.0 * rect.hx / n as f64, 2.0 * rect.hy / n as f64);
         for i in 0..n {
             for j in 0..n {
-                let (cx, cy) = (
-                    rect.x - rect.hx + (i as f64 + 0.5) * dx,
-                    rect.y - rect.hy + (j as f64 + 0.5) * dy,
-                );
+                let (cx, cy) = (rect.x - rect.hx + (i as f64 + 0.5) * dx, rect.y - rect.hy + (j as f64 + 0.5) * dy);
                 for (u, wu) in gl {
                     for (v, wv) in gl {
                         let (px, py) = (cx + 0.5 * dx * u, cy + 0.5 * dy * v);
@@ -131,19 +120,9 @@ mod tests {
     #[test]
     fn matches_quadrature_near_and_far() {
         let (g, nu) = (8.08e10, 0.3);
-        let rect = Rect {
-            x: 0.001,
-            y: -0.0005,
-            hx: 3e-4,
-            hy: 5e-4,
-        };
+        let rect = Rect { x: 0.001, y: -0.0005, hx: 3e-4, hy: 5e-4 };
         // Far field and near field (outside the rectangle, close to an edge).
-        for (x, y) in [
-            (0.02, 0.013),
-            (-0.004, 0.002),
-            (0.0014, 0.0001),
-            (0.001, 0.00009),
-        ] {
+        for (x, y) in [(0.02, 0.013), (-0.004, 0.002), (0.0014, 0.0001), (0.001, 0.00009)] {
             let c = influence(&rect, x, y, g, nu);
             let q = quadrature(&rect, x, y, g, nu, 40);
             for (a, b) in [(c.xx, q.xx), (c.xy, q.xy), (c.yy, q.yy)] {
@@ -155,20 +134,14 @@ mod tests {
     #[test]
     fn self_influence_is_finite_and_symmetric() {
         let (g, nu) = (8.08e10, 0.3);
-        let sq = Rect {
-            x: 0.0,
-            y: 0.0,
-            hx: 1e-3,
-            hy: 1e-3,
-        };
+        let sq = Rect { x: 0.0, y: 0.0, hx: 1e-3, hy: 1e-3 };
         let c = influence(&sq, 0.0, 0.0, g, nu);
         assert!(c.xx.is_finite() && c.xx > 0.0 && c.xy.abs() < 1e-30);
         assert!((c.xx - c.yy).abs() < 1e-12 * c.xx, "square: xx = yy");
         // Closed form at the centre of a square of side 2h:
         // int int 1/r = 8 h asinh(1), int int x^2/r^3 = 4 h asinh(1).
         let h = 1e-3;
-        let expect =
-            (8.0 * h * (1.0f64).asinh() * (1.0 - nu) + nu * 4.0 * h * (1.0f64).asinh()) / (PI * g);
+        let expect = (8.0 * h * (1.0f64).asinh() * (1.0 - nu) + nu * 4.0 * h * (1.0f64).asinh()) / (PI * g);
         assert!((c.xx - expect).abs() < 1e-12 * expect);
     }
 
@@ -178,18 +151,8 @@ mod tests {
         // equal-area elements (Betti), up to the element-averaging error; exact
         // for mirror-image elements.
         let (g, nu) = (8.08e10, 0.28);
-        let a = Rect {
-            x: 0.0,
-            y: 0.0,
-            hx: 2e-4,
-            hy: 3e-4,
-        };
-        let b = Rect {
-            x: 1.3e-3,
-            y: -0.7e-3,
-            hx: 2e-4,
-            hy: 3e-4,
-        };
+        let a = Rect { x: 0.0, y: 0.0, hx: 2e-4, hy: 3e-4 };
+        let b = Rect { x: 1.3e-3, y: -0.7e-3, hx: 2e-4, hy: 3e-4 };
         let ab = influence(&a, b.x, b.y, g, nu);
         let ba = influence(&b, a.x, a.y, g, nu);
         assert!((ab.xx - ba.xx).abs() < 1e-12 * ab.xx);

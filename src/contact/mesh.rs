@@ -51,15 +51,7 @@ impl EllipseMesh {
                 eta.push(e);
             }
         }
-        EllipseMesh {
-            nx,
-            ny,
-            xi,
-            eta,
-            half_chord,
-            d_xi,
-            d_eta,
-        }
+        EllipseMesh { nx, ny, xi, eta, half_chord, d_xi, d_eta }
     }
 
     /// Number of elements.
@@ -106,13 +98,7 @@ pub enum PressureShape {
 /// Pressure at the element centres (Pa), scaled so that its discrete
 /// integral over the mesh equals the normal force `n` (N) exactly: the
 /// discrete force balance then holds to round-off.
-pub fn pressure_on_mesh(
-    mesh: &EllipseMesh,
-    shape: PressureShape,
-    n: f64,
-    a: f64,
-    b: f64,
-) -> Vec<f64> {
+pub fn pressure_on_mesh(mesh: &EllipseMesh, shape: PressureShape, n: f64, a: f64, b: f64) -> Vec<f64> {
     let mut p: Vec<f64> = mesh
         .xi
         .iter()

@@ -85,9 +85,7 @@ impl PatchSolution {
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum ContactError {
     /// The prescribed force cannot be transmitted by friction.
-    #[error(
-        "longitudinal force {force:.6e} N reaches the friction limit mu N = {limit:.6e} N (full sliding)"
-    )]
+    #[error("longitudinal force {force:.6e} N reaches the friction limit mu N = {limit:.6e} N (full sliding)")]
     ForceExceedsFriction {
         /// Prescribed force (N).
         force: f64,

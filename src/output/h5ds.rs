@@ -18,11 +18,7 @@ unsafe extern "C" {
 
 /// Turn a negative HDF5 return code into the current HDF5 error stack.
 fn check(rc: herr_t) -> hdf5::Result<()> {
-    if rc < 0 {
-        Err(hdf5::Error::query().unwrap_or_else(|e| e))
-    } else {
-        Ok(())
-    }
+    if rc < 0 { Err(hdf5::Error::query().unwrap_or_else(|e| e)) } else { Ok(()) }
 }
 
 /// Make `scale` a dimension scale named `name` (writes `CLASS="DIMENSION_SCALE"` and `NAME`

@@ -141,17 +141,11 @@ impl NcGroup {
             .create_group_builder()
             .create_intermediate_group(false)
             .with_gcpl(|p| {
-                p.link_creation_order(LinkCreationOrder::Indexed)
-                    .attr_creation_order(AttrCreationOrder::Indexed)
+                p.link_creation_order(LinkCreationOrder::Indexed).attr_creation_order(AttrCreationOrder::Indexed)
             })
             .create(name)
             .map_err(|e| self.write_err(what(), e))?;
-        Ok(NcGroup {
-            group,
-            name: full.clone(),
-            ctx: Arc::clone(&self.ctx),
-            dims: RefCell::default(),
-        })
+        Ok(NcGroup { group, name: full.clone(), ctx: Arc::clone(&self.ctx), dims: RefCell::default() })
     }
 
     /// Write a variable-length UTF-8 string attribute on the group (any length; a whole TOML
@@ -248,10 +242,7 @@ impl NcGroup {
     /// exist yet.
     pub fn var_attr_str(&self, var: &str, name: &str, value: &str) -> Result<(), NcError> {
         let what = || format!("attribute {name:?} of variable {:?}", self.child_path(var));
-        let ds = self
-            .group
-            .dataset(var)
-            .map_err(|e| self.write_err(what(), e))?;
+        let ds = self.group.dataset(var).map_err(|e| self.write_err(what(), e))?;
         write_str_attr(&ds, name, value).map_err(|e| self.write_err(what(), e))
     }
 
@@ -279,12 +270,7 @@ impl NcGroup {
             Ok(ds)
         })()
         .map_err(|e| self.write_err(what(), e))?;
-        self.dims.borrow_mut().push(Dim {
-            name: name.to_owned(),
-            len: values.len(),
-            unlimited,
-            scale,
-        });
+        self.dims.borrow_mut().push(Dim { name: name.to_owned(), len: values.len(), unlimited, scale });
         Ok(())
     }
 
@@ -317,10 +303,8 @@ impl NcGroup {
         for (axis, &dname) in dims.iter().enumerate() {
             let Some(dim) = defined.iter().find(|d| d.name == dname) else {
                 let known: Vec<&str> = defined.iter().map(|d| d.name.as_str()).collect();
-                let msg = format!(
-                    "unknown dimension {dname:?}; dimensions defined in group {:?}: {known:?}",
-                    self.name
-                );
+                let msg =
+                    format!("unknown dimension {dname:?}; dimensions defined in group {:?}: {known:?}", self.name);
                 return Err(self.invalid(what(), msg));
             };
             if used.iter().any(|d| d.name == dname) {
@@ -361,8 +345,7 @@ impl NcGroup {
     ) -> hdf5::Result<Dataset> {
         let shape = data.shape().to_vec();
         let nbytes = data.len() * size_of::<T>();
-        let compress =
-            compress && nbytes >= MIN_COMPRESS_BYTES && hdf5::filters::deflate_available();
+        let compress = compress && nbytes >= MIN_COMPRESS_BYTES && hdf5::filters::deflate_available();
         let chunked = compress || unlimited.iter().any(|&u| u);
         let extents = if shape.is_empty() {
             Extents::Scalar
@@ -370,13 +353,10 @@ impl NcGroup {
             // A fixed axis of length 0 cannot be chunked (chunk sizes are >= 1 and may not
             // exceed a fixed size), so it is made extendable in the dataset; the dimension
             // itself stays fixed (readers take that from the dimension scale).
-            let ext = shape.iter().zip(unlimited).map(|(&n, &u)| {
-                if u || (chunked && n == 0) {
-                    Extent::resizable(n)
-                } else {
-                    Extent::fixed(n)
-                }
-            });
+            let ext = shape
+                .iter()
+                .zip(unlimited)
+                .map(|(&n, &u)| if u || (chunked && n == 0) { Extent::resizable(n) } else { Extent::fixed(n) });
             Extents::Simple(SimpleExtents::from_vec(ext.collect()))
         };
         let mut builder = self
@@ -403,11 +383,7 @@ impl NcGroup {
     }
 
     fn child_path(&self, name: &str) -> String {
-        if self.name == "/" {
-            format!("/{name}")
-        } else {
-            format!("{}/{name}", self.name)
-        }
+        if self.name == "/" { format!("/{name}") } else { format!("{}/{name}", self.name) }
     }
 
     fn check_name(&self, name: &str, what: &dyn Fn() -> String) -> Result<(), NcError> {
@@ -417,29 +393,18 @@ impl NcGroup {
         }
         // HDF5 reports a duplicate name with an empty error stack; say it plainly.
         if self.group.link_exists(name) {
-            let msg = format!(
-                "an object named {name:?} already exists in group {:?}",
-                self.name
-            );
+            let msg = format!("an object named {name:?} already exists in group {:?}", self.name);
             return Err(self.invalid(what(), msg));
         }
         Ok(())
     }
 
     fn write_err(&self, what: String, source: hdf5::Error) -> NcError {
-        NcError::Write {
-            path: self.ctx.path.clone(),
-            what,
-            source,
-        }
+        NcError::Write { path: self.ctx.path.clone(), what, source }
     }
 
     fn invalid(&self, what: String, msg: String) -> NcError {
-        NcError::Invalid {
-            path: self.ctx.path.clone(),
-            what,
-            msg,
-        }
+        NcError::Invalid { path: self.ctx.path.clone(), what, msg }
     }
 }
 
@@ -460,9 +425,8 @@ fn write_attr<T: H5Type>(loc: &Location, name: &str, value: &T) -> hdf5::Result<
 }
 
 fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
-    let value: VarLenUnicode = value
-        .parse()
-        .map_err(|e| hdf5::Error::from(format!("string for attribute {name:?}: {e}")))?;
+    let value: VarLenUnicode =
+        value.parse().map_err(|e| hdf5::Error::from(format!("string for attribute {name:?}: {e}")))?;
     write_attr(loc, name, &value)
 }
 
@@ -489,18 +453,10 @@ pub fn write_atomically<F>(path: &Path, fill: F) -> Result<(), NcError>
 where
     F: FnOnce(&NcGroup) -> Result<(), NcError>,
 {
-    let io_err = |p: &Path, what: &str, source| NcError::Io {
-        path: p.to_owned(),
-        what: what.into(),
-        source,
-    };
+    let io_err = |p: &Path, what: &str, source| NcError::Io { path: p.to_owned(), what: what.into(), source };
     let Some(file_name) = path.file_name() else {
         let msg = "not a file path".to_owned();
-        return Err(NcError::Invalid {
-            path: path.to_owned(),
-            what: "output path".into(),
-            msg,
-        });
+        return Err(NcError::Invalid { path: path.to_owned(), what: "output path".into(), msg });
     };
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
@@ -509,85 +465,49 @@ where
     let mut tmp_name = file_name.to_os_string();
     tmp_name.push(format!(".tmp-{}", std::process::id()));
     let tmp = dir.join(tmp_name);
-    let ctx = Arc::new(FileCtx {
-        path: path.to_owned(),
-        next_dimid: AtomicI32::new(0),
-    });
-    let write_err = |what: &str, source| NcError::Write {
-        path: path.to_owned(),
-        what: what.into(),
-        source,
-    };
+    let ctx = Arc::new(FileCtx { path: path.to_owned(), next_dimid: AtomicI32::new(0) });
+    let write_err = |what: &str, source| NcError::Write { path: path.to_owned(), what: what.into(), source };
 
     // Declared before the file so that it drops after it; armed once the file is ours.
-    let mut guard = TempFile {
-        path: tmp.clone(),
-        armed: false,
-    };
+    let mut guard = TempFile { path: tmp.clone(), armed: false };
     let file = File::with_options()
         .with_fcpl(|p| {
-            p.link_creation_order(LinkCreationOrder::Indexed)
-                .attr_creation_order(AttrCreationOrder::Indexed)
+            p.link_creation_order(LinkCreationOrder::Indexed).attr_creation_order(AttrCreationOrder::Indexed)
         })
         .with_fapl(|p| p.fclose_degree(FileCloseDegree::Strong))
         .create(&tmp)
         .map_err(|e| write_err(&format!("temporary file {}", tmp.display()), e))?;
     guard.armed = true;
     let root_group = file.group("/").map_err(|e| write_err("root group", e))?;
-    let root = NcGroup {
-        group: root_group,
-        name: "/".into(),
-        ctx,
-        dims: RefCell::default(),
-    };
+    let root = NcGroup { group: root_group, name: "/".into(), ctx, dims: RefCell::default() };
     fill(&root)?;
     drop(root);
     file.close().map_err(|e| write_err("file (closing)", e))?;
 
-    std::fs::File::open(&tmp)
-        .and_then(|f| f.sync_all())
-        .map_err(|e| io_err(&tmp, "fsync of the temporary file", e))?;
+    std::fs::File::open(&tmp).and_then(|f| f.sync_all()).map_err(|e| io_err(&tmp, "fsync of the temporary file", e))?;
     std::fs::rename(&tmp, path).map_err(|e| io_err(path, "rename of the temporary file", e))?;
     guard.armed = false;
     #[cfg(unix)]
-    std::fs::File::open(&dir)
-        .and_then(|d| d.sync_all())
-        .map_err(|e| io_err(&dir, "fsync of the directory", e))?;
+    std::fs::File::open(&dir).and_then(|d| d.sync_all()).map_err(|e| io_err(&dir, "fsync of the directory", e))?;
     Ok(())
 }
 
 /// Open `group` (`""` or `"/"` = root) of the file at `path` for reading.
 fn open_group(path: &Path, group: &str) -> Result<Group, NcError> {
-    let read_err = |what: String, source| NcError::Read {
-        path: path.to_owned(),
-        what,
-        source,
-    };
+    let read_err = |what: String, source| NcError::Read { path: path.to_owned(), what, source };
     let file = File::open(path).map_err(|e| read_err("file".into(), e))?;
     let gname = if group.is_empty() { "/" } else { group };
-    file.group(gname)
-        .map_err(|e| read_err(format!("group {group:?}"), e))
+    file.group(gname).map_err(|e| read_err(format!("group {group:?}"), e))
 }
 
 fn read_var<T: NcScalar>(path: &Path, group: &str, var: &str) -> Result<ArrayD<T>, NcError> {
     let what = || format!("variable {var:?} in group {group:?}");
-    let read_err = |source| NcError::Read {
-        path: path.to_owned(),
-        what: what(),
-        source,
-    };
+    let read_err = |source| NcError::Read { path: path.to_owned(), what: what(), source };
     let ds = open_group(path, group)?.dataset(var).map_err(read_err)?;
-    let stored = ds
-        .dtype()
-        .and_then(|t| t.to_descriptor())
-        .map_err(read_err)?;
+    let stored = ds.dtype().and_then(|t| t.to_descriptor()).map_err(read_err)?;
     if stored != T::type_descriptor() {
         let msg = format!("stored type is {stored}, not {}", T::NAME);
-        return Err(NcError::Invalid {
-            path: path.to_owned(),
-            what: what(),
-            msg,
-        });
+        return Err(NcError::Invalid { path: path.to_owned(), what: what(), msg });
     }
     ds.read_dyn::<T>().map_err(read_err)
 }
@@ -613,34 +533,14 @@ pub fn read_i8(path: &Path, group: &str, var: &str) -> Result<ArrayD<i8>, NcErro
 pub fn read_attr_str(path: &Path, group: &str, name: &str) -> Result<String, NcError> {
     use hdf5::types::TypeDescriptor as TD;
     let what = || format!("attribute {name:?} of group {group:?}");
-    let read_err = |source| NcError::Read {
-        path: path.to_owned(),
-        what: what(),
-        source,
-    };
+    let read_err = |source| NcError::Read { path: path.to_owned(), what: what(), source };
     let attr = open_group(path, group)?.attr(name).map_err(read_err)?;
-    match attr
-        .dtype()
-        .and_then(|t| t.to_descriptor())
-        .map_err(read_err)?
-    {
-        TD::VarLenUnicode => Ok(attr
-            .read_scalar::<VarLenUnicode>()
-            .map_err(read_err)?
-            .as_str()
-            .to_owned()),
-        TD::VarLenAscii => Ok(attr
-            .read_scalar::<VarLenAscii>()
-            .map_err(read_err)?
-            .as_str()
-            .to_owned()),
+    match attr.dtype().and_then(|t| t.to_descriptor()).map_err(read_err)? {
+        TD::VarLenUnicode => Ok(attr.read_scalar::<VarLenUnicode>().map_err(read_err)?.as_str().to_owned()),
+        TD::VarLenAscii => Ok(attr.read_scalar::<VarLenAscii>().map_err(read_err)?.as_str().to_owned()),
         other => {
             let msg = format!("stored type is {other}, not a variable-length string");
-            Err(NcError::Invalid {
-                path: path.to_owned(),
-                what: what(),
-                msg,
-            })
+            Err(NcError::Invalid { path: path.to_owned(), what: what(), msg })
         }
     }
 }

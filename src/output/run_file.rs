@@ -78,11 +78,7 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         write_passes(&root.group("passes")?, record.passes)?;
         let contact = root.group("contact")?;
         for (index, history) in record.contact {
-            write_history(
-                &contact.group(&format!("pass_{index:05}"))?,
-                history,
-                record.mesh,
-            )?;
+            write_history(&contact.group(&format!("pass_{index:05}"))?, history, record.mesh)?;
         }
         Ok(())
     })
@@ -91,23 +87,11 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
 fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
     let grid = r.grid;
     g.coord_f64("x", &grid.xs(), "m", "position along the rail", false)?;
-    g.coord_f64(
-        "y",
-        &grid.ys(),
-        "m",
-        "lateral position on the rail head",
-        false,
-    )?;
+    g.coord_f64("y", &grid.ys(), "m", "lateral position on the rail head", false)?;
     let idx: Vec<i64> = r.rail.iter().map(|s| s.index).collect();
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
     let traffic: Array1<f64> = r.rail.iter().map(|s| s.traffic).collect();
-    g.var_f64(
-        "traffic",
-        &["pass"],
-        traffic.view().into_dyn(),
-        "1",
-        "real wheel passages represented",
-    )?;
+    g.var_f64("traffic", &["pass"], traffic.view().into_dyn(), "1", "real wheel passages represented")?;
     let stack = |f: &dyn Fn(&RailSnapshot) -> &Array2<f64>| {
         let mut a = Array3::zeros((r.rail.len(), grid.ny, grid.nx));
         for (k, s) in r.rail.iter().enumerate() {
@@ -139,36 +123,16 @@ fn write_passes(g: &NcGroup, rows: &[PassRow]) -> Result<(), NcError> {
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
     let col = |f: fn(&PassRow) -> f64| -> Array1<f64> { rows.iter().map(f).collect() };
     let vars: [(&str, Array1<f64>, &str, &str); 5] = [
-        (
-            "traffic",
-            col(|r| r.traffic),
-            "1",
-            "real wheel passages represented",
-        ),
-        (
-            "traffic_scale",
-            col(|r| r.traffic_scale),
-            "1",
-            "real passages per simulated passage",
-        ),
-        (
-            "rms_corrugation",
-            col(|r| r.rms_corrugation),
-            "m",
-            "rms of the centre-line rail profile minus its mean",
-        ),
+        ("traffic", col(|r| r.traffic), "1", "real wheel passages represented"),
+        ("traffic_scale", col(|r| r.traffic_scale), "1", "real passages per simulated passage"),
+        ("rms_corrugation", col(|r| r.rms_corrugation), "m", "rms of the centre-line rail profile minus its mean"),
         (
             "removed_volume",
             col(|r| r.removed_volume),
             "m3",
             "volume removed from the rail grid by one simulated passage",
         ),
-        (
-            "cpu_seconds",
-            col(|r| r.cpu_seconds),
-            "s",
-            "CPU time of the passage",
-        ),
+        ("cpu_seconds", col(|r| r.cpu_seconds), "s", "CPU time of the passage"),
     ];
     for (name, v, units, long_name) in vars {
         g.var_f64(name, &["pass"], v.view().into_dyn(), units, long_name)?;
@@ -180,70 +144,25 @@ fn write_history(g: &NcGroup, h: &PatchHistory, mesh: &EllipseMesh) -> Result<()
     let steps: Vec<i64> = (0..h.time.len() as i64).collect();
     g.coord_i64("step", &steps, "1", "contact time step", false)?;
     let elements: Vec<i64> = (0..mesh.len() as i64).collect();
-    g.coord_i64(
-        "element",
-        &elements,
-        "1",
-        "patch element (strip by strip, leading edge first)",
-        false,
-    )?;
-    let per_step: [(&str, &Vec<f64>, &str, &str); 12] = [
+    g.coord_i64("element", &elements, "1", "patch element (strip by strip, leading edge first)", false)?;
+    let per_step: [(&str, &Vec<f64>, &str, &str); 14] = [
         ("time", &h.time, "s", "time since the start of the passage"),
         ("x_c", &h.x_c, "m", "patch centre position along the rail"),
         ("normal_force", &h.normal_force, "N", "normal force"),
-        (
-            "longitudinal_force",
-            &h.longitudinal_force,
-            "N",
-            "longitudinal force on the wheel",
-        ),
-        (
-            "creepage_x",
-            &h.creepage_x,
-            "1",
-            "longitudinal creepage (negative for a positive force on the wheel)",
-        ),
+        ("longitudinal_force", &h.longitudinal_force, "N", "longitudinal force on the wheel"),
+        ("creepage_x", &h.creepage_x, "1", "longitudinal creepage (negative for a positive force on the wheel)"),
         ("creepage_y", &h.creepage_y, "1", "lateral creepage"),
         ("spin", &h.spin, "1/m", "spin creepage"),
-        (
-            "semi_axis_a",
-            &h.semi_axis_a,
-            "m",
-            "contact semi-axis along the rail",
-        ),
-        (
-            "semi_axis_b",
-            &h.semi_axis_b,
-            "m",
-            "contact semi-axis across the rail",
-        ),
-        (
-            "max_pressure",
-            &h.max_pressure,
-            "Pa",
-            "Hertz maximum pressure p0",
-        ),
-        (
-            "stick_fraction",
-            &h.stick_fraction,
-            "1",
-            "fraction of elements in stick",
-        ),
-        (
-            "wear_volume_rate",
-            &h.wear_volume_rate,
-            "m3/s",
-            "patch integral of the Archard wear rate",
-        ),
+        ("semi_axis_a", &h.semi_axis_a, "m", "contact semi-axis along the rail"),
+        ("semi_axis_b", &h.semi_axis_b, "m", "contact semi-axis across the rail"),
+        ("max_pressure", &h.max_pressure, "Pa", "Hertz maximum pressure p0"),
+        ("stick_fraction", &h.stick_fraction, "1", "fraction of elements in stick"),
+        ("wear_volume_rate", &h.wear_volume_rate, "m3/s", "patch integral of the Archard wear rate"),
+        ("newton_iterations", &h.newton_iterations, "1", "Newton-Raphson iterations of the contact solve (0 for FASTSIM)"),
+        ("in_contact", &h.in_contact, "1", "1 in contact, 0 contact lost (N <= 0: no patch, fields zero)"),
     ];
     for (name, v, units, long_name) in per_step {
-        g.var_f64(
-            name,
-            &["step"],
-            ArrayView1::from(v.as_slice()).into_dyn(),
-            units,
-            long_name,
-        )?;
+        g.var_f64(name, &["step"], ArrayView1::from(v.as_slice()).into_dyn(), units, long_name)?;
     }
     let d_xi: Vec<f64> = (0..mesh.len()).map(|k| mesh.d_xi[mesh.strip(k)]).collect();
     let d_eta = vec![mesh.d_eta; mesh.len()];
@@ -254,54 +173,22 @@ fn write_history(g: &NcGroup, h: &PatchHistory, mesh: &EllipseMesh) -> Result<()
         ("d_eta", &d_eta, "strip width / b"),
     ];
     for (name, v, long_name) in per_element {
-        g.var_f64(
-            name,
-            &["element"],
-            ArrayView1::from(v.as_slice()).into_dyn(),
-            "1",
-            long_name,
-        )?;
+        g.var_f64(name, &["element"], ArrayView1::from(v.as_slice()).into_dyn(), "1", long_name)?;
     }
     if let Some(f) = &h.fields {
         let dims = ["step", "element"];
         let fields: [(&str, &Array2<f64>, &str, &str); 6] = [
             ("pressure", &f.pressure, "Pa", "normal pressure"),
-            (
-                "traction_x",
-                &f.traction_x,
-                "Pa",
-                "longitudinal traction on the wheel",
-            ),
-            (
-                "traction_y",
-                &f.traction_y,
-                "Pa",
-                "lateral traction on the wheel",
-            ),
-            (
-                "slip_x",
-                &f.slip_x,
-                "m/s",
-                "longitudinal slip velocity of the wheel relative to the rail",
-            ),
-            (
-                "slip_y",
-                &f.slip_y,
-                "m/s",
-                "lateral slip velocity of the wheel relative to the rail",
-            ),
+            ("traction_x", &f.traction_x, "Pa", "longitudinal traction on the wheel"),
+            ("traction_y", &f.traction_y, "Pa", "lateral traction on the wheel"),
+            ("slip_x", &f.slip_x, "m/s", "longitudinal slip velocity of the wheel relative to the rail"),
+            ("slip_y", &f.slip_y, "m/s", "lateral slip velocity of the wheel relative to the rail"),
             ("wear_rate", &f.wear_rate, "m/s", "Archard wear rate"),
         ];
         for (name, v, units, long_name) in fields {
             g.var_f64(name, &dims, v.view().into_dyn(), units, long_name)?;
         }
-        g.var_i8(
-            "stick",
-            &dims,
-            f.stick.view().into_dyn(),
-            "1",
-            "adhesion flag",
-        )?;
+        g.var_i8("stick", &dims, f.stick.view().into_dyn(), "1", "adhesion flag")?;
         g.var_attr_str("stick", "flag_values", "0 1")?;
         g.var_attr_str("stick", "flag_meanings", "slip stick")?;
     }

@@ -85,20 +85,11 @@ impl WearDeposit {
     pub fn new(mesh: &EllipseMesh) -> Self {
         let n = mesh.len();
         let (sx, sy) = (mesh.nx as f64, mesh.ny as f64);
-        let mut points: Vec<(f64, f64)> = mesh
-            .xi
-            .iter()
-            .zip(&mesh.eta)
-            .map(|(x, e)| (*x, *e))
-            .collect();
+        let mut points: Vec<(f64, f64)> = mesh.xi.iter().zip(&mesh.eta).map(|(x, e)| (*x, *e)).collect();
         for j in 0..mesh.ny {
             let centre = mesh.eta[j * mesh.nx];
             let edge = centre - 0.5 * mesh.d_eta;
-            for eta in if j == 0 {
-                vec![centre]
-            } else {
-                vec![edge, centre]
-            } {
+            for eta in if j == 0 { vec![centre] } else { vec![edge, centre] } {
                 let c = (1.0 - eta * eta).max(0.0).sqrt();
                 points.push((c, eta));
                 points.push((-c, eta));
@@ -114,30 +105,19 @@ impl WearDeposit {
                 points.push((t.cos(), t.sin()));
             }
         }
-        let verts: Vec<Vertex> = points
-            .iter()
-            .enumerate()
-            .map(|(id, (x, y))| Vertex {
-                pos: Point2::new(x * sx, y * sy),
-                id,
-            })
-            .collect();
+        let verts: Vec<Vertex> =
+            points.iter().enumerate().map(|(id, (x, y))| Vertex { pos: Point2::new(x * sx, y * sy), id }).collect();
         let pos: Vec<[f64; 2]> = points.iter().map(|(x, y)| [*x, *y]).collect();
-        let tri: DelaunayTriangulation<Vertex> = DelaunayTriangulation::bulk_load(verts)
-            .expect("mesh centres and boundary points are finite and distinct");
+        let tri: DelaunayTriangulation<Vertex> =
+            DelaunayTriangulation::bulk_load(verts).expect("mesh centres and boundary points are finite and distinct");
         let mut triangles: Vec<Triangle> = tri
             .inner_faces()
             .map(|f| {
                 let v = f.vertices().map(|h| h.data().id);
                 let (p0, p1, p2) = (pos[v[0]], pos[v[1]], pos[v[2]]);
-                let (m00, m01, m10, m11) =
-                    (p1[0] - p0[0], p2[0] - p0[0], p1[1] - p0[1], p2[1] - p0[1]);
+                let (m00, m01, m10, m11) = (p1[0] - p0[0], p2[0] - p0[0], p1[1] - p0[1], p2[1] - p0[1]);
                 let det = m00 * m11 - m01 * m10;
-                Triangle {
-                    v,
-                    origin: p0,
-                    inv: [m11 / det, -m01 / det, -m10 / det, m00 / det],
-                }
+                Triangle { v, origin: p0, inv: [m11 / det, -m01 / det, -m10 / det, m00 / det] }
             })
             .collect();
         // Fixed order independent of spade's internal layout.
@@ -148,13 +128,7 @@ impl WearDeposit {
         });
         let buckets = 2 * mesh.nx.max(mesh.ny).max(4);
         let (bucket_start, bucket_items) = bucket_index(&triangles, &pos, buckets);
-        WearDeposit {
-            n_elements: n,
-            triangles,
-            buckets,
-            bucket_start,
-            bucket_items,
-        }
+        WearDeposit { n_elements: n, triangles, buckets, bucket_start, bucket_items }
     }
 
     /// Number of element-centre vertices.
@@ -186,8 +160,7 @@ impl WearDeposit {
     /// Linearly interpolated rate at normalised point (`xi`, `eta`); `None`
     /// outside the triangulated polygon.
     pub fn rate_at(&self, xi: f64, eta: f64, rates: &[f64]) -> Option<f64> {
-        let to_bucket =
-            |u: f64| (((u + 1.0) * 0.5 * self.buckets as f64) as usize).min(self.buckets - 1);
+        let to_bucket = |u: f64| (((u + 1.0) * 0.5 * self.buckets as f64) as usize).min(self.buckets - 1);
         if !(-1.0..=1.0).contains(&xi) || !(-1.0..=1.0).contains(&eta) {
             return None;
         }
@@ -224,11 +197,7 @@ impl WearDeposit {
         for s in 0..m {
             let th = (s as f64 + 0.5) / m as f64;
             let lerp = |u: f64, v: f64| u + th * (v - u);
-            let (x_c, a, b) = (
-                lerp(from.x_c, to.x_c),
-                lerp(from.a, to.a),
-                lerp(from.b, to.b),
-            );
+            let (x_c, a, b) = (lerp(from.x_c, to.x_c), lerp(from.a, to.a), lerp(from.b, to.b));
             for (r, (u, v)) in rates.iter_mut().zip(from.rates.iter().zip(to.rates)) {
                 *r = lerp(*u, *v);
             }
@@ -241,35 +210,21 @@ impl WearDeposit {
     /// (rayon); each node's sum keeps its order, so results do not depend on
     /// the number of threads.
     #[allow(clippy::too_many_arguments)]
-    fn add_snapshot(
-        &self,
-        grid: &RailGrid,
-        depth: &mut Array2<f64>,
-        x_c: f64,
-        a: f64,
-        b: f64,
-        rates: &[f64],
-        dt: f64,
-    ) {
+    fn add_snapshot(&self, grid: &RailGrid, depth: &mut Array2<f64>, x_c: f64, a: f64, b: f64, rates: &[f64], dt: f64) {
         let xs = grid.x_range(x_c - a, x_c + a);
         let ys = grid.y_range(-b, b);
-        depth
-            .slice_mut(s![ys.clone(), ..])
-            .axis_iter_mut(Axis(0))
-            .into_par_iter()
-            .zip(ys)
-            .for_each(|(mut row, j)| {
-                let eta = grid.y(j) / b;
-                for i in xs.clone() {
-                    let xi = (grid.x(i) - x_c) / a;
-                    if xi * xi + eta * eta >= 1.0 {
-                        continue;
-                    }
-                    if let Some(r) = self.rate_at(xi, eta, rates) {
-                        row[i] += r * dt;
-                    }
+        depth.slice_mut(s![ys.clone(), ..]).axis_iter_mut(Axis(0)).into_par_iter().zip(ys).for_each(|(mut row, j)| {
+            let eta = grid.y(j) / b;
+            for i in xs.clone() {
+                let xi = (grid.x(i) - x_c) / a;
+                if xi * xi + eta * eta >= 1.0 {
+                    continue;
                 }
-            });
+                if let Some(r) = self.rate_at(xi, eta, rates) {
+                    row[i] += r * dt;
+                }
+            }
+        });
     }
 }
 
@@ -281,14 +236,8 @@ fn bucket_index(triangles: &[Triangle], pos: &[[f64; 2]], n: usize) -> (Vec<usiz
     for (t, tri) in triangles.iter().enumerate() {
         let xs = tri.v.map(|v| pos[v][0]);
         let ys = tri.v.map(|v| pos[v][1]);
-        let (x0, x1) = (
-            xs.iter().cloned().fold(f64::MAX, f64::min),
-            xs.iter().cloned().fold(f64::MIN, f64::max),
-        );
-        let (y0, y1) = (
-            ys.iter().cloned().fold(f64::MAX, f64::min),
-            ys.iter().cloned().fold(f64::MIN, f64::max),
-        );
+        let (x0, x1) = (xs.iter().cloned().fold(f64::MAX, f64::min), xs.iter().cloned().fold(f64::MIN, f64::max));
+        let (y0, y1) = (ys.iter().cloned().fold(f64::MAX, f64::min), ys.iter().cloned().fold(f64::MIN, f64::max));
         for by in cell(y0 - 1e-9)..=cell(y1 + 1e-9) {
             for bx in cell(x0 - 1e-9)..=cell(x1 + 1e-9) {
                 lists[by * n + bx].push(t as u32);
@@ -313,9 +262,7 @@ mod tests {
     fn reproduces_linear_fields_inside_the_centres_hull() {
         let mesh = EllipseMesh::new(10, 10);
         let d = WearDeposit::new(&mesh);
-        let rates: Vec<f64> = (0..mesh.len())
-            .map(|k| 1.0 + 2.0 * mesh.xi[k] - 0.5 * mesh.eta[k])
-            .collect();
+        let rates: Vec<f64> = (0..mesh.len()).map(|k| 1.0 + 2.0 * mesh.xi[k] - 0.5 * mesh.eta[k]).collect();
         for (xi, eta) in [(0.0, 0.0), (0.3, -0.2), (-0.5, 0.1)] {
             let r = d.rate_at(xi, eta, &rates).unwrap();
             assert!((r - (1.0 + 2.0 * xi - 0.5 * eta)).abs() < 1e-12);

@@ -5,10 +5,7 @@ use corrugation::creep_coefficients::{CreepCoefficients, creep_coefficients};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 
 /// E = 210 GPa, nu = 0.3 (paper Table 1).
-pub const STEEL: Elastic = Elastic {
-    young_modulus: 2.1e11,
-    poisson_ratio: 0.3,
-};
+pub const STEEL: Elastic = Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 };
 
 /// Paper Table 1 wheel/rail geometry; `concave` selects the sign of the
 /// 0.409 m wheel-profile radius.

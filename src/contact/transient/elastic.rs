@@ -17,8 +17,9 @@
 //!   outside the previous patch).
 
 use crate::contact::EllipseMesh;
-use crate::contact::influence::{Rect, influence};
+use crate::contact::influence::{Influence, Rect, influence};
 use faer::Mat;
+use rayon::prelude::*;
 
 /// Geometry of a patch on the normalised mesh.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,33 +52,18 @@ pub struct ExactElastic {
     /// C for a = 1 m (and b = 1/aspect), 2N x 2N, unknowns interleaved
     /// (x of element k at 2k, y at 2k + 1) (m/Pa per m of a).
     c_unit: Mat<f64>,
+    /// Matrix of [`ExactElastic::previous`] for the last (frames, shift).
+    previous_cache: Option<([u64; 5], Mat<f64>)>,
 }
 
 impl ExactElastic {
     /// Assembles the unit influence matrix for `mesh` and semi-axis ratio
     /// `aspect` = a/b; shear modulus `g` (Pa), Poisson's ratio `nu`.
     pub fn new(mesh: &EllipseMesh, aspect: f64, g: f64, nu: f64) -> Self {
-        let n = mesh.len();
-        let unit = PatchFrame {
-            a: 1.0,
-            b: 1.0 / aspect,
-        };
-        let rects: Vec<Rect> = (0..n).map(|k| unit.rect(mesh, k)).collect();
-        let c_unit = Mat::from_fn(2 * n, 2 * n, |r, c| {
-            let (j, k) = (r / 2, c / 2);
-            let inf = influence(&rects[k], rects[j].x, rects[j].y, g, nu);
-            match (r % 2, c % 2) {
-                (0, 0) => inf.xx,
-                (1, 1) => inf.yy,
-                _ => inf.xy,
-            }
-        });
-        ExactElastic {
-            g,
-            nu,
-            aspect,
-            c_unit,
-        }
+        let unit = PatchFrame { a: 1.0, b: 1.0 / aspect };
+        let points: Vec<(f64, f64)> = (0..mesh.len()).map(|k| (mesh.xi[k], mesh.eta[k] / aspect)).collect();
+        let c_unit = influence_matrix(mesh, unit, &points, g, nu);
+        ExactElastic { g, nu, aspect, c_unit, previous_cache: None }
     }
 
     /// Semi-axis ratio a/b the matrix was built for.
@@ -106,8 +92,10 @@ impl ExactElastic {
 
     /// Displacement at the current element centres of the material that was
     /// at `x + shift` in the previous patch `old` under tractions `p_old`.
+    /// The matrix of this map depends only on the two frames and the shift;
+    /// it is kept and reused while they do not change (constant load).
     pub fn previous(
-        &self,
+        &mut self,
         mesh: &EllipseMesh,
         now: PatchFrame,
         old: PatchFrame,
@@ -115,24 +103,39 @@ impl ExactElastic {
         p_old: &[f64],
         u_o: &mut [f64],
     ) {
-        let n = mesh.len();
-        let rects: Vec<Rect> = (0..n).map(|k| old.rect(mesh, k)).collect();
-        for j in 0..n {
-            let (x, y) = (mesh.xi[j] * now.a + shift, mesh.eta[j] * now.b);
-            let (mut ux, mut uy) = (0.0, 0.0);
-            for (k, rect) in rects.iter().enumerate() {
-                let (px, py) = (p_old[2 * k], p_old[2 * k + 1]);
-                if px == 0.0 && py == 0.0 {
-                    continue;
+        let key = [now.a, now.b, old.a, old.b, shift].map(f64::to_bits);
+        if self.previous_cache.as_ref().is_none_or(|(k, _)| *k != key) {
+            let points: Vec<(f64, f64)> =
+                (0..mesh.len()).map(|j| (mesh.xi[j] * now.a + shift, mesh.eta[j] * now.b)).collect();
+            self.previous_cache = Some((key, influence_matrix(mesh, old, &points, self.g, self.nu)));
+        }
+        let b = &self.previous_cache.as_ref().expect("just filled").1;
+        u_o.iter_mut().for_each(|v| *v = 0.0);
+        for (c, pc) in p_old.iter().enumerate() {
+            if *pc != 0.0 {
+                for (ur, br) in u_o.iter_mut().zip(b.col_as_slice(c)) {
+                    *ur += br * pc;
                 }
-                let c = influence(rect, x, y, self.g, self.nu);
-                ux += c.xx * px + c.xy * py;
-                uy += c.xy * px + c.yy * py;
             }
-            u_o[2 * j] = ux;
-            u_o[2 * j + 1] = uy;
         }
     }
+}
+
+/// Influence matrix (2P x 2N, interleaved) of the elements of `mesh` in
+/// patch `frame` at the points `points` (m). Rows are computed in parallel.
+fn influence_matrix(mesh: &EllipseMesh, frame: PatchFrame, points: &[(f64, f64)], g: f64, nu: f64) -> Mat<f64> {
+    let n = mesh.len();
+    let rects: Vec<Rect> = (0..n).map(|k| frame.rect(mesh, k)).collect();
+    let rows: Vec<Vec<Influence>> =
+        points.par_iter().map(|(x, y)| rects.iter().map(|r| influence(r, *x, *y, g, nu)).collect()).collect();
+    Mat::from_fn(2 * points.len(), 2 * n, |r, c| {
+        let inf = rows[r / 2][c / 2];
+        match (r % 2, c % 2) {
+            (0, 0) => inf.xx,
+            (1, 1) => inf.yy,
+            _ => inf.xy,
+        }
+    })
 }
 
 /// Simplified (Winkler) elastic model.
@@ -150,8 +153,11 @@ impl WinklerElastic {
         (self.l1_unit * a, self.l2_unit * a)
     }
 
-    /// Earlier displacement: L times the previous traction of the element
-    /// of the previous patch that contains (x + shift, y).
+    /// Earlier displacement: L times the previous traction field at
+    /// (x + shift, y), the field being linear between the element centres
+    /// along each strip, zero at the leading edge (unstrained material
+    /// enters there), constant from the last centre to the trailing edge, and
+    /// linear between strip centre lines.
     pub fn previous(
         &self,
         mesh: &EllipseMesh,
@@ -164,32 +170,50 @@ impl WinklerElastic {
         let (l1, l2) = self.flexibility(old.a);
         for j in 0..mesh.len() {
             let (x, y) = (mesh.xi[j] * now.a + shift, mesh.eta[j] * now.b);
-            let (ux, uy) = match locate(mesh, old, x, y) {
-                Some(k) => (l1 * p_old[2 * k], l2 * p_old[2 * k + 1]),
-                None => (0.0, 0.0),
-            };
-            u_o[2 * j] = ux;
-            u_o[2 * j + 1] = uy;
+            let (px, py) = interpolate(mesh, p_old, x / old.a, y / old.b);
+            u_o[2 * j] = l1 * px;
+            u_o[2 * j + 1] = l2 * py;
         }
     }
 }
 
-/// The element of `mesh` in patch `frame` that contains (x, y), if any.
-pub fn locate(mesh: &EllipseMesh, frame: PatchFrame, x: f64, y: f64) -> Option<usize> {
-    let eta = y / frame.b;
-    let j = ((eta + 1.0) / mesh.d_eta).floor();
-    if !(0.0..mesh.ny as f64).contains(&j) {
-        return None;
+/// Traction field of `p` (interleaved) at normalised point (xi, eta),
+/// interpolated as described in [`WinklerElastic::previous`].
+fn interpolate(mesh: &EllipseMesh, p: &[f64], xi: f64, eta: f64) -> (f64, f64) {
+    if eta.abs() >= 1.0 {
+        return (0.0, 0.0);
     }
-    let j = j as usize;
+    // Strip centre lines eta_j = -1 + (j + 1/2) d_eta.
+    let t = (eta + 1.0) / mesh.d_eta - 0.5;
+    let j0 = t.floor().clamp(0.0, (mesh.ny - 1) as f64) as usize;
+    let j1 = (j0 + 1).min(mesh.ny - 1);
+    let w1 = if j1 == j0 { 0.0 } else { (t - j0 as f64).clamp(0.0, 1.0) };
+    let a = along_strip(mesh, p, j0, xi);
+    let b = along_strip(mesh, p, j1, xi);
+    ((1.0 - w1) * a.0 + w1 * b.0, (1.0 - w1) * a.1 + w1 * b.1)
+}
+
+fn along_strip(mesh: &EllipseMesh, p: &[f64], j: usize, xi: f64) -> (f64, f64) {
     let c = mesh.half_chord[j];
-    let xi = x / frame.a;
-    // Elements run from the leading edge xi = c towards -c.
-    let i = ((c - xi) / mesh.d_xi[j]).floor();
-    if !(0.0..mesh.nx as f64).contains(&i) {
-        return None;
+    let d = mesh.d_xi[j];
+    let at = |i: usize| (p[2 * (j * mesh.nx + i)], p[2 * (j * mesh.nx + i) + 1]);
+    if xi >= c || xi <= -c {
+        return (0.0, 0.0);
     }
-    Some(j * mesh.nx + i as usize)
+    // Position in element-centre units from the leading edge: centre i at u = i + 1/2.
+    let u = (c - xi) / d;
+    if u <= 0.5 {
+        let (px, py) = at(0);
+        return (px * u / 0.5, py * u / 0.5);
+    }
+    let last = mesh.nx - 1;
+    if u >= last as f64 + 0.5 {
+        return at(last);
+    }
+    let i0 = (u - 0.5).floor() as usize;
+    let w = u - 0.5 - i0 as f64;
+    let (a, b) = (at(i0), at((i0 + 1).min(last)));
+    ((1.0 - w) * a.0 + w * b.0, (1.0 - w) * a.1 + w * b.1)
 }
 
 #[cfg(test)]
@@ -199,11 +223,9 @@ mod tests {
     #[test]
     fn scaling_and_previous_agree_with_direct_assembly() {
         let mesh = EllipseMesh::new(6, 5);
-        let e = ExactElastic::new(&mesh, 0.6, 8e10, 0.3);
+        let mut e = ExactElastic::new(&mesh, 0.6, 8e10, 0.3);
         let frame = PatchFrame { a: 6e-3, b: 1e-2 };
-        let p: Vec<f64> = (0..2 * mesh.len())
-            .map(|i| (i as f64 * 0.37).sin() * 1e8)
-            .collect();
+        let p: Vec<f64> = (0..2 * mesh.len()).map(|i| (i as f64 * 0.37).sin() * 1e8).collect();
         let mut u = vec![0.0; p.len()];
         e.displacement(frame.a, &p, &mut u);
         let mut u_o = vec![0.0; p.len()];
@@ -215,12 +237,17 @@ mod tests {
     }
 
     #[test]
-    fn locate_finds_the_containing_element() {
+    fn winkler_interpolation_is_linear_between_centres_and_zero_at_the_leading_edge() {
         let mesh = EllipseMesh::new(8, 4);
-        let f = PatchFrame { a: 2.0, b: 1.0 };
-        for k in 0..mesh.len() {
-            assert_eq!(locate(&mesh, f, mesh.xi[k] * 2.0, mesh.eta[k]), Some(k));
-        }
-        assert_eq!(locate(&mesh, f, 2.5, 0.0), None);
+        // p_x = 1 + xi (linear along x), p_y = 0.
+        let p: Vec<f64> = (0..mesh.len()).flat_map(|k| [1.0 + mesh.xi[k], 0.0]).collect();
+        let j = 1;
+        let k = j * mesh.nx + 3;
+        let mid = 0.5 * (mesh.xi[k] + mesh.xi[k + 1]);
+        let (px, _) = interpolate(&mesh, &p, mid, mesh.eta[k]);
+        assert!((px - (1.0 + mid)).abs() < 1e-12);
+        let (px, _) = interpolate(&mesh, &p, mesh.half_chord[j] - 1e-12, mesh.eta[k]);
+        assert!(px.abs() < 1e-9, "zero at the leading edge");
+        assert_eq!(interpolate(&mesh, &p, 0.0, 1.2), (0.0, 0.0));
     }
 }

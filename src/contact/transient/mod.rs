@@ -69,6 +69,9 @@ pub struct Transient {
     eps: f64,
     max_iterations: usize,
     history: Option<History>,
+    /// Factorised Jacobian of the last Newton iteration, reused as the
+    /// initial chord matrix of the next step.
+    factor: Option<Factor>,
 }
 
 /// The friction law p = -mu p3 f(|s|) s with f(q) = (2/pi) atan(q/eps) / q,
@@ -78,22 +81,43 @@ fn friction(s: [f64; 2], mu_p3: f64, eps: f64) -> ([f64; 2], [f64; 3]) {
     let z = q / eps;
     let (f, fp_over_q) = if z < 1e-4 {
         // Series: f = 2/(pi eps) (1 - z^2/3), f'/q = -4/(3 pi eps^3).
-        (
-            2.0 / (PI * eps) * (1.0 - z * z / 3.0),
-            -4.0 / (3.0 * PI * eps.powi(3)),
-        )
+        (2.0 / (PI * eps) * (1.0 - z * z / 3.0), -4.0 / (3.0 * PI * eps.powi(3)))
     } else {
         let g = 2.0 / PI * z.atan();
         let gp = 2.0 / (PI * eps) / (1.0 + z * z);
         (g / q, (gp * q - g) / (q * q * q))
     };
     let p = [-mu_p3 * f * s[0], -mu_p3 * f * s[1]];
-    let d = [
-        mu_p3 * (f + fp_over_q * s[0] * s[0]),
-        mu_p3 * fp_over_q * s[0] * s[1],
-        mu_p3 * (f + fp_over_q * s[1] * s[1]),
-    ];
+    let d =
+        [mu_p3 * (f + fp_over_q * s[0] * s[0]), mu_p3 * fp_over_q * s[0] * s[1], mu_p3 * (f + fp_over_q * s[1] * s[1])];
     (p, d)
+}
+
+/// A factorised Newton matrix.
+#[derive(Debug, Clone)]
+enum Factor {
+    /// Dense LU (exact model).
+    Lu(faer::linalg::solvers::PartialPivLu<f64>),
+    /// Inverted 2 x 2 blocks, row-major (Winkler model).
+    Blocks(Vec<[f64; 4]>),
+}
+
+impl Factor {
+    /// Solves in place for every column of `rhs`.
+    fn solve(&self, rhs: &mut Mat<f64>) {
+        match self {
+            Factor::Lu(lu) => lu.solve_in_place(rhs.as_mut()),
+            Factor::Blocks(inv) => {
+                for (k, m) in inv.iter().enumerate() {
+                    for col in 0..rhs.ncols() {
+                        let (b0, b1) = (rhs[(2 * k, col)], rhs[(2 * k + 1, col)]);
+                        rhs[(2 * k, col)] = m[0] * b0 + m[1] * b1;
+                        rhs[(2 * k + 1, col)] = m[2] * b0 + m[3] * b1;
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// Residuals of one Newton evaluation.
@@ -109,14 +133,7 @@ impl Transient {
     /// A transient solver on an `nx` x `ny` mesh with regularisation `eps`
     /// (m/s) and the pressure shape `shape`.
     pub fn new(mesh: EllipseMesh, model: ElasticModel, shape: PressureShape, eps: f64) -> Self {
-        Transient {
-            mesh,
-            model,
-            shape,
-            eps,
-            max_iterations: 60,
-            history: None,
-        }
+        Transient { mesh, model, shape, eps, max_iterations: 60, history: None, factor: None }
     }
 
     /// Rigid slip per unit speed at element k.
@@ -158,11 +175,7 @@ impl Transient {
                 }
             }
         }
-        let cr = Creepage {
-            x: xi,
-            y: input.creepage_y,
-            spin: input.spin,
-        };
+        let cr = Creepage { x: xi, y: input.creepage_y, spin: input.spin };
         let mut r = vec![0.0; 2 * n];
         for k in 0..n {
             let w = self.rigid(k, frame, cr);
@@ -176,8 +189,8 @@ impl Transient {
         Eval { p, d, r, r_force }
     }
 
-    /// Solves J y = rhs for the two right-hand sides (columns of `rhs`).
-    fn solve_linear(&self, frame: PatchFrame, dt: f64, d: &[[f64; 3]], rhs: &mut Mat<f64>) -> bool {
+    /// Factorises the Newton matrix `J = I + (1/dt) C D` of the slips.
+    fn factor(&self, frame: PatchFrame, dt: f64, d: &[[f64; 3]]) -> Factor {
         let n = self.mesh.len();
         match &self.model {
             ElasticModel::Exact(e) => {
@@ -187,36 +200,33 @@ impl Transient {
                     let k = col / 2;
                     let dk = d[k];
                     let (c0, c1) = (c[(r, 2 * k)], c[(r, 2 * k + 1)]);
-                    let v = if col % 2 == 0 {
-                        c0 * dk[0] + c1 * dk[1]
-                    } else {
-                        c0 * dk[1] + c1 * dk[2]
-                    };
+                    let v = if col % 2 == 0 { c0 * dk[0] + c1 * dk[1] } else { c0 * dk[1] + c1 * dk[2] };
                     scale * v + if r == col { 1.0 } else { 0.0 }
                 });
-                j.partial_piv_lu().solve_in_place(rhs.as_mut());
+                Factor::Lu(j.partial_piv_lu())
             }
             ElasticModel::Winkler(w) => {
                 let (l1, l2) = w.flexibility(frame.a);
-                for k in 0..n {
-                    let dk = d[k];
-                    // J_k = I + (1/dt) diag(l1, l2) D_k.
-                    let (j00, j01) = (1.0 + l1 * dk[0] / dt, l1 * dk[1] / dt);
-                    let (j10, j11) = (l2 * dk[1] / dt, 1.0 + l2 * dk[2] / dt);
-                    let det = j00 * j11 - j01 * j10;
-                    for col in 0..2 {
-                        let (b0, b1) = (rhs[(2 * k, col)], rhs[(2 * k + 1, col)]);
-                        rhs[(2 * k, col)] = (j11 * b0 - j01 * b1) / det;
-                        rhs[(2 * k + 1, col)] = (j00 * b1 - j10 * b0) / det;
-                    }
-                }
+                Factor::Blocks(
+                    d.iter()
+                        .map(|dk| {
+                            // J_k = I + (1/dt) diag(l1, l2) D_k, stored inverted.
+                            let (j00, j01) = (1.0 + l1 * dk[0] / dt, l1 * dk[1] / dt);
+                            let (j10, j11) = (l2 * dk[1] / dt, 1.0 + l2 * dk[2] / dt);
+                            let det = j00 * j11 - j01 * j10;
+                            [j11 / det, -j01 / det, -j10 / det, j00 / det]
+                        })
+                        .collect(),
+                )
             }
         }
-        (0..rhs.nrows()).all(|i| rhs[(i, 0)].is_finite() && rhs[(i, 1)].is_finite())
     }
 
     /// Newton-Raphson at regularisation `eps` from (s, xi); Ok(iterations) or
-    /// Err(residual history).
+    /// Err(residual history). The factorised Jacobian is reused while it
+    /// keeps reducing the residual fast (chord steps) and refreshed when the
+    /// reduction slows or a step fails; the converged solution satisfies the
+    /// same tolerance either way.
     #[allow(clippy::too_many_arguments)]
     fn newton(
         &self,
@@ -228,19 +238,23 @@ impl Transient {
         s: &mut [f64],
         xi: &mut f64,
         eps: f64,
+        factor: &mut Option<Factor>,
     ) -> Result<usize, Vec<f64>> {
         let n = self.mesh.len();
         let v = input.speed;
         let tol = 1e-4 * eps;
         let merit = |e: &Eval| e.r.iter().map(|r| (r / v).powi(2)).sum::<f64>() + e.r_force.powi(2);
+        let scale = input.friction * input.patch.normal_force;
         let mut history = Vec::new();
         let mut ev = self.evaluate(input, frame, p3, area, u_o, s, *xi, eps);
-        for it in 0..self.max_iterations {
+        for _ in 0..self.max_iterations {
             let r_max = ev.r.iter().fold(0.0f64, |m, r| m.max(r.abs()));
             history.push(r_max);
             if r_max < tol && ev.r_force.abs() < 1e-10 {
-                return Ok(it);
+                return Ok(history.len() - 1);
             }
+            let fresh = factor.is_none();
+            let f = factor.get_or_insert_with(|| self.factor(frame, input.dt, &ev.d));
             let mut rhs = Mat::from_fn(2 * n, 2, |i, c| {
                 if c == 0 {
                     -ev.r[i]
@@ -250,11 +264,8 @@ impl Transient {
                     0.0
                 }
             });
-            if !self.solve_linear(frame, input.dt, &ev.d, &mut rhs) {
-                return Err(history);
-            }
+            f.solve(&mut rhs);
             // Force row: h = d(R_F)/ds = -(A_k/(mu N)) (D_xx, D_xy) per element.
-            let scale = input.friction * input.patch.normal_force;
             let (mut h1, mut h2) = (0.0, 0.0);
             for k in 0..n {
                 let (hx, hy) = (-area[k] * ev.d[k][0] / scale, -area[k] * ev.d[k][1] / scale);
@@ -262,24 +273,49 @@ impl Transient {
                 h2 += hx * rhs[(2 * k, 1)] + hy * rhs[(2 * k + 1, 1)];
             }
             let dxi = -(ev.r_force + h1) / h2;
-            if !dxi.is_finite() {
-                return Err(history);
+            let finite = dxi.is_finite() && (0..2 * n).all(|i| rhs[(i, 0)].is_finite() && rhs[(i, 1)].is_finite());
+            if !finite {
+                if fresh {
+                    return Err(history);
+                }
+                *factor = None;
+                continue;
             }
             let m0 = merit(&ev);
             let mut t = 1.0;
             let s0 = s.to_vec();
             let xi0 = *xi;
-            loop {
+            let accepted = loop {
                 for i in 0..2 * n {
                     s[i] = s0[i] + t * (rhs[(i, 0)] + dxi * rhs[(i, 1)]);
                 }
                 *xi = xi0 + t * dxi;
                 let trial = self.evaluate(input, frame, p3, area, u_o, s, *xi, eps);
-                if merit(&trial) < (1.0 - 1e-4 * t) * m0 || t < 1e-3 {
+                let m = merit(&trial);
+                if m < (1.0 - 1e-4 * t) * m0 {
+                    let slow = m > 0.25 * m0;
                     ev = trial;
-                    break;
+                    break Some(slow);
+                }
+                if t < 1e-3 {
+                    break None;
                 }
                 t *= 0.5;
+            };
+            match accepted {
+                Some(slow) => {
+                    if slow {
+                        *factor = None;
+                    }
+                }
+                None => {
+                    s.copy_from_slice(&s0);
+                    *xi = xi0;
+                    if fresh {
+                        return Err(history);
+                    }
+                    *factor = None;
+                }
             }
         }
         Err(history)
@@ -299,25 +335,16 @@ impl Transient {
                 reason: format!("transient models need a time step > 0, got {}", input.dt),
             });
         }
-        let frame = PatchFrame {
-            a: patch.a,
-            b: patch.b,
-        };
+        let frame = PatchFrame { a: patch.a, b: patch.b };
         let p3 = pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b);
-        let area: Vec<f64> = (0..n)
-            .map(|k| self.mesh.area(k) * patch.a * patch.b)
-            .collect();
+        let area: Vec<f64> = (0..n).map(|k| self.mesh.area(k) * patch.a * patch.b).collect();
         let mut u_o = vec![0.0; 2 * n];
         let (mut s, mut xi) = match &self.history {
             Some(h) => {
                 let shift = input.speed * input.dt;
-                match &self.model {
-                    ElasticModel::Exact(e) => {
-                        e.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o)
-                    }
-                    ElasticModel::Winkler(w) => {
-                        w.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o)
-                    }
+                match &mut self.model {
+                    ElasticModel::Exact(e) => e.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o),
+                    ElasticModel::Winkler(w) => w.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o),
                 }
                 (h.s.clone(), h.xi)
             }
@@ -327,8 +354,11 @@ impl Transient {
         let (s_start, xi_start) = (s.clone(), xi);
         let mut iterations = 0;
         let mut converged = false;
+        // The last factorised Jacobian is a good chord matrix for the next
+        // step (the patch and the stick/slip pattern change little).
+        let mut factor = self.factor.take();
         for eps in [self.eps, 100.0 * self.eps, 10.0 * self.eps, self.eps] {
-            match self.newton(input, frame, &p3, &area, &u_o, &mut s, &mut xi, eps) {
+            match self.newton(input, frame, &p3, &area, &u_o, &mut s, &mut xi, eps, &mut factor) {
                 Ok(it) => {
                     iterations += it;
                     if eps == self.eps {
@@ -355,38 +385,24 @@ impl Transient {
         if !converged {
             return Err(ContactError::NoConvergence {
                 force,
-                reason: format!(
-                    "Newton-Raphson on the local slips failed: {}",
-                    log.join("; ")
-                ),
+                reason: format!("Newton-Raphson on the local slips failed: {}", log.join("; ")),
             });
         }
         let ev = self.evaluate(input, frame, &p3, &area, &u_o, &s, xi, self.eps);
         let mut sol = PatchSolution {
-            creepage: Creepage {
-                x: xi,
-                y: input.creepage_y,
-                spin: input.spin,
-            },
+            creepage: Creepage { x: xi, y: input.creepage_y, spin: input.spin },
             pressure: p3,
             traction_x: (0..n).map(|k| ev.p[2 * k]).collect(),
             traction_y: (0..n).map(|k| ev.p[2 * k + 1]).collect(),
             slip_x: (0..n).map(|k| s[2 * k]).collect(),
             slip_y: (0..n).map(|k| s[2 * k + 1]).collect(),
-            stick: (0..n)
-                .map(|k| s[2 * k].hypot(s[2 * k + 1]) < STICK_SLIP_FACTOR * self.eps)
-                .collect(),
+            stick: (0..n).map(|k| s[2 * k].hypot(s[2 * k + 1]) < STICK_SLIP_FACTOR * self.eps).collect(),
             iterations,
             ..Default::default()
         };
         sol.force_x = self.mesh.integrate(&sol.traction_x, patch.a, patch.b);
         sol.force_y = self.mesh.integrate(&sol.traction_y, patch.a, patch.b);
-        self.history = Some(History {
-            frame,
-            p: ev.p,
-            s,
-            xi,
-        });
+        self.history = Some(History { frame, p: ev.p, s, xi });
         Ok(sol)
     }
 }
@@ -398,6 +414,7 @@ impl TangentialSolver for Transient {
 
     fn reset(&mut self) {
         self.history = None;
+        self.factor = None;
     }
 
     fn mesh(&self) -> &EllipseMesh {
