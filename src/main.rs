@@ -108,7 +108,10 @@ fn print_check(r: &Resolved) {
     println!("contact model      {}", s.contact.model.name());
     println!("Hertz a/b          {:.4}", d.shape.aspect());
     if d.patch_min.is_none() {
-        println!("contact loss       N <= 0 on part of the stretch (min N = {:.4e} N): no patch there", s.loads.min_normal_force());
+        println!(
+            "contact loss       N <= 0 on part of the stretch (min N = {:.4e} N): no patch there",
+            s.loads.min_normal_force()
+        );
     }
     for (label, p) in [("mean", Some(d.patch_mean)), ("min", d.patch_min), ("max", Some(d.patch_max))] {
         let Some(p) = p else { continue };

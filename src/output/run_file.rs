@@ -158,7 +158,12 @@ fn write_history(g: &NcGroup, h: &PatchHistory, mesh: &EllipseMesh) -> Result<()
         ("max_pressure", &h.max_pressure, "Pa", "Hertz maximum pressure p0"),
         ("stick_fraction", &h.stick_fraction, "1", "fraction of elements in stick"),
         ("wear_volume_rate", &h.wear_volume_rate, "m3/s", "patch integral of the Archard wear rate"),
-        ("newton_iterations", &h.newton_iterations, "1", "Newton-Raphson iterations of the contact solve (0 for FASTSIM)"),
+        (
+            "newton_iterations",
+            &h.newton_iterations,
+            "1",
+            "Newton-Raphson iterations of the contact solve (0 for FASTSIM)",
+        ),
         ("in_contact", &h.in_contact, "1", "1 in contact, 0 contact lost (N <= 0: no patch, fields zero)"),
     ];
     for (name, v, units, long_name) in per_step {

@@ -179,9 +179,9 @@ impl Transient {
         let mut r = vec![0.0; 2 * n];
         for k in 0..n {
             let w = self.rigid(k, frame, cr);
-            for c in 0..2 {
+            for (c, wc) in w.iter().enumerate() {
                 let i = 2 * k + c;
-                r[i] = s[i] - input.speed * w[c] - (u[i] - u_o[i]) / input.dt;
+                r[i] = s[i] - input.speed * wc - (u[i] - u_o[i]) / input.dt;
             }
         }
         let force: f64 = (0..n).map(|k| p[2 * k] * area[k]).sum();
@@ -329,7 +329,7 @@ impl Transient {
         if force.abs() >= limit {
             return Err(ContactError::ForceExceedsFriction { force, limit });
         }
-        if !(input.dt > 0.0) {
+        if input.dt.is_nan() || input.dt <= 0.0 {
             return Err(ContactError::NoConvergence {
                 force,
                 reason: format!("transient models need a time step > 0, got {}", input.dt),
