@@ -136,6 +136,12 @@ impl Transient {
         Transient { mesh, model, shape, eps, max_iterations: 60, history: None, factor: None }
     }
 
+    /// Caps the Newton-Raphson iterations per attempt (default 60).
+    pub fn with_max_iterations(mut self, max_iterations: usize) -> Self {
+        self.max_iterations = max_iterations;
+        self
+    }
+
     /// Rigid slip per unit speed at element k.
     fn rigid(&self, k: usize, frame: PatchFrame, cr: Creepage) -> [f64; 2] {
         let (x, y) = (self.mesh.xi[k] * frame.a, self.mesh.eta[k] * frame.b);

@@ -1,0 +1,86 @@
+//! Transient models inside a passage: invariants on every step, contact loss,
+//! and non-convergence reported with where and why.
+use corrugation::config::load_str;
+use corrugation::contact::transient::elastic::ExactElastic;
+use corrugation::contact::transient::{ElasticModel, Transient};
+use corrugation::contact::{EllipseMesh, PressureShape, StepInput, TangentialSolver};
+use corrugation::passage::{PassageError, PassageResult, run_passage};
+use corrugation::run::{build_solver, derive};
+use corrugation::wear::WearDeposit;
+
+const BASE: &str = include_str!("../configs/paper_normal_15mm.toml");
+
+fn passage(model: &str, extra: &[&str]) -> (PassageResult, f64) {
+    let mut set: Vec<String> =
+        ["contact.elements_x=10", "contact.elements_y=10", "rail.dx=2e-4"].iter().map(|s| s.to_string()).collect();
+    set.push(format!("contact.model={model}"));
+    set.extend(extra.iter().map(|s| s.to_string()));
+    let r = load_str(BASE, "paper_normal_15mm", &set).unwrap_or_else(|e| panic!("{e}"));
+    let d = derive(&r.scene);
+    let mut solver = build_solver(&r.scene, &d.shape);
+    let dep = WearDeposit::new(solver.mesh());
+    let res = run_passage(&d.passage, &d.shape, solver.as_mut(), &dep, &d.grid, true, &mut |_, _| {}).unwrap();
+    (res, r.scene.material.friction)
+}
+
+#[test]
+fn invariants_on_every_step() {
+    for model in ["exact-transient", "simplified-transient"] {
+        let (res, mu) = passage(model, &[]);
+        let h = &res.history;
+        let f = h.fields.as_ref().unwrap();
+        for s in 0..h.time.len() {
+            assert!((h.longitudinal_force[s] - 2e4).abs() < 1e-6 * 2e4, "{model}: force balance at step {s}");
+            assert!(h.newton_iterations[s] >= 1.0 || s > 0, "{model}: Newton ran");
+            for k in 0..f.pressure.ncols() {
+                let t = f.traction_x[[s, k]].hypot(f.traction_y[[s, k]]);
+                assert!(t <= mu * f.pressure[[s, k]] * (1.0 + 1e-12), "{model}: |p| <= mu p3 at ({s},{k})");
+                assert!(f.wear_rate[[s, k]] >= 0.0 && f.wear_rate[[s, k]].is_finite());
+            }
+        }
+        assert!(res.wear.iter().all(|w| w.is_finite() && *w >= 0.0));
+        assert!(res.wear.iter().any(|w| *w > 0.0));
+    }
+}
+
+#[test]
+fn contact_loss_restarts_the_history() {
+    // N = 100 kN + 120 kN sin(2 pi X / 15 mm), no longitudinal force: the
+    // wheel leaves the rail on part of every wavelength.
+    let (res, _) = passage("exact-transient", &["load.harmonics[0].amplitude=1.2e5", "load.longitudinal_force=0", "rail.half_width=0.014"]);
+    let h = &res.history;
+    let f = h.fields.as_ref().unwrap();
+    let lost: Vec<usize> = (0..h.time.len()).filter(|s| h.in_contact[*s] == 0.0).collect();
+    assert!(!lost.is_empty() && lost.len() < h.time.len());
+    for s in lost {
+        assert!(h.normal_force[s] <= 0.0);
+        assert_eq!((h.semi_axis_a[s], h.creepage_x[s]), (0.0, 0.0));
+        assert!(f.pressure.row(s).iter().chain(f.traction_x.row(s).iter()).all(|v| *v == 0.0));
+    }
+    assert!(res.wear.iter().all(|w| w.is_finite() && *w >= 0.0));
+}
+
+#[test]
+fn non_convergence_is_reported_with_step_and_residuals() {
+    let shape = corrugation::hertz::HertzShape::new(
+        corrugation::hertz::Curvatures::wheel_on_rail(0.5, -0.409, 0.3),
+        corrugation::hertz::Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 },
+    )
+    .unwrap();
+    let mesh = EllipseMesh::new(8, 8);
+    let e = ExactElastic::new(&mesh, shape.aspect(), 8.0769e10, 0.3);
+    let mut solver = Transient::new(mesh, ElasticModel::Exact(e), PressureShape::Hertz, 1e-5).with_max_iterations(2);
+    let patch = shape.patch(1e5).unwrap();
+    let input = StepInput { patch, speed: 27.78, dt: 7.2e-6, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
+    let err = solver.step(&input).unwrap_err().to_string();
+    assert!(err.contains("Newton-Raphson on the local slips failed"), "{err}");
+    assert!(err.contains("max |R|") && err.contains("m/s in 2 iterations"), "{err}");
+    // Through the passage the error names the step, position and loads.
+    let r = load_str(BASE, "x", &["contact.model=exact-transient".into(), "contact.elements_x=8".into(), "contact.elements_y=8".into()]).unwrap();
+    let d = derive(&r.scene);
+    let dep = WearDeposit::new(solver.mesh());
+    let e = run_passage(&d.passage, &d.shape, &mut solver, &dep, &d.grid, false, &mut |_, _| {}).unwrap_err();
+    assert!(matches!(e, PassageError::Tangential { step: 0, .. }));
+    let msg = e.to_string();
+    assert!(msg.starts_with("step 0 at X = -1.500000e-2 m (N = 1.000000e5 N, F_x = 2.000000e4 N)"), "{msg}");
+}
