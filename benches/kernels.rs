@@ -3,7 +3,9 @@
 //! whole paper_normal_30mm FASTSIM passage. Run: `cargo bench --bench kernels`.
 use corrugation::config::load_str;
 use corrugation::contact::fastsim::Fastsim;
-use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput};
+use corrugation::contact::transient::elastic::ExactElastic;
+use corrugation::contact::transient::{ElasticModel, Transient};
+use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use corrugation::creep_coefficients::creep_coefficients;
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use corrugation::passage::run_passage;
@@ -14,92 +16,63 @@ use ndarray::Array2;
 use std::hint::black_box;
 
 fn paper() -> (HertzShape, Fastsim) {
-    let el = Elastic {
-        young_modulus: 2.1e11,
-        poisson_ratio: 0.3,
-    };
+    let el = Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 };
     let shape = HertzShape::new(Curvatures::wheel_on_rail(0.5, -0.409, 0.3), el).unwrap();
     let c = creep_coefficients(shape.aspect(), 0.3).unwrap();
-    (
-        shape,
-        Fastsim::new(20, 20, PressureShape::Parabolic, c, el.shear_modulus()),
-    )
+    (shape, Fastsim::new(20, 20, PressureShape::Parabolic, c, el.shear_modulus()))
 }
 
 fn fastsim(c: &mut Criterion) {
     let (shape, f) = paper();
     let patch = shape.patch(1e5).unwrap();
-    let input = StepInput {
-        patch,
-        speed: 27.78,
-        dt: 0.0,
-        friction: 0.4,
-        force_x: 2e4,
-        creepage_y: 0.0,
-        spin: 0.0,
-    };
-    c.bench_function("fastsim_20x20_force_control", |b| {
-        b.iter(|| f.solve_force(black_box(&input)).unwrap())
-    });
+    let input = StepInput { patch, speed: 27.78, dt: 0.0, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
+    c.bench_function("fastsim_20x20_force_control", |b| b.iter(|| f.solve_force(black_box(&input)).unwrap()));
     c.bench_function("fastsim_20x20_creepage_control", |b| {
-        b.iter(|| {
-            f.solve_creepage(
-                black_box(&patch),
-                Creepage {
-                    x: -1.3e-3,
-                    ..Default::default()
-                },
-                0.4,
-                27.78,
-            )
-        })
+        b.iter(|| f.solve_creepage(black_box(&patch), Creepage { x: -1.3e-3, ..Default::default() }, 0.4, 27.78))
     });
 }
 
 fn wear_step(c: &mut Criterion) {
     let (shape, f) = paper();
     let patch = shape.patch(1e5).unwrap();
-    let input = StepInput {
-        patch,
-        speed: 27.78,
-        dt: 0.0,
-        friction: 0.4,
-        force_x: 2e4,
-        creepage_y: 0.0,
-        spin: 0.0,
-    };
+    let input = StepInput { patch, speed: 27.78, dt: 0.0, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
     let rates = archard_rates(3.4e-14, &f.solve_force(&input).unwrap());
     let mesh = EllipseMesh::new(20, 20);
     let dep = WearDeposit::new(&mesh);
     let grid = RailGrid::new(0.0, 0.06, 1e-4, 0.012, 2.5e-4);
     let mut w = Array2::zeros((grid.ny, grid.nx));
-    let from = PatchWear {
-        x_c: 0.03,
-        a: patch.a,
-        b: patch.b,
-        rates: &rates,
-    };
-    let to = PatchWear {
-        x_c: 0.0302,
-        a: patch.a,
-        b: patch.b,
-        rates: &rates,
-    };
+    let from = PatchWear { x_c: 0.03, a: patch.a, b: patch.b, rates: &rates };
+    let to = PatchWear { x_c: 0.0302, a: patch.a, b: patch.b, rates: &rates };
     c.bench_function("wear_step_20x20_4substeps_paper_grid", |b| {
         b.iter(|| dep.accumulate(&grid, &mut w, &from, &to, 7.2e-6, 4))
     });
-    c.bench_function("wear_triangulation_20x20", |b| {
-        b.iter(|| WearDeposit::new(black_box(&mesh)))
-    });
+    c.bench_function("wear_triangulation_20x20", |b| b.iter(|| WearDeposit::new(black_box(&mesh))));
+}
+
+/// One exact-transient step in steady rolling (paper patch, F_x = 20 kN),
+/// after rolling one contact length so the warm start is representative.
+fn transient_step(c: &mut Criterion) {
+    let el = Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 };
+    let shape = HertzShape::new(Curvatures::wheel_on_rail(0.5, -0.409, 0.3), el).unwrap();
+    let patch = shape.patch(1e5).unwrap();
+    let input =
+        StepInput { patch, speed: 27.778, dt: 2e-4 / 27.778, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
+    let mut g = c.benchmark_group("exact_transient_step");
+    g.sample_size(20);
+    for n in [10, 20, 30] {
+        let mesh = EllipseMesh::new(n, n);
+        let e = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
+        let mut solver = Transient::new(mesh, ElasticModel::Exact(e), PressureShape::Hertz, 1e-5);
+        for _ in 0..60 {
+            solver.step(&input).unwrap();
+        }
+        g.bench_function(format!("{n}x{n}_steady"), |b| b.iter(|| solver.step(black_box(&input)).unwrap()));
+    }
+    g.finish();
 }
 
 fn passage(c: &mut Criterion) {
-    let r = load_str(
-        include_str!("../configs/paper_normal_30mm.toml"),
-        "paper_normal_30mm",
-        &[],
-    )
-    .unwrap();
+    let r = load_str(include_str!("../configs/paper_normal_30mm.toml"), "paper_normal_30mm", &[]).unwrap();
     let d = derive(&r.scene);
     let mut g = c.benchmark_group("passage");
     g.sample_size(10);
@@ -107,20 +80,11 @@ fn passage(c: &mut Criterion) {
         b.iter(|| {
             let mut solver = build_solver(&r.scene, &d.shape);
             let dep = WearDeposit::new(solver.mesh());
-            run_passage(
-                &d.passage,
-                &d.shape,
-                solver.as_mut(),
-                &dep,
-                &d.grid,
-                true,
-                &mut |_, _| {},
-            )
-            .unwrap()
+            run_passage(&d.passage, &d.shape, solver.as_mut(), &dep, &d.grid, true, &mut |_, _| {}).unwrap()
         })
     });
     g.finish();
 }
 
-criterion_group!(benches, fastsim, wear_step, passage);
+criterion_group!(benches, fastsim, wear_step, transient_step, passage);
 criterion_main!(benches);

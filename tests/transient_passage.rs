@@ -47,7 +47,10 @@ fn invariants_on_every_step() {
 fn contact_loss_restarts_the_history() {
     // N = 100 kN + 120 kN sin(2 pi X / 15 mm), no longitudinal force: the
     // wheel leaves the rail on part of every wavelength.
-    let (res, _) = passage("exact-transient", &["load.harmonics[0].amplitude=1.2e5", "load.longitudinal_force=0", "rail.half_width=0.014"]);
+    let (res, _) = passage(
+        "exact-transient",
+        &["load.harmonics[0].amplitude=1.2e5", "load.longitudinal_force=0", "rail.half_width=0.014"],
+    );
     let h = &res.history;
     let f = h.fields.as_ref().unwrap();
     let lost: Vec<usize> = (0..h.time.len()).filter(|s| h.in_contact[*s] == 0.0).collect();
@@ -76,7 +79,12 @@ fn non_convergence_is_reported_with_step_and_residuals() {
     assert!(err.contains("Newton-Raphson on the local slips failed"), "{err}");
     assert!(err.contains("max |R|") && err.contains("m/s in 2 iterations"), "{err}");
     // Through the passage the error names the step, position and loads.
-    let r = load_str(BASE, "x", &["contact.model=exact-transient".into(), "contact.elements_x=8".into(), "contact.elements_y=8".into()]).unwrap();
+    let r = load_str(
+        BASE,
+        "x",
+        &["contact.model=exact-transient".into(), "contact.elements_x=8".into(), "contact.elements_y=8".into()],
+    )
+    .unwrap();
     let d = derive(&r.scene);
     let dep = WearDeposit::new(solver.mesh());
     let e = run_passage(&d.passage, &d.shape, &mut solver, &dep, &d.grid, false, &mut |_, _| {}).unwrap_err();

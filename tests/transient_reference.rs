@@ -197,3 +197,26 @@ fn steady_state_kalker_linear_theory_and_contact_creep_curve() {
         assert!(rel(xi, expected) < 0.03);
     }
 }
+
+#[test]
+fn cattaneo_shift_converges_in_mesh_and_regularisation() {
+    // Mindlin's shift at F = 0.5 mu N for the circle: the error decreases under
+    // mesh refinement (10, 20, 30 elements) and the solution converges as
+    // eps decreases (1e-3, 1e-4, 1e-5 m/s at V dt = 0.2 mm).
+    let (n, mu, a): (f64, f64, f64) = (1e5, 0.4, 6e-3);
+    let curv = 3.0 * n / (8.0 * STEEL.contact_modulus() * a.powi(3));
+    let shape = HertzShape::new(Curvatures { a: curv, b: curv }, STEEL).unwrap();
+    let patch = shape.patch(n).unwrap();
+    let mindlin = 3.0 * mu * n * 1.7 / (8.0 * STEEL.shear_modulus() * a) * (1.0 - 0.5f64.powf(2.0 / 3.0));
+    let shift = |m: usize, eps: f64| {
+        let mut s = exact(&shape, STEEL, m, m, eps);
+        s.step(&input(patch, 27.78, 2e-4, mu, 0.5 * mu * n)).unwrap().creepage.x.abs() * 2e-4
+    };
+    let errors: Vec<f64> = [10, 20, 30].iter().map(|m| rel(shift(*m, 1e-5), mindlin)).collect();
+    eprintln!("mesh errors {errors:?}");
+    assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
+    let by_eps: Vec<f64> = [1e-3, 1e-4, 1e-5].iter().map(|e| shift(16, *e)).collect();
+    let (d1, d2) = ((by_eps[0] - by_eps[2]).abs(), (by_eps[1] - by_eps[2]).abs());
+    eprintln!("eps shifts {by_eps:?}");
+    assert!(d2 < d1 && d2 < 0.01 * by_eps[2], "{by_eps:?}");
+}

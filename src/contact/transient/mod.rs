@@ -39,6 +39,9 @@ use std::f64::consts::PI;
 /// (its traction is then below (2/pi) atan(10) = 94 % of mu p3).
 pub const STICK_SLIP_FACTOR: f64 = 10.0;
 
+/// Largest growth factor of an element's slip in one Newton iteration.
+const STEP_GROWTH: f64 = 10.0;
+
 /// Elastic model of the transient solver.
 #[derive(Debug, Clone)]
 pub enum ElasticModel {
@@ -291,9 +294,22 @@ impl Transient {
             let mut t = 1.0;
             let s0 = s.to_vec();
             let xi0 = *xi;
+            // Element-wise limit: an element's slip may grow at most
+            // STEP_GROWTH times its size (or eps) per iteration, so that one
+            // element crossing from stick to slip does not force the whole
+            // step to be cut by the line search.
+            let step: Vec<f64> = (0..n)
+                .flat_map(|k| {
+                    let (dx, dy) =
+                        (rhs[(2 * k, 0)] + dxi * rhs[(2 * k, 1)], rhs[(2 * k + 1, 0)] + dxi * rhs[(2 * k + 1, 1)]);
+                    let limit = STEP_GROWTH * s0[2 * k].hypot(s0[2 * k + 1]).max(eps);
+                    let f = (limit / dx.hypot(dy)).min(1.0);
+                    [f * dx, f * dy]
+                })
+                .collect();
             let accepted = loop {
                 for i in 0..2 * n {
-                    s[i] = s0[i] + t * (rhs[(i, 0)] + dxi * rhs[(i, 1)]);
+                    s[i] = s0[i] + t * step[i];
                 }
                 *xi = xi0 + t * dxi;
                 let trial = self.evaluate(input, frame, p3, area, u_o, s, *xi, eps);
