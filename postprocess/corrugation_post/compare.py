@@ -24,6 +24,7 @@ CSV_COLUMNS = (
     "label", "file", "pass",
     "max_centreline_wear_m", "max_centreline_wear_rel_diff",
     "mean_abs_creepage_x", "mean_abs_creepage_x_rel_diff",
+    "centreline_wear_rel_l2_diff",
 )
 
 
@@ -86,6 +87,13 @@ def _rel(value: float, ref: float) -> float:
     return (value - ref) / abs(ref) if ref and math.isfinite(ref) else math.nan
 
 
+def _profile_l2_diff(c: RunCurves, ref: RunCurves) -> float:
+    """||w - w_ref|| / ||w_ref|| of the centre-line wear, on the reference's x."""
+    w = np.interp(ref.x_mm, c.x_mm, c.centreline_um)
+    norm = float(np.sqrt(np.sum(ref.centreline_um ** 2)))
+    return float(np.sqrt(np.sum((w - ref.centreline_um) ** 2))) / norm if norm > 0 else math.nan
+
+
 def table_rows(curves: list[RunCurves]) -> list[dict]:
     """One row per run, relative differences against the first run."""
     ref = curves[0]
@@ -96,6 +104,7 @@ def table_rows(curves: list[RunCurves]) -> list[dict]:
             "max_centreline_wear_rel_diff": _rel(c.max_centreline_wear_m, ref.max_centreline_wear_m),
             "mean_abs_creepage_x": c.mean_abs_creepage_x,
             "mean_abs_creepage_x_rel_diff": _rel(c.mean_abs_creepage_x, ref.mean_abs_creepage_x),
+            "centreline_wear_rel_l2_diff": _profile_l2_diff(c, ref),
         }
         for c in curves
     ]
@@ -103,13 +112,14 @@ def table_rows(curves: list[RunCurves]) -> list[dict]:
 
 def format_table(rows: list[dict]) -> str:
     """Plain-text table for the terminal."""
-    head = f"{'label':<28} {'max wear (um)':>14} {'rel diff':>9} {'mean |cx|':>11} {'rel diff':>9}"
+    head = (f"{'label':<28} {'max wear (um)':>14} {'rel diff':>9} {'mean |cx|':>11} {'rel diff':>9}"
+            f" {'profile L2 diff':>16}")
     lines = [head, "-" * len(head)]
     for r in rows:
         lines.append(
             f"{r['label'][:28]:<28} {r['max_centreline_wear_m'] * 1e6:>14.5g} "
             f"{r['max_centreline_wear_rel_diff']:>+9.2%} {r['mean_abs_creepage_x']:>11.4g} "
-            f"{r['mean_abs_creepage_x_rel_diff']:>+9.2%}"
+            f"{r['mean_abs_creepage_x_rel_diff']:>+9.2%} {r['centreline_wear_rel_l2_diff']:>16.2%}"
         )
     return "\n".join(lines)
 

@@ -25,6 +25,7 @@ def test_compare_run_with_itself(run_file, tmp_path, capsys):
     for row in rows:
         assert float(row["max_centreline_wear_rel_diff"]) == 0.0
         assert float(row["mean_abs_creepage_x_rel_diff"]) == 0.0
+        assert float(row["centreline_wear_rel_l2_diff"]) == 0.0
     for name in ("compare_wear_centreline.png", "compare_creepage.png"):
         assert (out / name).stat().st_size > 1000
     assert "compare.csv" in capsys.readouterr().out
@@ -43,6 +44,9 @@ def test_compare_relative_differences(tmp_path, capsys):
     rel_creep = [float(r["mean_abs_creepage_x_rel_diff"]) for r in rows]
     assert rel_wear == pytest.approx([0.0, 0.25, -0.5])
     assert rel_creep == pytest.approx([0.0, -0.2, 0.0])
+    # A uniformly scaled profile differs by |scale - 1| in the L2 sense.
+    l2 = [float(r["centreline_wear_rel_l2_diff"]) for r in rows]
+    assert l2 == pytest.approx([0.0, 0.25, 0.5])
     table = capsys.readouterr().out
     assert "fastsim" in table and "+25.00%" in table
 
