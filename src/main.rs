@@ -7,6 +7,8 @@ mod progress;
 
 use clap::{Parser, Subcommand};
 use corrugation::config::{self, Resolved};
+use corrugation::loads::LoadQuantity;
+use corrugation::params::ContactModelKind;
 use corrugation::run::{derive, run_scene};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -144,10 +146,21 @@ fn print_check(r: &Resolved) {
     );
     let g = &d.grid;
     println!("rail grid          {} x {} nodes, dx = {:.4} mm, dy = {:.4} mm", g.nx, g.ny, mm(g.dx), mm(g.dy));
-    // Cost model measured on 2 cores (README, Performance): FASTSIM ~ 25
-    // solves of 12 ns per element per step; wear ~ 40 ns per node visit.
+    // Cost model from measurements on 2 cores (README, Performance), per
+    // step: wear ~ 20 ns per node visit; FASTSIM ~ 12 ns per element and
+    // solve, 25 solves; simplified-transient ~ 3 us per element; the exact
+    // model ~ 60 ms (constant N) or 170 ms (varying N) at 400 elements,
+    // growing as N^3 (dense LU).
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
-    let secs = p.n_steps() as f64 * (25.0 * 12e-9 * n_el + p.substeps as f64 * nodes * 40e-9);
-    println!("estimated cost     {secs:.2} s (one core)");
+    let contact = match s.contact.model {
+        ContactModelKind::Fastsim => 25.0 * 12e-9 * n_el,
+        ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
+        ContactModelKind::ExactTransient => {
+            let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce);
+            (if varying { 0.17 } else { 0.06 }) * (n_el / 400.0).powi(3)
+        }
+    };
+    let secs = p.n_steps() as f64 * (contact + p.substeps as f64 * nodes * 20e-9);
+    println!("estimated cost     {secs:.1} s on 2 cores (rough, from the benchmarks)");
 }

@@ -131,3 +131,33 @@ fn bad_config_exits_2_and_keeps_existing_output() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent/scene.toml"));
 }
+
+#[test]
+fn check_and_run_with_the_transient_models() {
+    let c = config("paper_normal_15mm");
+    let o = corrugation(&["check", &c, "--set", "contact.model=exact-transient"]);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("contact model      exact-transient"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("t.h5");
+    let o = corrugation(&[
+        "run",
+        &c,
+        "-o",
+        out.to_str().unwrap(),
+        "--set",
+        "contact.model=simplified-transient",
+        "--set",
+        "contact.elements_x=8",
+        "--set",
+        "contact.elements_y=8",
+        "--set",
+        "rail.dx=5e-4",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(read_attr_str(&out, "/", "contact_model").unwrap(), "simplified-transient");
+    let it = read_f64(&out, "contact/pass_00000", "newton_iterations").unwrap();
+    assert!(it.iter().all(|v| *v >= 0.0) && it.iter().any(|v| *v > 0.0));
+    let in_contact = read_f64(&out, "contact/pass_00000", "in_contact").unwrap();
+    assert!(in_contact.iter().all(|v| *v == 1.0));
+}
