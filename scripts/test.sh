@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # Sets up (scripts/setup.sh) and runs every test: formatting, the Rust tests
-# (unit, integration, doc), then the Python post-processing tests on a run
-# file produced by the binary.
+# (unit, integration, doc), a compile check of benchmarks and examples, then
+# the Python post-processing tests on a run file produced by the binary.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cargo fmt --check
-cargo test --all-targets
+cargo test --lib --bins --tests
 cargo test --doc
+# Benchmarks and examples must compile; they run with `cargo bench` /
+# `cargo run --release --example ...`, not here.
+cargo build --benches --examples
 run_dir=target/test-run
 mkdir -p "$run_dir"
 cargo run --quiet -- run configs/paper_normal_15mm.toml -o "$run_dir/paper_normal_15mm.h5" \

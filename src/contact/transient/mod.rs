@@ -123,6 +123,18 @@ impl Factor {
     }
 }
 
+/// The data of one step's nonlinear system.
+struct Problem<'a> {
+    input: &'a StepInput,
+    frame: PatchFrame,
+    /// Pressure at the element centres (Pa).
+    p3: &'a [f64],
+    /// Element areas (m^2).
+    area: &'a [f64],
+    /// Earlier displacements of the material at the centres (m).
+    u_o: &'a [f64],
+}
+
 /// Residuals of one Newton evaluation.
 struct Eval {
     p: Vec<f64>,
@@ -151,18 +163,8 @@ impl Transient {
         [cr.x - cr.spin * y, cr.y + cr.spin * x]
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn evaluate(
-        &self,
-        input: &StepInput,
-        frame: PatchFrame,
-        p3: &[f64],
-        area: &[f64],
-        u_o: &[f64],
-        s: &[f64],
-        xi: f64,
-        eps: f64,
-    ) -> Eval {
+    fn evaluate(&self, pb: &Problem, s: &[f64], xi: f64, eps: f64) -> Eval {
+        let (input, frame, p3, area, u_o) = (pb.input, pb.frame, pb.p3, pb.area, pb.u_o);
         let n = self.mesh.len();
         let mu = input.friction;
         let mut p = vec![0.0; 2 * n];
@@ -236,26 +238,22 @@ impl Transient {
     /// keeps reducing the residual fast (chord steps) and refreshed when the
     /// reduction slows or a step fails; the converged solution satisfies the
     /// same tolerance either way.
-    #[allow(clippy::too_many_arguments)]
     fn newton(
         &self,
-        input: &StepInput,
-        frame: PatchFrame,
-        p3: &[f64],
-        area: &[f64],
-        u_o: &[f64],
+        pb: &Problem,
         s: &mut [f64],
         xi: &mut f64,
         eps: f64,
         factor: &mut Option<Factor>,
     ) -> Result<usize, Vec<f64>> {
+        let (input, frame, area) = (pb.input, pb.frame, pb.area);
         let n = self.mesh.len();
         let v = input.speed;
         let tol = 1e-4 * eps;
         let merit = |e: &Eval| e.r.iter().map(|r| (r / v).powi(2)).sum::<f64>() + e.r_force.powi(2);
         let scale = input.friction * input.patch.normal_force;
         let mut history = Vec::new();
-        let mut ev = self.evaluate(input, frame, p3, area, u_o, s, *xi, eps);
+        let mut ev = self.evaluate(pb, s, *xi, eps);
         for _ in 0..self.max_iterations {
             let r_max = ev.r.iter().fold(0.0f64, |m, r| m.max(r.abs()));
             history.push(r_max);
@@ -312,7 +310,7 @@ impl Transient {
                     s[i] = s0[i] + t * step[i];
                 }
                 *xi = xi0 + t * dxi;
-                let trial = self.evaluate(input, frame, p3, area, u_o, s, *xi, eps);
+                let trial = self.evaluate(pb, s, *xi, eps);
                 let m = merit(&trial);
                 if m < (1.0 - 1e-4 * t) * m0 {
                     let slow = m > 0.25 * m0;
@@ -372,6 +370,7 @@ impl Transient {
             }
             None => (vec![0.0; 2 * n], 0.0),
         };
+        let pb = Problem { input, frame, p3: &p3, area: &area, u_o: &u_o };
         let mut log = Vec::new();
         let (s_start, xi_start) = (s.clone(), xi);
         let mut iterations = 0;
@@ -380,7 +379,7 @@ impl Transient {
         // step (the patch and the stick/slip pattern change little).
         let mut factor = self.factor.take();
         for eps in [self.eps, 100.0 * self.eps, 10.0 * self.eps, self.eps] {
-            match self.newton(input, frame, &p3, &area, &u_o, &mut s, &mut xi, eps, &mut factor) {
+            match self.newton(&pb, &mut s, &mut xi, eps, &mut factor) {
                 Ok(it) => {
                     iterations += it;
                     if eps == self.eps {
@@ -410,7 +409,7 @@ impl Transient {
                 reason: format!("Newton-Raphson on the local slips failed: {}", log.join("; ")),
             });
         }
-        let ev = self.evaluate(input, frame, &p3, &area, &u_o, &s, xi, self.eps);
+        let ev = self.evaluate(&pb, &s, xi, self.eps);
         let mut sol = PatchSolution {
             creepage: Creepage { x: xi, y: input.creepage_y, spin: input.spin },
             pressure: p3,
