@@ -151,6 +151,27 @@ def _overlay(curves: list[RunCurves], out_dir: Path) -> list[Path]:
     return [wear_png, creep_png]
 
 
+def _side_by_side_maps(runs: list[Run], labels: list[str], pass_index: int, out_dir: Path) -> Path:
+    """Wear maps of every run, one panel each, on a common colour scale."""
+    maps = []
+    for run in runs:
+        with run.rail() as rail:
+            wear = rail["wear"].sel({"pass": pass_index}).transpose("y", "x").load()
+            maps.append((values_in(rail["x"], "mm"), values_in(rail["y"], "mm"), values_in(wear, "um")))
+    vmax = max(float(np.nanmax(m[2])) for m in maps) or 1.0
+    fig = Figure(figsize=(9, 2.6 * len(maps) + 0.6), layout="constrained")
+    axes = fig.subplots(len(maps), 1, sharex=True, squeeze=False)[:, 0]
+    for ax, (x, y, w), label in zip(axes, maps, labels):
+        mesh = ax.pcolormesh(x, y, w, shading="auto", cmap="viridis", vmin=0.0, vmax=vmax)
+        ax.set(ylabel="y (mm)", title=label)
+    axes[-1].set_xlabel("x along rail (mm)")
+    fig.colorbar(mesh, ax=list(axes), label="wear depth (µm)")
+    fig.suptitle(f"Wear depth, stored passage {pass_index}")
+    path = out_dir / "compare_wear_maps.png"
+    fig.savefig(path, dpi=DPI)
+    return path
+
+
 def write_csv(rows: list[dict], path: Path) -> Path:
     with open(path, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=CSV_COLUMNS)
@@ -172,5 +193,6 @@ def compare_runs(paths, out_dir, pass_index: int | None = None):
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     rows = table_rows(curves)
-    written = _overlay(curves, out_dir) + [write_csv(rows, out_dir / CSV_NAME)]
+    maps = _side_by_side_maps(runs, [c.label for c in curves], pass_index, out_dir)
+    written = _overlay(curves, out_dir) + [maps, write_csv(rows, out_dir / CSV_NAME)]
     return rows, written, problems

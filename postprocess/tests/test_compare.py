@@ -26,7 +26,7 @@ def test_compare_run_with_itself(run_file, tmp_path, capsys):
         assert float(row["max_centreline_wear_rel_diff"]) == 0.0
         assert float(row["mean_abs_creepage_x_rel_diff"]) == 0.0
         assert float(row["centreline_wear_rel_l2_diff"]) == 0.0
-    for name in ("compare_wear_centreline.png", "compare_creepage.png"):
+    for name in ("compare_wear_centreline.png", "compare_creepage.png", "compare_wear_maps.png"):
         assert (out / name).stat().st_size > 1000
     assert "compare.csv" in capsys.readouterr().out
 
