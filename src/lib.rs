@@ -11,6 +11,8 @@
 pub mod config;
 pub mod contact;
 pub mod creep_coefficients;
+pub mod dynamics;
+pub mod growth;
 pub mod hertz;
 pub mod loads;
 pub mod metrics;

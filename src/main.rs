@@ -79,17 +79,22 @@ fn default_output(config: &Path) -> PathBuf {
 
 fn run(resolved: &Resolved, out: &Path) -> ExitCode {
     let steps = derive(&resolved.scene).passage.n_steps();
-    let mut bar = progress::Progress::new(steps as u64, "passage 1/1");
+    let passes = resolved.scene.growth.as_ref().map_or(1, |g| g.passes);
+    let label = if passes == 1 { "passage".to_string() } else { format!("{passes} passages") };
+    let mut bar = progress::Progress::new((steps * passes) as u64, &label);
     let result = run_scene(resolved, out, &mut |done, _| bar.set(done as u64));
     bar.finish();
     match result {
         Ok(s) => {
             eprintln!(
-                "wrote {}: {} steps, max wear {:.4e} m, removed volume {:.4e} m^3, {:.3} s CPU",
+                "wrote {}: {} passage(s) of {} steps, last passage: max wear {:.4e} m, removed volume {:.4e} m^3; \
+                 rms corrugation {:.4e} m; {:.3} s CPU",
                 out.display(),
+                s.passes,
                 steps,
                 s.max_wear,
                 s.removed_volume,
+                s.rms_corrugation,
                 s.cpu_seconds
             );
             ExitCode::SUCCESS
@@ -162,5 +167,15 @@ fn print_check(r: &Resolved) {
         }
     };
     let secs = p.n_steps() as f64 * (contact + p.substeps as f64 * nodes * 20e-9);
-    println!("estimated cost     {secs:.1} s on 2 cores (rough, from the benchmarks)");
+    let passes = s.growth.as_ref().map_or(1, |g| g.passes);
+    if let Some(g) = &s.growth {
+        println!(
+            "growth             {} passages x traffic scale {} = {:.4e} real passages; dynamics {:?}",
+            g.passes,
+            g.traffic_scale,
+            g.passes as f64 * g.traffic_scale,
+            g.dynamics
+        );
+    }
+    println!("estimated cost     {:.1} s on 2 cores (rough, from the benchmarks)", secs * passes as f64);
 }

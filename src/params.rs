@@ -133,4 +133,35 @@ pub struct Scene {
     pub rail: RailParams,
     /// Output.
     pub output: OutputParams,
+    /// Growth study (None: a single passage).
+    pub growth: Option<GrowthParams>,
+}
+
+/// Vehicle-track dynamics of a growth study.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DynamicsKind {
+    /// Only the imposed `load.harmonics` (no feedback of the profile).
+    Imposed,
+    /// Linear receptance model (wheel mass, Hertz spring, UIC60 track).
+    Receptance {
+        /// Unsprung mass per wheel (kg).
+        unsprung_mass: f64,
+    },
+}
+
+/// A multi-passage growth study on the periodic stretch [x_min, x_max).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GrowthParams {
+    /// Simulated passages.
+    pub passes: usize,
+    /// Real passages per simulated passage, m (1).
+    pub traffic_scale: f64,
+    /// Store the rail profile and wear every this many passages (and the last).
+    pub store_every: usize,
+    /// Passages whose contact-patch history is stored.
+    pub contact_history: Vec<usize>,
+    /// Initial irregularity.
+    pub roughness: crate::growth::roughness::Roughness,
+    /// Dynamics model.
+    pub dynamics: DynamicsKind,
 }

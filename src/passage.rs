@@ -37,6 +37,34 @@ pub struct PassageSpec {
     pub k_over_h: f64,
     /// Linearly interpolated wear sub-steps per step (>= 1).
     pub substeps: usize,
+    /// Patch-centre positions (m) between which wear is deposited; the steps
+    /// before (a run-in) only build up the contact history.
+    pub wear_window: (f64, f64),
+    /// Dynamic normal force added to the imposed loads (growth studies).
+    pub dynamic_normal_force: Option<PeriodicSignal>,
+}
+
+/// A periodic signal sampled at `x0 + i dx`, i = 0..n, period n dx,
+/// linearly interpolated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PeriodicSignal {
+    /// First sample position (m).
+    pub x0: f64,
+    /// Sample spacing (m).
+    pub dx: f64,
+    /// Samples (one period).
+    pub values: Vec<f64>,
+}
+
+impl PeriodicSignal {
+    /// Value at `x` (m).
+    pub fn at(&self, x: f64) -> f64 {
+        let n = self.values.len();
+        let u = ((x - self.x0) / self.dx).rem_euclid(n as f64);
+        let i = (u.floor() as usize).min(n - 1);
+        let w = u - i as f64;
+        (1.0 - w) * self.values[i] + w * self.values[(i + 1) % n]
+    }
 }
 
 impl PassageSpec {
@@ -235,7 +263,7 @@ pub fn run_passage(
     solver.reset();
     for n in 0..steps {
         let x = spec.position(n);
-        let normal_force = spec.loads.normal_force_at(x);
+        let normal_force = spec.loads.normal_force_at(x) + spec.dynamic_normal_force.as_ref().map_or(0.0, |d| d.at(x));
         let force_x = spec.loads.longitudinal_force_at(x);
         if normal_force <= 0.0 {
             // Contact loss: no patch, no traction, no wear; the contact
@@ -266,7 +294,8 @@ pub fn run_passage(
         })?;
         check_finite(&sol, n, x)?;
         let rates = archard_rates(spec.k_over_h, &sol);
-        if let Some((x0, a0, b0, r0)) = &previous {
+        let (w0, w1) = spec.wear_window;
+        if let Some((x0, a0, b0, r0)) = previous.as_ref().filter(|p| p.0 >= w0 - 1e-12 && x <= w1 + 1e-12) {
             let from = PatchWear { x_c: *x0, a: *a0, b: *b0, rates: r0 };
             let to = PatchWear { x_c: x, a: patch.a, b: patch.b, rates: &rates };
             deposit.accumulate(grid, &mut wear, &from, &to, dt, spec.substeps);

@@ -8,13 +8,21 @@ use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use crate::contact::transient::{ElasticModel, Transient};
 use crate::contact::{EllipseMesh, PressureShape, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
+use crate::dynamics::TrackDynamics;
+use crate::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams, hertz_stiffness};
+use crate::growth::growth_passage;
+use crate::growth::roughness::profile_line;
+use crate::growth::spectrum::{amplitudes, wavelengths};
 use crate::hertz::{HertzPatch, HertzShape};
+use crate::metrics::centre_row;
 use crate::metrics::rms_corrugation;
 use crate::output::netcdf::NcError;
 use crate::output::run_file::{PassRow, RailSnapshot, RunRecord, write_run_file};
-use crate::params::{ContactModelKind, Scene};
-use crate::passage::{PassageError, PassageResult, PassageSpec, run_passage};
+use crate::params::{ContactModelKind, DynamicsKind, Scene};
+use crate::passage::PatchHistory;
+use crate::passage::{PassageError, PassageSpec, run_passage};
 use crate::wear::{RailGrid, WearDeposit};
+use ndarray::Array2;
 use std::path::Path;
 
 /// Quantities derived from a scene (what `corrugation check` prints).
@@ -38,8 +46,13 @@ pub struct Derived {
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
     /// The physics could not be solved.
-    #[error("passage failed: {0}")]
-    Passage(#[from] PassageError),
+    #[error("passage {pass} failed: {source}")]
+    Passage {
+        /// Simulated passage index.
+        pass: usize,
+        /// Cause.
+        source: PassageError,
+    },
     /// Writing the run file failed.
     #[error("{0}")]
     Output(#[from] NcError),
@@ -61,6 +74,8 @@ pub fn derive(scene: &Scene) -> Derived {
         step_length: scene.step_length,
         k_over_h: scene.k_over_h,
         substeps: scene.wear_substeps,
+        wear_window: (f64::NEG_INFINITY, f64::INFINITY),
+        dynamic_normal_force: None,
     };
     let r = &scene.rail;
     Derived {
@@ -111,17 +126,47 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
 /// Summary of a finished run.
 #[derive(Debug, Clone)]
 pub struct RunSummary {
-    /// The passage result.
-    pub passage: PassageResult,
-    /// CPU seconds of the passage.
+    /// Simulated passages.
+    pub passes: usize,
+    /// CPU seconds of all passages.
     pub cpu_seconds: f64,
-    /// Volume removed (m^3).
+    /// Volume removed by the last simulated passage, unscaled (m^3).
     pub removed_volume: f64,
-    /// Maximum wear depth (m).
+    /// Maximum wear depth of the last simulated passage (m).
     pub max_wear: f64,
+    /// rms corrugation of the final profile (m).
+    pub rms_corrugation: f64,
 }
 
-/// Runs the scene (one passage) and writes the run file to `out`.
+/// Contact steps per passage of a scene.
+pub fn steps_per_passage(scene: &Scene) -> usize {
+    derive(scene).passage.n_steps()
+}
+
+/// The periodic grid of a growth study: nodes `x_min + i dx`, `i < nx`,
+/// period `x_max - x_min`.
+pub fn periodic_grid(scene: &Scene) -> RailGrid {
+    let r = &scene.rail;
+    let nx = ((r.x_max - r.x_min) / r.dx).round().max(2.0) as usize;
+    let full = RailGrid::new(r.x_min, r.x_max, r.dx, r.half_width, r.dy);
+    RailGrid { x_min: r.x_min, dx: (r.x_max - r.x_min) / nx as f64, nx, ..full }
+}
+
+/// The track model of a growth study, if it has one.
+fn track_dynamics(scene: &Scene, d: &Derived) -> Option<ReceptanceModel> {
+    match scene.growth.as_ref()?.dynamics {
+        DynamicsKind::Imposed => None,
+        DynamicsKind::Receptance { unsprung_mass } => {
+            let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
+            let wheel = WheelParams { unsprung_mass };
+            Some(ReceptanceModel::new(TrackParams::uic60_default(), wheel, k_h).expect("validated parameters"))
+        }
+    }
+}
+
+/// Runs the scene (one passage, or a growth study over `growth.passes`
+/// passages) and writes the run file to `out`. `progress(done, total)`
+/// counts contact steps over all passages.
 pub fn run_scene(
     resolved: &Resolved,
     out: &Path,
@@ -132,22 +177,77 @@ pub fn run_scene(
     let mut solver = build_solver(scene, &d.shape);
     let mesh: EllipseMesh = solver.mesh().clone();
     let deposit = WearDeposit::new(&mesh);
-    let clock = cpu_time::ProcessTime::now();
-    let result =
-        run_passage(&d.passage, &d.shape, solver.as_mut(), &deposit, &d.grid, scene.output.store_fields, progress)?;
-    let cpu_seconds = clock.elapsed().as_secs_f64();
-    let profile = result.wear.mapv(|w| -w);
-    let removed_volume = result.wear.sum() * d.grid.dx * d.grid.dy;
-    let passes = [PassRow {
-        index: 0,
-        traffic: 1.0,
-        traffic_scale: 1.0,
-        rms_corrugation: rms_corrugation(profile.view(), &d.grid),
-        removed_volume,
-        cpu_seconds,
-    }];
-    let rail = [RailSnapshot { index: 0, traffic: 1.0, profile, wear: result.wear.clone() }];
-    let contact = [(0, &result.history)];
+    let growth = scene.growth.clone();
+    let (grid, passes, m) = match &growth {
+        Some(g) => (periodic_grid(scene), g.passes, g.traffic_scale),
+        None => (d.grid.clone(), 1, 1.0),
+    };
+    let dynamics = track_dynamics(scene, &d);
+    let mut profile = match &growth {
+        Some(g) => {
+            let line = profile_line(&g.roughness, &grid.xs(), grid.nx as f64 * grid.dx);
+            Array2::from_shape_fn((grid.ny, grid.nx), |(_, i)| line[i])
+        }
+        None => Array2::zeros((grid.ny, grid.nx)),
+    };
+    let steps = d.passage.n_steps();
+    let (mut rows, mut rail, mut histories) = (Vec::new(), Vec::new(), Vec::new());
+    let mut summary = RunSummary { passes, cpu_seconds: 0.0, removed_volume: 0.0, max_wear: 0.0, rms_corrugation: 0.0 };
+    for pass in 0..passes {
+        let keep_history = growth.as_ref().is_none_or(|g| g.contact_history.contains(&pass));
+        let record_fields = keep_history && scene.output.store_fields;
+        let clock = cpu_time::ProcessTime::now();
+        let mut report = |done: usize, _: usize| progress(pass * steps + done, passes * steps);
+        let (wear, history) = match &growth {
+            None => {
+                let r = run_passage(&d.passage, &d.shape, solver.as_mut(), &deposit, &grid, record_fields, &mut report)
+                    .map_err(|source| RunError::Passage { pass, source })?;
+                (r.wear, r.history)
+            }
+            Some(_) => {
+                let dyn_ref = dynamics.as_ref().map(|t| t as &dyn TrackDynamics);
+                let g = growth_passage(
+                    &d.passage,
+                    &d.shape,
+                    solver.as_mut(),
+                    &deposit,
+                    &grid,
+                    &profile,
+                    dyn_ref,
+                    record_fields,
+                    &mut report,
+                )
+                .map_err(|source| RunError::Passage { pass, source })?;
+                (g.wear, g.passage.history)
+            }
+        };
+        let cpu_seconds = clock.elapsed().as_secs_f64();
+        profile.scaled_add(-m, &wear);
+        let traffic = (pass + 1) as f64 * m;
+        let removed_volume = wear.sum() * grid.dx * grid.dy;
+        let rms = rms_corrugation(profile.view(), &grid);
+        rows.push(PassRow {
+            index: pass as i64,
+            traffic,
+            traffic_scale: m,
+            rms_corrugation: rms,
+            removed_volume,
+            cpu_seconds,
+            spectrum: amplitudes(profile.row(centre_row(&grid)).as_slice().expect("contiguous row")),
+        });
+        let store_every = growth.as_ref().map_or(1, |g| g.store_every);
+        if (pass + 1) % store_every == 0 || pass + 1 == passes {
+            rail.push(RailSnapshot { index: pass as i64, traffic, profile: profile.clone(), wear: wear.clone() });
+        }
+        if keep_history {
+            histories.push((pass as i64, history));
+        }
+        summary.cpu_seconds += cpu_seconds;
+        summary.removed_volume = removed_volume;
+        summary.max_wear = wear.iter().cloned().fold(0.0, f64::max);
+        summary.rms_corrugation = rms;
+    }
+    let contact: Vec<(i64, &PatchHistory)> = histories.iter().map(|(k, h)| (*k, h)).collect();
     let title = if scene.output.title.is_empty() { "corrugation run" } else { scene.output.title.as_str() };
     write_run_file(
         out,
@@ -155,13 +255,13 @@ pub fn run_scene(
             title,
             contact_model: scene.contact.model.name(),
             config: &resolved.toml,
-            grid: &d.grid,
+            grid: &grid,
             mesh: &mesh,
-            passes: &passes,
+            passes: &rows,
+            wavelengths: &wavelengths(grid.nx, grid.dx),
             rail: &rail,
             contact: &contact,
         },
     )?;
-    let max_wear = result.wear.iter().cloned().fold(0.0, f64::max);
-    Ok(RunSummary { passage: result, cpu_seconds, removed_volume, max_wear })
+    Ok(summary)
 }

@@ -7,6 +7,7 @@
 //! amplitudes against the mean, the friction limit, wavelengths against the
 //! rail grid, Kalker's table range) run on the keys that were valid.
 
+mod growth;
 mod overrides;
 mod reader;
 
@@ -166,6 +167,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let store_fields = s.bool("store_fields", true);
     let title = s.string("title", "");
     resolved.insert("output".into(), Value::Table(s.finish()));
+    let growth = growth::read(&mut root, &mut resolved, errors);
 
     for (k, _) in root {
         errors.push(ConfigError::new(&k, "unknown section or key".into()));
@@ -230,6 +232,12 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             ),
         ));
     }
+    let Ok(growth) = growth else {
+        return (None, resolved);
+    };
+    if let Some(g) = &growth {
+        check_growth(g, &loads, start, end, x_min, x_max, shape.as_ref(), errors);
+    }
     let scene = Scene {
         material,
         geometry,
@@ -251,8 +259,51 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         step_length,
         rail: RailParams { x_min, x_max, dx, dy, half_width },
         output: OutputParams { store_fields, title },
+        growth,
     };
     (Some(scene), resolved)
+}
+
+#[allow(clippy::too_many_arguments)]
+fn check_growth(
+    g: &crate::params::GrowthParams,
+    loads: &ImposedLoads,
+    start: f64,
+    end: f64,
+    x_min: f64,
+    x_max: f64,
+    shape: Option<&HertzShape>,
+    errors: &mut Vec<ConfigError>,
+) {
+    let length = x_max - x_min;
+    for (i, h) in loads.harmonics.iter().enumerate() {
+        growth::check_periodic(&format!("load.harmonics[{i}].wavelength"), h.wavelength, length, errors);
+    }
+    if let crate::growth::roughness::Roughness::Harmonics(hs) = &g.roughness {
+        for (i, h) in hs.iter().enumerate() {
+            growth::check_periodic(&format!("roughness.harmonics[{i}].wavelength"), h.wavelength, length, errors);
+        }
+    }
+    if let Some(p) = shape.and_then(|s| s.patch(loads.max_normal_force()).ok())
+        && start > x_min - p.a
+    {
+        errors.push(ConfigError::new(
+            "passage.start",
+            format!("= {start} m must be <= rail.x_min - a = {:.6e} m: the growth passage needs a run-in before the stretch", x_min - p.a),
+        ));
+    }
+    if end < x_max {
+        errors.push(ConfigError::new(
+            "passage.end",
+            format!("= {end} m must be >= rail.x_max = {x_max} m in a growth study"),
+        ));
+    }
+    if let Some(k) = g.contact_history.iter().find(|k| **k >= g.passes) {
+        errors.push(ConfigError::new(
+            "growth.contact_history",
+            format!("passage {k} does not exist: growth.passes = {}", g.passes),
+        ));
+    }
 }
 
 fn read_harmonic(s: &mut Section) -> Option<Harmonic> {

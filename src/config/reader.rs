@@ -198,6 +198,33 @@ impl<'a> Section<'a> {
         Some(v)
     }
 
+    /// A list of integers in `[0, hi]`.
+    pub fn usize_list(&mut self, key: &str, default: Vec<usize>, hi: usize) -> Option<Vec<usize>> {
+        let expect = format!("a list of integers in [0, {hi}]");
+        let v = match self.table.remove(key) {
+            None => default,
+            Some(Value::Array(a)) => {
+                let mut out = Vec::new();
+                for item in a {
+                    match item.as_integer() {
+                        Some(i) if (0..=hi as i64).contains(&i) => out.push(i as usize),
+                        _ => {
+                            self.error(key, format!("contains `{item}`; expected {expect}"));
+                            return None;
+                        }
+                    }
+                }
+                out
+            }
+            Some(other) => {
+                self.error(key, format!("expected {expect}, found {}", other.type_str()));
+                return None;
+            }
+        };
+        self.resolved.insert(key.into(), Value::Array(v.iter().map(|i| Value::Integer(*i as i64)).collect()));
+        Some(v)
+    }
+
     /// An array of tables (e.g. `[[load.harmonics]]`); each element is read
     /// with `read` as section `key[i]`.
     pub fn array_of_tables<T>(&mut self, key: &str, mut read: impl FnMut(&mut Section) -> Option<T>) -> Option<Vec<T>> {

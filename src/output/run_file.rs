@@ -30,6 +30,9 @@ pub struct PassRow {
     pub removed_volume: f64,
     /// CPU time of the passage (s).
     pub cpu_seconds: f64,
+    /// Amplitude spectrum of the centre-line profile after the passage (m),
+    /// on the record's `wavelengths`.
+    pub spectrum: Vec<f64>,
 }
 
 /// A stored rail state.
@@ -60,6 +63,8 @@ pub struct RunRecord<'a> {
     pub mesh: &'a EllipseMesh,
     /// Rows of group `passes`.
     pub passes: &'a [PassRow],
+    /// Wavelengths of the spectra (m), longest first.
+    pub wavelengths: &'a [f64],
     /// Stored rail states.
     pub rail: &'a [RailSnapshot],
     /// Stored patch histories: (passage index, history).
@@ -75,7 +80,7 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         root.attr_str("contact_model", record.contact_model)?;
         root.attr_str("config", record.config)?;
         write_rail(&root.group("rail")?, record)?;
-        write_passes(&root.group("passes")?, record.passes)?;
+        write_passes(&root.group("passes")?, record.passes, record.wavelengths)?;
         let contact = root.group("contact")?;
         for (index, history) in record.contact {
             write_history(&contact.group(&format!("pass_{index:05}"))?, history, record.mesh)?;
@@ -118,7 +123,7 @@ fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
     Ok(())
 }
 
-fn write_passes(g: &NcGroup, rows: &[PassRow]) -> Result<(), NcError> {
+fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<(), NcError> {
     let idx: Vec<i64> = rows.iter().map(|r| r.index).collect();
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
     let col = |f: fn(&PassRow) -> f64| -> Array1<f64> { rows.iter().map(f).collect() };
@@ -137,6 +142,18 @@ fn write_passes(g: &NcGroup, rows: &[PassRow]) -> Result<(), NcError> {
     for (name, v, units, long_name) in vars {
         g.var_f64(name, &["pass"], v.view().into_dyn(), units, long_name)?;
     }
+    g.coord_f64("wavelength", wavelengths, "m", "wavelength of the profile harmonic (stretch length / n)", false)?;
+    let mut spectrum = ndarray::Array2::zeros((rows.len(), wavelengths.len()));
+    for (k, r) in rows.iter().enumerate() {
+        spectrum.row_mut(k).iter_mut().zip(&r.spectrum).for_each(|(d, v)| *d = *v);
+    }
+    g.var_f64(
+        "spectrum",
+        &["pass", "wavelength"],
+        spectrum.view().into_dyn(),
+        "m",
+        "corrugation amplitude spectrum (centre line)",
+    )?;
     Ok(())
 }
 

@@ -1,0 +1,95 @@
+//! Sections of a growth study: `[growth]`, `[roughness]`, `[dynamics]`.
+//! Without `[growth]` the scene is a single passage and the other two
+//! sections are not allowed.
+
+use super::ConfigError;
+use super::reader::{Range, Section};
+use crate::growth::roughness::{ProfileHarmonic, Roughness};
+use crate::params::{DynamicsKind, GrowthParams};
+use toml::{Table, Value};
+
+/// Reads the growth sections; `Ok(None)` for a single-passage scene, `Err`
+/// when a key is invalid (the errors are recorded).
+pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError>) -> Result<Option<GrowthParams>, ()> {
+    if !root.contains_key("growth") {
+        for name in ["roughness", "dynamics"] {
+            if root.remove(name).is_some() {
+                errors.push(ConfigError::new(name, "is only allowed with a [growth] section".into()));
+            }
+        }
+        return Ok(None);
+    }
+    let mut s = Section::new(root, "", "growth", errors);
+    let passes = s.usize("passes", None, 1, 1_000_000);
+    let traffic_scale = s.f64("traffic_scale", Some(1.0), Range::Closed(1.0, 1e9));
+    let store_every = s.usize("store_every", Some(1), 1, 1_000_000);
+    let history = s.usize_list("contact_history", vec![0], 1_000_000);
+    resolved.insert("growth".into(), Value::Table(s.finish()));
+
+    let mut s = Section::new(root, "", "roughness", errors);
+    let kind = s.choice("kind", Some("none"), &["none", "harmonics", "random"]);
+    let roughness = match kind.as_deref() {
+        Some("harmonics") => s.array_of_tables("harmonics", read_harmonic).map(Roughness::Harmonics),
+        Some("random") => {
+            let seed = s.usize("seed", None, 0, usize::MAX >> 1);
+            let rms = s.f64("rms", None, Range::NonNegative);
+            let lo = s.f64("wavelength_min", None, Range::Positive);
+            let hi = s.f64("wavelength_max", None, Range::Positive);
+            match (seed, rms, lo, hi) {
+                (Some(seed), Some(rms), Some(lo), Some(hi)) if lo <= hi => {
+                    Some(Roughness::Random { seed: seed as u64, rms, wavelength_min: lo, wavelength_max: hi })
+                }
+                (Some(_), Some(_), Some(lo), Some(hi)) => {
+                    s.error("wavelength_max", format!("= {hi} must be >= roughness.wavelength_min = {lo}"));
+                    None
+                }
+                _ => None,
+            }
+        }
+        Some(_) => Some(Roughness::None),
+        None => None,
+    };
+    resolved.insert("roughness".into(), Value::Table(s.finish()));
+
+    let mut s = Section::new(root, "", "dynamics", errors);
+    let model = s.choice("model", Some("imposed"), &["imposed", "receptance"]);
+    // Read for every model so that --set can switch models.
+    let mass = s.f64("unsprung_mass", Some(600.0), Range::OpenClosed(0.0, 1e4));
+    let dynamics = match (model.as_deref(), mass) {
+        (Some("receptance"), Some(m)) => Some(DynamicsKind::Receptance { unsprung_mass: m }),
+        (Some(_), Some(_)) => Some(DynamicsKind::Imposed),
+        _ => None,
+    };
+    resolved.insert("dynamics".into(), Value::Table(s.finish()));
+
+    match (passes, traffic_scale, store_every, history, roughness, dynamics) {
+        (
+            Some(passes),
+            Some(traffic_scale),
+            Some(store_every),
+            Some(contact_history),
+            Some(roughness),
+            Some(dynamics),
+        ) => Ok(Some(GrowthParams { passes, traffic_scale, store_every, contact_history, roughness, dynamics })),
+        _ => Err(()),
+    }
+}
+
+fn read_harmonic(s: &mut Section) -> Option<ProfileHarmonic> {
+    let amplitude = s.f64("amplitude", None, Range::NonNegative);
+    let wavelength = s.f64("wavelength", None, Range::Positive);
+    let phase = s.f64("phase", Some(0.0), Range::Finite);
+    Some(ProfileHarmonic { amplitude: amplitude?, wavelength: wavelength?, phase: phase? })
+}
+
+/// Checks that every wavelength fits the periodic stretch of length `length`
+/// a whole number of times.
+pub fn check_periodic(key: &str, wavelength: f64, length: f64, errors: &mut Vec<ConfigError>) {
+    let n = length / wavelength;
+    if (n - n.round()).abs() > 1e-6 * n.max(1.0) || n.round() < 1.0 {
+        errors.push(ConfigError::new(
+            key,
+            format!("= {wavelength} m does not fit the periodic stretch rail.x_max - rail.x_min = {length} m a whole number of times"),
+        ));
+    }
+}

@@ -1,0 +1,124 @@
+//! Vehicle-track dynamics for the corrugation growth loop (DESIGN.md
+//! section 3): the dynamic wheel-rail normal force excited by the rail
+//! profile of the current passage.
+//!
+//! The rail profile `r(X)` over the periodic stretch of length `L` is expanded
+//! in Fourier harmonics `n` (wavenumber `k = 2 pi n / L`, wavelength
+//! `lambda = L / n`). A wheel running at speed `V` meets harmonic `n` at the
+//! frequency `f = V / lambda = V n / L`, and a linear model answers with a
+//! force harmonic `H(f) r_n`. The static load is not part of this force: the
+//! mean (DC) harmonic is always dropped, the caller adds the mean load.
+//!
+//! Conventions of every model here:
+//! - time dependence `exp(+i w t)`, `w = 2 pi f`; a harmonic `exp(i k X)` of the
+//!   profile, met by a wheel moving in `+X` (`X = V t`), has `w = k V`;
+//! - `r > 0`: the rail top is higher (a bump), which presses the wheel harder;
+//! - the force is the compressive contact force (N), positive = more load.
+//!
+//! [`TrackDynamics`] is the interface the pass loop uses, so that a richer
+//! track model (discrete sleepers, Timoshenko rail, moving load) can replace
+//! the [`receptance`] model without touching the loop.
+
+pub mod receptance;
+
+pub use receptance::{
+    DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,
+};
+
+use num_complex::Complex64;
+use rustfft::FftPlanner;
+
+/// A linear (or linearised) vehicle-track model that turns the rail profile
+/// of one periodic stretch into the dynamic contact force along it.
+pub trait TrackDynamics {
+    /// Dynamic normal contact force (N, zero mean) at the profile's sample
+    /// points `X_j = j dx`, for a wheel at speed `speed` (m/s; the sign gives
+    /// the direction of travel along `X`). `profile` (m, rail top height,
+    /// positive up) is one period of a periodic signal sampled every `dx` (m).
+    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64>;
+
+    /// The model's resonances as (label, frequency in Hz), for reports.
+    fn describe_resonances(&self) -> Vec<(String, f64)>;
+}
+
+/// Applies a frequency response to one period of a sampled periodic profile:
+/// `F(X) = sum_{n != 0} H(f_n) r_n exp(i k_n X)`, with `r_n` the discrete
+/// Fourier coefficients of `profile`, `k_n = 2 pi m / L` for the signed
+/// harmonic index `m` (`m = n` for `n <= N/2`, `m = n - N` above),
+/// `L = N dx`, and `f_n = speed k_n / (2 pi)`.
+///
+/// `h(f)` is the response at a frequency `f >= 0` (Hz); for `f < 0` the
+/// transform of a real system `H(-f) = conj(H(f))` is used, so the result is
+/// real. The Nyquist harmonic of an even `N` (`m = N/2`, a sampled
+/// `cos(pi X / dx)` whose phase the samples cannot resolve) is multiplied by
+/// `Re H(f_Nyquist)`, the response of a zero-phase cosine. The mean harmonic
+/// is dropped. The result is deterministic (a fixed FFT plan per length).
+///
+/// # Panics
+/// If `dx` is not finite and positive or `speed` is not finite.
+pub fn apply_periodic_response<F>(profile: &[f64], dx: f64, speed: f64, h: F) -> Vec<f64>
+where
+    F: Fn(f64) -> Complex64,
+{
+    assert!(dx.is_finite() && dx > 0.0, "sample spacing dx = {dx} m must be finite and > 0");
+    assert!(speed.is_finite(), "speed = {speed} m/s must be finite");
+    let n = profile.len();
+    if n < 2 {
+        return vec![0.0; n];
+    }
+    let length = n as f64 * dx;
+    let mut planner = FftPlanner::<f64>::new();
+    let forward = planner.plan_fft_forward(n);
+    let inverse = planner.plan_fft_inverse(n);
+    let mut buf: Vec<Complex64> = profile.iter().map(|&r| Complex64::new(r, 0.0)).collect();
+    forward.process(&mut buf);
+    buf[0] = Complex64::new(0.0, 0.0);
+    for (bin, c) in buf.iter_mut().enumerate().skip(1) {
+        let m = if 2 * bin <= n { bin as f64 } else { bin as f64 - n as f64 };
+        let f = speed * m / length;
+        let hf = if f >= 0.0 { h(f) } else { h(-f).conj() };
+        *c *= if 2 * bin == n { Complex64::new(hf.re, 0.0) } else { hf };
+    }
+    inverse.process(&mut buf);
+    // rustfft does not normalise: the inverse of the forward is N times the input.
+    let scale = 1.0 / n as f64;
+    buf.iter().map(|c| c.re * scale).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn identity_response_removes_only_the_mean() {
+        let n = 37;
+        let profile: Vec<f64> = (0..n).map(|j| 1.0 + (j as f64 * 0.7).sin() + 0.1 * j as f64).collect();
+        let mean = profile.iter().sum::<f64>() / n as f64;
+        let out = apply_periodic_response(&profile, 1e-3, 20.0, |_| Complex64::new(1.0, 0.0));
+        for (o, p) in out.iter().zip(&profile) {
+            assert!((o - (p - mean)).abs() < 1e-12, "{o} vs {}", p - mean);
+        }
+    }
+
+    #[test]
+    fn pure_delay_shifts_a_harmonic() {
+        // H(f) = exp(-i 2 pi f tau) delays the signal by tau, i.e. shifts it by V tau along X.
+        let (n, dx, speed) = (64, 1e-3, 10.0);
+        let length = n as f64 * dx;
+        let k = 2.0 * PI * 3.0 / length;
+        let tau = 1.3e-5;
+        let profile: Vec<f64> = (0..n).map(|j| (k * j as f64 * dx).cos()).collect();
+        let out = apply_periodic_response(&profile, dx, speed, |f| Complex64::from_polar(1.0, -2.0 * PI * f * tau));
+        for (j, o) in out.iter().enumerate() {
+            let expect = (k * (j as f64 * dx - speed * tau)).cos();
+            assert!((o - expect).abs() < 1e-12, "j = {j}: {o} vs {expect}");
+        }
+    }
+
+    #[test]
+    fn short_profiles_give_zero() {
+        assert!(apply_periodic_response(&[], 1e-3, 1.0, |_| Complex64::new(1.0, 0.0)).is_empty());
+        assert_eq!(apply_periodic_response(&[3.0], 1e-3, 1.0, |_| Complex64::new(1.0, 0.0)), vec![0.0]);
+    }
+}

@@ -1,0 +1,130 @@
+//! The growth loop's passage over the periodic stretch.
+mod common;
+use common::{STEEL, paper_coefficients, paper_shape, rel};
+use corrugation::contact::fastsim::Fastsim;
+use corrugation::contact::{PressureShape, TangentialSolver};
+use corrugation::growth::growth_passage;
+use corrugation::loads::ImposedLoads;
+use corrugation::passage::PassageSpec;
+use corrugation::wear::{RailGrid, WearDeposit};
+use ndarray::Array2;
+
+fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
+    let spec = PassageSpec {
+        speed: 27.78,
+        friction: 0.4,
+        creepage_y: 0.0,
+        spin: 0.0,
+        loads: ImposedLoads { normal_force: 1e5, longitudinal_force: 2e4, harmonics: vec![] },
+        start: -0.015,
+        end: length,
+        step_length: 2e-4,
+        k_over_h: 3.4e-14,
+        substeps: 4,
+        wear_window: (f64::NEG_INFINITY, f64::INFINITY),
+        dynamic_normal_force: None,
+    };
+    let dx = 1e-4;
+    let grid = RailGrid { x_min: 0.0, dx, nx: (length / dx).round() as usize, half_width: 0.012, dy: 5e-4, ny: 49 };
+    let f = Fastsim::new(10, 10, PressureShape::Parabolic, paper_coefficients(true), STEEL.shear_modulus());
+    (spec, grid, f)
+}
+
+#[test]
+fn periodic_passage_wears_every_node_once() {
+    // Constant loads: every node of the periodic stretch sees one full
+    // passage of the same steady patch, so the wear does not depend on X
+    // (within 1 %), and the folded volume equals the unfolded one.
+    let (spec, grid, mut f) = setup(0.03);
+    let dep = WearDeposit::new(f.mesh());
+    let flat = Array2::zeros((grid.ny, grid.nx));
+    let g = growth_passage(&spec, &paper_shape(true), &mut f, &dep, &grid, &flat, None, false, &mut |_, _| {}).unwrap();
+    let centre = g.wear.row(grid.ny / 2).to_vec();
+    let mean = centre.iter().sum::<f64>() / centre.len() as f64;
+    assert!(mean > 0.0);
+    for (i, w) in centre.iter().enumerate() {
+        assert!(rel(*w, mean) < 0.01, "node {i}: {w} vs {mean}");
+    }
+    assert!(rel(g.wear.sum(), g.passage.wear.sum()) < 1e-12);
+}
+
+use corrugation::config::load_str;
+use corrugation::output::netcdf::read_f64;
+use corrugation::run::run_scene;
+
+const GROWTH: &str = include_str!("../configs/growth_fastsim.toml");
+
+/// Runs the growth config with overrides into a temporary file.
+fn run_growth(set: &[&str]) -> (tempfile::TempDir, std::path::PathBuf) {
+    let mut all: Vec<String> =
+        ["contact.elements_x=6", "contact.elements_y=6", "rail.dx=5e-4", "rail.dy=1e-3", "passage.step_length=5e-4"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+    all.extend(set.iter().map(|s| s.to_string()));
+    let r = load_str(GROWTH, "growth", &all).unwrap_or_else(|e| panic!("{e}"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("g.h5");
+    run_scene(&r, &out, &mut |_, _| {}).unwrap();
+    (dir, out)
+}
+
+#[test]
+fn imposed_dynamics_traffic_scaling_is_exact() {
+    // Without feedback every passage is the same: n passages with m = 1
+    // remove n times one passage's material, and equal one passage with
+    // m = n (within 1e-9 relative).
+    let base = ["dynamics.model=imposed", "roughness.rms=0", "growth.contact_history=[]"];
+    let (_d1, f1) = run_growth(&[&base[..], &["growth.passes=1", "growth.traffic_scale=1"]].concat());
+    let (_d3, f3) =
+        run_growth(&[&base[..], &["growth.passes=3", "growth.traffic_scale=1", "growth.store_every=3"]].concat());
+    let (_dm, fm) = run_growth(&[&base[..], &["growth.passes=1", "growth.traffic_scale=3"]].concat());
+    let v1 = read_f64(&f1, "passes", "removed_volume").unwrap();
+    let v3 = read_f64(&f3, "passes", "removed_volume").unwrap();
+    assert!(v3.iter().all(|v| rel(*v, v1[0]) < 1e-12), "identical passages");
+    let p3 = read_f64(&f3, "rail", "profile").unwrap();
+    let pm = read_f64(&fm, "rail", "profile").unwrap();
+    let p1 = read_f64(&f1, "rail", "profile").unwrap();
+    let scale = p1.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for ((a, b), c) in p3.iter().zip(pm.iter()).zip(p1.iter()) {
+        assert!((a - b).abs() <= 1e-9 * 3.0 * scale, "3 x m=1 vs m=3");
+        assert!((a - 3.0 * c).abs() <= 1e-9 * 3.0 * scale, "3 x one passage");
+    }
+    let traffic = read_f64(&f3, "passes", "traffic").unwrap();
+    assert_eq!(traffic.as_slice().unwrap(), &[1.0, 2.0, 3.0]);
+}
+
+#[test]
+fn receptance_feedback_changes_the_spectrum_and_is_recorded() {
+    let (_d, f) = run_growth(&["growth.passes=3", "growth.store_every=1", "growth.contact_history=[0]"]);
+    let spectrum = read_f64(&f, "passes", "spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    let wavelengths = read_f64(&f, "passes", "wavelength").unwrap();
+    assert_eq!(spectrum.shape(), &[3, wavelengths.len()]);
+    assert!((wavelengths[0] - 0.12).abs() < 1e-12, "longest wavelength = stretch length");
+    // The roughness band 10-120 mm carries the initial 1 um rms.
+    let rms = read_f64(&f, "passes", "rms_corrugation").unwrap();
+    assert!(rms.iter().all(|r| *r > 5e-7 && *r < 2e-6), "{rms:?}");
+    assert!(spectrum.row(2).iter().zip(spectrum.row(0).iter()).any(|(a, b)| (a - b).abs() > 1e-3 * b.abs()));
+    let profile = read_f64(&f, "rail", "profile").unwrap();
+    assert_eq!(profile.shape()[0], 3);
+}
+
+#[test]
+fn growth_config_errors() {
+    let errors = |set: &[&str]| match load_str(GROWTH, "g", &set.iter().map(|s| s.to_string()).collect::<Vec<_>>()) {
+        Ok(_) => Vec::new(),
+        Err(e) => e.errors.iter().map(|e| e.to_string()).collect(),
+    };
+    let e = errors(&["roughness.kind=harmonics", "roughness.harmonics=[{amplitude = 1e-6, wavelength = 0.035}]"]);
+    assert!(
+        e.iter().any(|m| m.contains("roughness.harmonics[0].wavelength: = 0.035 m does not fit the periodic stretch")),
+        "{e:?}"
+    );
+    let e = errors(&["passage.start=0"]);
+    assert!(e.iter().any(|m| m.starts_with("passage.start: = 0 m must be <= rail.x_min - a")), "{e:?}");
+    let e = errors(&["growth.contact_history=[40]"]);
+    assert!(e.iter().any(|m| m.contains("growth.contact_history: passage 40 does not exist")), "{e:?}");
+    let single = include_str!("../configs/paper_normal_30mm.toml").to_string() + "\n[dynamics]\nmodel = \"imposed\"\n";
+    let e = load_str(&single, "x", &[]).unwrap_err();
+    assert!(e.to_string().contains("dynamics: is only allowed with a [growth] section"));
+}
