@@ -7,9 +7,10 @@ mod progress;
 
 use clap::{Parser, Subcommand};
 use corrugation::config::{self, Resolved};
+use corrugation::dynamics::TrackDynamics;
 use corrugation::loads::LoadQuantity;
 use corrugation::params::ContactModelKind;
-use corrugation::run::{derive, run_scene};
+use corrugation::run::{derive, run_scene, track_dynamics};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -176,6 +177,11 @@ fn print_check(r: &Resolved) {
             g.passes as f64 * g.traffic_scale,
             g.dynamics
         );
+        if let Some(t) = track_dynamics(s, &d) {
+            for (label, f) in t.describe_resonances() {
+                println!("resonance          {f:8.1} Hz  {label}");
+            }
+        }
     }
     println!("estimated cost     {:.1} s on 2 cores (rough, from the benchmarks)", secs * passes as f64);
 }

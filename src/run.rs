@@ -153,7 +153,7 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
 }
 
 /// The track model of a growth study, if it has one.
-fn track_dynamics(scene: &Scene, d: &Derived) -> Option<ReceptanceModel> {
+pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<ReceptanceModel> {
     match scene.growth.as_ref()?.dynamics {
         DynamicsKind::Imposed => None,
         DynamicsKind::Receptance { unsprung_mass } => {

@@ -117,6 +117,20 @@ mod tests {
     }
 
     #[test]
+    fn nyquist_harmonic_takes_the_real_part() {
+        // An alternating profile is the Nyquist harmonic: it is scaled by Re H(f_Nyquist).
+        let (n, dx, speed) = (16, 1e-3, 10.0);
+        let profile: Vec<f64> = (0..n).map(|j| if j % 2 == 0 { 1.0 } else { -1.0 }).collect();
+        let h = |f: f64| Complex64::new(2.0, 3.0 + f);
+        let out = apply_periodic_response(&profile, dx, speed, h);
+        let f_nyquist = speed / (2.0 * dx);
+        for (o, p) in out.iter().zip(&profile) {
+            assert!((o - 2.0 * p).abs() < 1e-12, "{o} vs {}", 2.0 * p);
+        }
+        assert!(h(f_nyquist).im != 0.0);
+    }
+
+    #[test]
     fn short_profiles_give_zero() {
         assert!(apply_periodic_response(&[], 1e-3, 1.0, |_| Complex64::new(1.0, 0.0)).is_empty());
         assert_eq!(apply_periodic_response(&[3.0], 1e-3, 1.0, |_| Complex64::new(1.0, 0.0)), vec![0.0]);
