@@ -28,7 +28,7 @@
 //! rail and a distributed sleeper mass `m_s`, ballast
 //! `s_b* = s_b (1 + i eta_b)` between sleeper and rigid ground. Eliminating
 //! the sleeper displacement (`-m_s w^2 w_s = s_p* (w_r - w_s) - s_b* w_s`)
-//! gives the foundation stiffness seen by the rail (Thompson 2009, section 3.3)
+//! gives the foundation stiffness seen by the rail (Thompson 2009, ch. 3)
 //! ```text
 //! s(w) = s_p* (s_b* - m_s w^2) / (s_p* + s_b* - m_s w^2)              (3)
 //! ```
@@ -90,12 +90,14 @@ use super::{TrackDynamics, apply_periodic_response};
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
-/// Young's modulus of rail steel (Pa); EN 13674-1.
+/// Young's modulus of rail steel (Pa): 210 GPa, the usual value for rail steel.
 pub const RAIL_YOUNG_MODULUS: f64 = 210e9;
 /// Second moment of area of the UIC60 rail about the horizontal axis (m^4):
-/// 3055 cm^4 (UIC 861-3; EN 13674-1 60E1: 3038 cm^4).
+/// 3055 cm^4, the nominal UIC60 value (UIC leaflet 861-3); with
+/// [`RAIL_YOUNG_MODULUS`] EI = 6.4e6 N m^2, the value used by Thompson 2009, ch. 3.
 pub const UIC60_SECOND_MOMENT: f64 = 30.55e-6;
-/// Mass per length of the UIC60 rail (kg/m): 60.34 kg/m (UIC 861-3).
+/// Mass per length of the UIC60 rail (kg/m): nominal 60.3 kg/m (UIC leaflet 861-3;
+/// Thompson 2009, ch. 3, rounds it to 60 kg/m).
 pub const UIC60_MASS: f64 = 60.3;
 /// Sleeper spacing (m): 0.6 m, the usual spacing of concrete monobloc sleepers
 /// on European main lines (Thompson 2009, ch. 3).
@@ -103,22 +105,20 @@ pub const SLEEPER_SPACING: f64 = 0.6;
 /// Rail pad stiffness per pad (N/m): 200 MN/m, a medium-stiffness studded
 /// pad (Thompson 2009, ch. 3, which spans 100 MN/m soft to 1000 MN/m stiff).
 pub const PAD_STIFFNESS_PER_PAD: f64 = 200e6;
-/// Rail pad loss factor (1): 0.25 (Thompson 2009, ch. 3; TWINS default).
+/// Rail pad loss factor (1): 0.25, typical of rubber pads (Thompson 2009, ch. 3).
 pub const PAD_LOSS_FACTOR: f64 = 0.25;
 /// Sleeper mass carried by one rail (kg): half of a 280 kg concrete monobloc
-/// sleeper (typical monobloc sleepers weigh 250-320 kg; Thompson 2009, ch. 3;
-/// Knothe and Grassie, *Veh. Syst. Dyn.* 22 (1993) 209-262, use 162 kg per
-/// half sleeper).
+/// sleeper (concrete monobloc sleepers weigh roughly 250-320 kg; Thompson
+/// 2009, ch. 3; Knothe and Grassie, *Veh. Syst. Dyn.* 22 (1993) 209-262).
 pub const HALF_SLEEPER_MASS: f64 = 140.0;
-/// Ballast stiffness under one half sleeper (N/m): 100 MN/m (Thompson 2009,
-/// ch. 3; Grassie et al. 1982 quote 50-200 MN/m).
+/// Ballast stiffness under one half sleeper (N/m): 100 MN/m, a typical
+/// ballast bed (Thompson 2009, ch. 3).
 pub const BALLAST_STIFFNESS_PER_HALF_SLEEPER: f64 = 100e6;
 /// Ballast loss factor (1): 1.0, a heavily damped ballast layer (Thompson
 /// 2009, ch. 3).
 pub const BALLAST_LOSS_FACTOR: f64 = 1.0;
 /// Unsprung mass per wheel of a freight wagon (kg): 600 kg, about half of a
-/// 1.2 t freight wheelset with its bearings (Thompson 2009, ch. 5; Grassie et
-/// al. 1982 use 500-900 kg per wheel).
+/// freight wheelset with its axle boxes (roughly 1.1-1.4 t).
 pub const FREIGHT_UNSPRUNG_MASS: f64 = 600.0;
 
 /// Default frequency sweep of [`ReceptanceModel::resonances`]: from (Hz).
@@ -423,7 +423,8 @@ impl TrackDynamics for ReceptanceModel {
     /// receptances that balance at each peak frequency:
     /// - rail mass-like (`Re alpha_r < 0`) and `|alpha_w| < alpha_c`: the rail's
     ///   effective mass on the contact spring, the wheel nearly at rest
-    ///   ("P1 type", Jenkins et al. 1974; typically 0.5-2 kHz);
+    ///   ("P1 type"; Jenkins, Stephenson, Clayton, Morland, Lyon, *Railw. Eng. J.*
+    ///   3 (1974) 2-16; several hundred Hz to 2 kHz);
     /// - rail spring-like and softer than the contact (`Re alpha_r > alpha_c`):
     ///   the wheel mass on the track, the lowest one being P2 (typically
     ///   50-100 Hz); a higher one lies near the track's sleeper anti-resonance
