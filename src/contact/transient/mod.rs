@@ -378,29 +378,33 @@ impl Transient {
         // The last factorised Jacobian is a good chord matrix for the next
         // step (the patch and the stick/slip pattern change little).
         let mut factor = self.factor.take();
-        for eps in [self.eps, 100.0 * self.eps, 10.0 * self.eps, self.eps] {
-            match self.newton(&pb, &mut s, &mut xi, eps, &mut factor) {
-                Ok(it) => {
-                    iterations += it;
-                    if eps == self.eps {
-                        converged = true;
+        // A direct attempt at eps; if it fails, continuation from the warm
+        // start through 100 eps and 10 eps down to eps.
+        let attempts = [vec![self.eps], vec![100.0 * self.eps, 10.0 * self.eps, self.eps]];
+        for (attempt, sequence) in attempts.iter().enumerate() {
+            if attempt > 0 {
+                s.clone_from(&s_start);
+                xi = xi_start;
+            }
+            converged = true;
+            for &eps in sequence {
+                match self.newton(&pb, &mut s, &mut xi, eps, &mut factor) {
+                    Ok(it) => iterations += it,
+                    Err(h) => {
+                        iterations += h.len();
+                        log.push(format!(
+                            "eps {eps:.1e}: max |R| {:.3e} -> {:.3e} m/s in {} iterations",
+                            h[0],
+                            h[h.len() - 1],
+                            h.len()
+                        ));
+                        converged = false;
                         break;
                     }
                 }
-                Err(h) => {
-                    iterations += h.len();
-                    log.push(format!(
-                        "eps {eps:.1e}: max |R| {:.3e} -> {:.3e} m/s in {} iterations",
-                        h[0],
-                        h[h.len() - 1],
-                        h.len()
-                    ));
-                    if eps == self.eps && log.len() == 1 {
-                        // First failure: restart the continuation from the warm start.
-                        s.clone_from(&s_start);
-                        xi = xi_start;
-                    }
-                }
+            }
+            if converged {
+                break;
             }
         }
         if !converged {
