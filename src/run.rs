@@ -12,7 +12,7 @@ use crate::dynamics::TrackDynamics;
 use crate::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams, hertz_stiffness};
 use crate::growth::growth_passage;
 use crate::growth::roughness::profile_line;
-use crate::growth::spectrum::{amplitudes, wavelengths};
+use crate::growth::spectrum::{amplitudes, growth_rates, wavelengths};
 use crate::hertz::{HertzPatch, HertzShape};
 use crate::metrics::centre_row;
 use crate::metrics::rms_corrugation;
@@ -191,6 +191,8 @@ pub fn run_scene(
         None => Array2::zeros((grid.ny, grid.nx)),
     };
     let steps = d.passage.n_steps();
+    let centre_line = |p: &Array2<f64>| amplitudes(p.row(centre_row(&grid)).as_slice().expect("contiguous row"));
+    let mut spectrum = centre_line(&profile);
     let (mut rows, mut rail, mut histories) = (Vec::new(), Vec::new(), Vec::new());
     let mut summary = RunSummary { passes, cpu_seconds: 0.0, removed_volume: 0.0, max_wear: 0.0, rms_corrugation: 0.0 };
     for pass in 0..passes {
@@ -226,6 +228,10 @@ pub fn run_scene(
         let traffic = (pass + 1) as f64 * m;
         let removed_volume = wear.sum() * grid.dx * grid.dy;
         let rms = rms_corrugation(profile.view(), &grid);
+        let after = centre_line(&profile);
+        // Below 1e-12 m (1 pm) an amplitude is numerical noise.
+        let growth_rate = growth_rates(&spectrum, &after, m, 1e-12);
+        spectrum = after;
         rows.push(PassRow {
             index: pass as i64,
             traffic,
@@ -233,7 +239,8 @@ pub fn run_scene(
             rms_corrugation: rms,
             removed_volume,
             cpu_seconds,
-            spectrum: amplitudes(profile.row(centre_row(&grid)).as_slice().expect("contiguous row")),
+            spectrum: spectrum.clone(),
+            growth_rate,
         });
         let store_every = growth.as_ref().map_or(1, |g| g.store_every);
         if (pass + 1) % store_every == 0 || pass + 1 == passes {

@@ -107,6 +107,13 @@ fn receptance_feedback_changes_the_spectrum_and_is_recorded() {
     assert!(spectrum.row(2).iter().zip(spectrum.row(0).iter()).any(|(a, b)| (a - b).abs() > 1e-3 * b.abs()));
     let profile = read_f64(&f, "rail", "profile").unwrap();
     assert_eq!(profile.shape()[0], 3);
+    // growth_rate of passage k = 20 log10(A_k / A_{k-1}) * 1e5 / m (dB per 1e5 passages).
+    let rate = read_f64(&f, "passes", "growth_rate").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    let m = read_f64(&f, "passes", "traffic_scale").unwrap()[0];
+    for k in 0..wavelengths.len().min(12) {
+        let expected = 20.0 * (spectrum[[2, k]] / spectrum[[1, k]]).log10() * 1e5 / m;
+        assert!((rate[[2, k]] - expected).abs() < 1e-9 * expected.abs().max(1.0), "harmonic {k}");
+    }
 }
 
 #[test]

@@ -255,10 +255,45 @@ def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     return _save(fig, out_dir, "rms_corrugation.png")
 
 
+def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
+    """Corrugation amplitude against wavelength and traffic (growth studies),
+    with the growth rate per wavelength averaged over the run when present."""
+    spec = _find_spectrum(run)
+    if spec is None or spec.sizes.get("pass", 0) < 2:
+        return None
+    with run.pass_table() as ps:
+        traffic = ps["traffic"].values if "traffic" in ps else ps["pass"].values
+        rate = ps["growth_rate"].load() if "growth_rate" in ps else None
+    wl_dim = [d for d in spec.dims if d != "pass"][0]
+    wl_mm = values_in(spec[wl_dim], "mm")
+    keep = np.nanmax(spec.values, axis=0) > 1e-3 * np.nanmax(spec.values)
+    fig = Figure(figsize=(9, 6 if rate is not None else 4), layout="constrained")
+    axes = fig.subplots(2 if rate is not None else 1, 1, squeeze=False)[:, 0]
+    ordered = spec.transpose(wl_dim, "pass")
+    try:
+        amp, label = values_in(ordered, "um")[keep], "amplitude (µm)"
+    except ValueError:  # a spectrum in other units (e.g. a PSD) is drawn as stored
+        amp, label = ordered.values[keep], f"{spec.attrs.get('long_name', 'spectrum')} ({spec.attrs.get('units', '?')})"
+    mesh = axes[0].pcolormesh(traffic, wl_mm[keep], amp, shading="nearest", cmap="magma")
+    fig.colorbar(mesh, ax=axes[0], label=label)
+    axes[0].set(yscale="log", xlabel="traffic (passages)", ylabel="wavelength (mm)",
+                title=f"Corrugation spectrum over traffic\ncontact model: {run.contact_model}")
+    if rate is not None:
+        mean_rate = rate.mean("pass").values
+        # Rates of harmonics far below the dominant ones are noise in dB.
+        strong = np.nanmax(spec.values, axis=0) > 0.05 * np.nanmax(spec.values)
+        axes[1].semilogx(wl_mm[strong], mean_rate[strong], "o-", ms=3)
+        axes[1].axhline(0.0, color="k", lw=0.8)
+        axes[1].set(xlabel="wavelength (mm)", ylabel="growth rate (dB / 1e5 passages)",
+                    title="mean growth rate over the run (harmonics above 5 % of the largest)")
+        axes[1].grid(alpha=0.3, which="both")
+    return _save(fig, out_dir, "spectrogram.png")
+
+
 FigureFn = Callable[[Run, int, Path], "Path | None"]
 RAIL_FIGURES: tuple[FigureFn, ...] = (wear_map, wear_centreline)
 CONTACT_FIGURES: tuple[FigureFn, ...] = (loads, traction_snapshots)
-OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth)
+OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram)
 
 
 def make_figures(path, out_dir, pass_index: int | None = None):

@@ -21,6 +21,18 @@ pub fn amplitudes(line: &[f64]) -> Vec<f64> {
     (1..=n / 2).map(|k| 2.0 * buf[k].norm() / n as f64).collect()
 }
 
+/// Growth rate of each harmonic between two spectra `before` and `after`
+/// (m) separated by `traffic` real passages, in dB per 1e5 passages:
+/// `20 log10(after / before) * 1e5 / traffic`. Harmonics whose amplitude is
+/// below `floor` (m) in either spectrum have no meaningful rate and get 0.
+pub fn growth_rates(before: &[f64], after: &[f64], traffic: f64, floor: f64) -> Vec<f64> {
+    before
+        .iter()
+        .zip(after)
+        .map(|(b, a)| if *b > floor && *a > floor { 20.0 * (a / b).log10() * 1e5 / traffic } else { 0.0 })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -35,5 +47,15 @@ mod tests {
         let k = w.iter().position(|l| (l - 0.015).abs() < 1e-12).unwrap();
         assert!((a[k] - 2e-6).abs() < 1e-15);
         assert!(a.iter().enumerate().filter(|(i, _)| *i != k).all(|(_, v)| *v < 1e-15));
+    }
+
+    #[test]
+    fn growth_rate_in_db_per_1e5_passages() {
+        // Doubling over 1e5 passages is 20 log10(2) = 6.02 dB; halving over
+        // 2e5 is -3.01 dB per 1e5; amplitudes under the floor give 0.
+        let r = growth_rates(&[1e-6, 2e-6, 0.0], &[2e-6, 1e-6, 1e-6], 1e5, 1e-15);
+        assert!((r[0] - 6.0206).abs() < 1e-4 && (r[1] + 6.0206).abs() < 1e-4 && r[2] == 0.0);
+        let r = growth_rates(&[2e-6], &[1e-6], 2e5, 1e-15);
+        assert!((r[0] + 3.0103).abs() < 1e-4);
     }
 }

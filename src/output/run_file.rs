@@ -33,6 +33,9 @@ pub struct PassRow {
     /// Amplitude spectrum of the centre-line profile after the passage (m),
     /// on the record's `wavelengths`.
     pub spectrum: Vec<f64>,
+    /// Growth rate of each harmonic over this passage (dB per 1e5 real
+    /// passages), on the record's `wavelengths`.
+    pub growth_rate: Vec<f64>,
 }
 
 /// A stored rail state.
@@ -143,16 +146,23 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
         g.var_f64(name, &["pass"], v.view().into_dyn(), units, long_name)?;
     }
     g.coord_f64("wavelength", wavelengths, "m", "wavelength of the profile harmonic (stretch length / n)", false)?;
-    let mut spectrum = ndarray::Array2::zeros((rows.len(), wavelengths.len()));
-    for (k, r) in rows.iter().enumerate() {
-        spectrum.row_mut(k).iter_mut().zip(&r.spectrum).for_each(|(d, v)| *d = *v);
-    }
+    let table = |f: fn(&PassRow) -> &Vec<f64>| {
+        let mut a = ndarray::Array2::zeros((rows.len(), wavelengths.len()));
+        for (k, r) in rows.iter().enumerate() {
+            a.row_mut(k).iter_mut().zip(f(r)).for_each(|(d, v)| *d = *v);
+        }
+        a
+    };
+    let dims = ["pass", "wavelength"];
+    let spectrum = table(|r| &r.spectrum);
+    g.var_f64("spectrum", &dims, spectrum.view().into_dyn(), "m", "corrugation amplitude spectrum (centre line)")?;
+    let rate = table(|r| &r.growth_rate);
     g.var_f64(
-        "spectrum",
-        &["pass", "wavelength"],
-        spectrum.view().into_dyn(),
-        "m",
-        "corrugation amplitude spectrum (centre line)",
+        "growth_rate",
+        &dims,
+        rate.view().into_dyn(),
+        "dB/1e5 passages",
+        "growth rate of each harmonic over the passage",
     )?;
     Ok(())
 }
