@@ -86,12 +86,12 @@ pub fn growth_passage(
     let mut spec = spec.clone();
     spec.wear_window = (grid.x_min, grid.x_min + length);
     spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: dynamic_force.clone() });
-    // Extended grid on the same lattice, wide enough for the largest patch.
-    let reach =
-        (shape.patch(spec.loads.max_normal_force().max(spec.loads.normal_force) * 2.0).map(|p| p.a).unwrap_or(0.0)
-            / grid.dx)
-            .ceil() as usize
-            + 2;
+    // Extended grid on the same lattice, wide enough for the largest patch
+    // of this passage (imposed plus dynamic normal force), so no wear is
+    // clipped at its ends.
+    let peak_force = spec.loads.max_normal_force() + dynamic_force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    let a_max = shape.patch(peak_force).map(|p| p.a).unwrap_or(0.0);
+    let reach = (a_max / grid.dx).ceil() as usize + 2;
     let ext = RailGrid {
         x_min: grid.x_min - reach as f64 * grid.dx,
         dx: grid.dx,
