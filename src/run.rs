@@ -177,13 +177,13 @@ pub fn run_scene(
     let mut solver = build_solver(scene, &d.shape);
     let mesh: EllipseMesh = solver.mesh().clone();
     let deposit = WearDeposit::new(&mesh);
-    let growth = scene.growth.clone();
-    let (grid, passes, m) = match &growth {
+    let growth = scene.growth.as_ref();
+    let (grid, passes, m) = match growth {
         Some(g) => (periodic_grid(scene), g.passes, g.traffic_scale),
         None => (d.grid.clone(), 1, 1.0),
     };
     let dynamics = track_dynamics(scene, &d);
-    let mut profile = match &growth {
+    let mut profile = match growth {
         Some(g) => {
             let line = profile_line(&g.roughness, &grid.xs(), grid.nx as f64 * grid.dx);
             Array2::from_shape_fn((grid.ny, grid.nx), |(_, i)| line[i])
@@ -196,11 +196,11 @@ pub fn run_scene(
     let (mut rows, mut rail, mut histories) = (Vec::new(), Vec::new(), Vec::new());
     let mut summary = RunSummary { passes, cpu_seconds: 0.0, removed_volume: 0.0, max_wear: 0.0, rms_corrugation: 0.0 };
     for pass in 0..passes {
-        let keep_history = growth.as_ref().is_none_or(|g| g.contact_history.contains(&pass));
+        let keep_history = growth.is_none_or(|g| g.contact_history.contains(&pass));
         let record_fields = keep_history && scene.output.store_fields;
         let clock = cpu_time::ProcessTime::now();
         let mut report = |done: usize, _: usize| progress(pass * steps + done, passes * steps);
-        let (wear, history) = match &growth {
+        let (wear, history) = match growth {
             None => {
                 let r = run_passage(&d.passage, &d.shape, solver.as_mut(), &deposit, &grid, record_fields, &mut report)
                     .map_err(|source| RunError::Passage { pass, source })?;
@@ -242,7 +242,7 @@ pub fn run_scene(
             spectrum: spectrum.clone(),
             growth_rate,
         });
-        let store_every = growth.as_ref().map_or(1, |g| g.store_every);
+        let store_every = growth.map_or(1, |g| g.store_every);
         if (pass + 1) % store_every == 0 || pass + 1 == passes {
             rail.push(RailSnapshot { index: pass as i64, traffic, profile: profile.clone(), wear: wear.clone() });
         }

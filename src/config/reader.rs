@@ -94,24 +94,42 @@ impl<'a> Section<'a> {
         self.errors.push(ConfigError::new(&k, message));
     }
 
+    /// Takes `key` out of the section: the value converted by `extract`,
+    /// `default` when absent, None (with the error recorded) when missing
+    /// without default or of the wrong type. `expect` describes the allowed
+    /// values for the messages.
+    fn take<T>(
+        &mut self,
+        key: &str,
+        default: Option<T>,
+        expect: &str,
+        extract: impl Fn(Value) -> Result<T, Value>,
+    ) -> Option<T> {
+        match self.table.remove(key) {
+            None => {
+                if default.is_none() {
+                    self.error(key, format!("missing; expected {expect}"));
+                }
+                default
+            }
+            Some(v) => match extract(v) {
+                Ok(t) => Some(t),
+                Err(other) => {
+                    self.error(key, format!("expected {expect}, found {} `{other}`", other.type_str()));
+                    None
+                }
+            },
+        }
+    }
+
     /// A number in `range`; `default` when absent (None = required).
     /// Returns None when missing or invalid (the error is recorded).
     pub fn f64(&mut self, key: &str, default: Option<f64>, range: Range) -> Option<f64> {
-        let v = match self.table.remove(key) {
-            None => match default {
-                Some(d) => d,
-                None => {
-                    self.error(key, format!("missing; expected {}", range.describe()));
-                    return None;
-                }
-            },
-            Some(Value::Float(f)) => f,
-            Some(Value::Integer(i)) => i as f64,
-            Some(other) => {
-                self.error(key, format!("expected {}, found {} `{other}`", range.describe(), other.type_str()));
-                return None;
-            }
-        };
+        let v = self.take(key, default, &range.describe(), |v| match v {
+            Value::Float(f) => Ok(f),
+            Value::Integer(i) => Ok(i as f64),
+            other => Err(other),
+        })?;
         if !range.contains(v) {
             self.error(key, format!("= {v} is out of range; expected {}", range.describe()));
             return None;
@@ -123,20 +141,10 @@ impl<'a> Section<'a> {
     /// An integer in `[lo, hi]`.
     pub fn usize(&mut self, key: &str, default: Option<usize>, lo: usize, hi: usize) -> Option<usize> {
         let expect = format!("an integer in [{lo}, {hi}]");
-        let v = match self.table.remove(key) {
-            None => match default {
-                Some(d) => d as i64,
-                None => {
-                    self.error(key, format!("missing; expected {expect}"));
-                    return None;
-                }
-            },
-            Some(Value::Integer(i)) => i,
-            Some(other) => {
-                self.error(key, format!("expected {expect}, found {} `{other}`", other.type_str()));
-                return None;
-            }
-        };
+        let v = self.take(key, default.map(|d| d as i64), &expect, |v| match v {
+            Value::Integer(i) => Ok(i),
+            other => Err(other),
+        })?;
         if v < lo as i64 || v > hi as i64 {
             self.error(key, format!("= {v} is out of range; expected {expect}"));
             return None;
@@ -148,20 +156,10 @@ impl<'a> Section<'a> {
     /// One of the `allowed` strings.
     pub fn choice(&mut self, key: &str, default: Option<&str>, allowed: &[&str]) -> Option<String> {
         let expect = format!("one of {}", allowed.iter().map(|a| format!("\"{a}\"")).collect::<Vec<_>>().join(", "));
-        let v = match self.table.remove(key) {
-            None => match default {
-                Some(d) => d.to_string(),
-                None => {
-                    self.error(key, format!("missing; expected {expect}"));
-                    return None;
-                }
-            },
-            Some(Value::String(s)) => s,
-            Some(other) => {
-                self.error(key, format!("expected {expect}, found {} `{other}`", other.type_str()));
-                return None;
-            }
-        };
+        let v = self.take(key, default.map(str::to_string), &expect, |v| match v {
+            Value::String(s) => Ok(s),
+            other => Err(other),
+        })?;
         if !allowed.contains(&v.as_str()) {
             self.error(key, format!("= \"{v}\" is not allowed; expected {expect}"));
             return None;
@@ -172,28 +170,20 @@ impl<'a> Section<'a> {
 
     /// A boolean.
     pub fn bool(&mut self, key: &str, default: bool) -> Option<bool> {
-        let v = match self.table.remove(key) {
-            None => default,
-            Some(Value::Boolean(b)) => b,
-            Some(other) => {
-                self.error(key, format!("expected true or false, found {} `{other}`", other.type_str()));
-                return None;
-            }
-        };
+        let v = self.take(key, Some(default), "true or false", |v| match v {
+            Value::Boolean(b) => Ok(b),
+            other => Err(other),
+        })?;
         self.resolved.insert(key.into(), Value::Boolean(v));
         Some(v)
     }
 
     /// Free text.
     pub fn string(&mut self, key: &str, default: &str) -> Option<String> {
-        let v = match self.table.remove(key) {
-            None => default.to_string(),
-            Some(Value::String(s)) => s,
-            Some(other) => {
-                self.error(key, format!("expected a string, found {} `{other}`", other.type_str()));
-                return None;
-            }
-        };
+        let v = self.take(key, Some(default.to_string()), "a string", |v| match v {
+            Value::String(s) => Ok(s),
+            other => Err(other),
+        })?;
         self.resolved.insert(key.into(), Value::String(v.clone()));
         Some(v)
     }

@@ -139,12 +139,10 @@ impl Fastsim {
     /// Solves with the longitudinal force prescribed (lateral creepage and
     /// spin prescribed), finding xi_x.
     pub fn solve_force(&self, input: &StepInput) -> Result<PatchSolution, ContactError> {
+        input.check_friction_limit()?;
         let patch = &input.patch;
         let limit = input.friction * patch.normal_force;
         let force = input.force_x;
-        if force.abs() >= limit {
-            return Err(ContactError::ForceExceedsFriction { force, limit });
-        }
         let at = |xi: f64| {
             let cr = Creepage { x: xi, y: input.creepage_y, spin: input.spin };
             self.solve_creepage(patch, cr, input.friction, input.speed)

@@ -49,6 +49,19 @@ pub struct StepInput {
     pub spin: f64,
 }
 
+impl StepInput {
+    /// The prescribed longitudinal force must stay below the friction limit
+    /// mu N; at or beyond it the patch slides entirely and no creepage
+    /// transmits the force.
+    pub fn check_friction_limit(&self) -> Result<(), ContactError> {
+        let limit = self.friction * self.patch.normal_force;
+        if self.force_x.abs() >= limit {
+            return Err(ContactError::ForceExceedsFriction { force: self.force_x, limit });
+        }
+        Ok(())
+    }
+}
+
 /// Contact fields and resultants of one step, on the mesh elements.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct PatchSolution {

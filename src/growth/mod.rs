@@ -18,7 +18,7 @@ pub mod spectrum;
 use crate::contact::TangentialSolver;
 use crate::dynamics::TrackDynamics;
 use crate::hertz::HertzShape;
-use crate::metrics::{centre_row, rms_corrugation};
+use crate::metrics::centre_row;
 use crate::passage::{PassageError, PassageResult, PassageSpec, PeriodicSignal, run_passage};
 use crate::wear::{RailGrid, WearDeposit};
 use ndarray::Array2;
@@ -92,20 +92,8 @@ pub fn growth_passage(
     let peak_force = spec.loads.max_normal_force() + dynamic_force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     let a_max = shape.patch(peak_force).map(|p| p.a).unwrap_or(0.0);
     let reach = (a_max / grid.dx).ceil() as usize + 2;
-    let ext = RailGrid {
-        x_min: grid.x_min - reach as f64 * grid.dx,
-        dx: grid.dx,
-        nx: grid.nx + 2 * reach,
-        half_width: grid.half_width,
-        dy: grid.dy,
-        ny: grid.ny,
-    };
+    let ext = RailGrid { x_min: grid.x_min - reach as f64 * grid.dx, nx: grid.nx + 2 * reach, ..grid.clone() };
     let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, progress)?;
     let wear = fold_periodic(&passage.wear, &ext, grid);
     Ok(GrowthPass { passage, wear, dynamic_force })
-}
-
-/// rms of the centre-line corrugation (m).
-pub fn rms(profile: &Array2<f64>, grid: &RailGrid) -> f64 {
-    rms_corrugation(profile.view(), grid)
 }

@@ -51,6 +51,40 @@ pub enum ElasticModel {
     Winkler(WinklerElastic),
 }
 
+impl ElasticModel {
+    /// Displacement difference `u` at the element centres of a patch with
+    /// semi-axis `a` (m) under tractions `p` (interleaved).
+    fn displacement(&self, a: f64, p: &[f64], u: &mut [f64]) {
+        match self {
+            ElasticModel::Exact(e) => e.displacement(a, p, u),
+            ElasticModel::Winkler(w) => {
+                let (l1, l2) = w.flexibility(a);
+                for (uk, pk) in u.chunks_exact_mut(2).zip(p.chunks_exact(2)) {
+                    uk[0] = l1 * pk[0];
+                    uk[1] = l2 * pk[1];
+                }
+            }
+        }
+    }
+
+    /// Displacement of the material now at the centres of patch `now`, one
+    /// step earlier (at `x + shift` in patch `old` under tractions `p_old`).
+    fn previous(
+        &mut self,
+        mesh: &EllipseMesh,
+        now: PatchFrame,
+        old: PatchFrame,
+        shift: f64,
+        p_old: &[f64],
+        u_o: &mut [f64],
+    ) {
+        match self {
+            ElasticModel::Exact(e) => e.previous(mesh, now, old, shift, p_old, u_o),
+            ElasticModel::Winkler(w) => w.previous(mesh, now, old, shift, p_old, u_o),
+        }
+    }
+}
+
 /// State carried from one step to the next.
 #[derive(Debug, Clone)]
 struct History {
@@ -176,16 +210,7 @@ impl Transient {
             d[k] = dk;
         }
         let mut u = vec![0.0; 2 * n];
-        match &self.model {
-            ElasticModel::Exact(e) => e.displacement(frame.a, &p, &mut u),
-            ElasticModel::Winkler(w) => {
-                let (l1, l2) = w.flexibility(frame.a);
-                for k in 0..n {
-                    u[2 * k] = l1 * p[2 * k];
-                    u[2 * k + 1] = l2 * p[2 * k + 1];
-                }
-            }
-        }
+        self.model.displacement(frame.a, &p, &mut u);
         let cr = Creepage { x: xi, y: input.creepage_y, spin: input.spin };
         let mut r = vec![0.0; 2 * n];
         for k in 0..n {
@@ -233,8 +258,8 @@ impl Transient {
         }
     }
 
-    /// Newton-Raphson at regularisation `eps` from (s, xi); Ok(iterations) or
-    /// Err(residual history). The factorised Jacobian is reused while it
+    /// Newton-Raphson at regularisation `eps` from (s, xi); Ok(iterations,
+    /// final evaluation) or Err(residual history). The factorised Jacobian is reused while it
     /// keeps reducing the residual fast (chord steps) and refreshed when the
     /// reduction slows or a step fails; the converged solution satisfies the
     /// same tolerance either way.
@@ -245,7 +270,7 @@ impl Transient {
         xi: &mut f64,
         eps: f64,
         factor: &mut Option<Factor>,
-    ) -> Result<usize, Vec<f64>> {
+    ) -> Result<(usize, Eval), Vec<f64>> {
         let (input, frame, area) = (pb.input, pb.frame, pb.area);
         let n = self.mesh.len();
         let v = input.speed;
@@ -258,7 +283,7 @@ impl Transient {
             let r_max = ev.r.iter().fold(0.0f64, |m, r| m.max(r.abs()));
             history.push(r_max);
             if r_max < tol && ev.r_force.abs() < 1e-10 {
-                return Ok(history.len() - 1);
+                return Ok((history.len() - 1, ev));
             }
             let fresh = factor.is_none();
             let f = factor.get_or_insert_with(|| self.factor(frame, input.dt, &ev.d));
@@ -342,13 +367,10 @@ impl Transient {
     }
 
     fn solve_step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
+        input.check_friction_limit()?;
         let n = self.mesh.len();
         let patch = &input.patch;
         let force = input.force_x;
-        let limit = input.friction * patch.normal_force;
-        if force.abs() >= limit {
-            return Err(ContactError::ForceExceedsFriction { force, limit });
-        }
         if input.dt.is_nan() || input.dt <= 0.0 {
             return Err(ContactError::NoConvergence {
                 force,
@@ -362,10 +384,7 @@ impl Transient {
         let (mut s, mut xi) = match &self.history {
             Some(h) => {
                 let shift = input.speed * input.dt;
-                match &mut self.model {
-                    ElasticModel::Exact(e) => e.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o),
-                    ElasticModel::Winkler(w) => w.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o),
-                }
+                self.model.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o);
                 (h.s.clone(), h.xi)
             }
             None => (vec![0.0; 2 * n], 0.0),
@@ -374,7 +393,7 @@ impl Transient {
         let mut log = Vec::new();
         let (s_start, xi_start) = (s.clone(), xi);
         let mut iterations = 0;
-        let mut converged = false;
+        let mut solved: Option<Eval> = None;
         // The last factorised Jacobian is a good chord matrix for the next
         // step (the patch and the stick/slip pattern change little).
         let mut factor = self.factor.take();
@@ -386,10 +405,13 @@ impl Transient {
                 s.clone_from(&s_start);
                 xi = xi_start;
             }
-            converged = true;
+            solved = None;
             for &eps in sequence {
                 match self.newton(&pb, &mut s, &mut xi, eps, &mut factor) {
-                    Ok(it) => iterations += it,
+                    Ok((it, ev)) => {
+                        iterations += it;
+                        solved = Some(ev);
+                    }
                     Err(h) => {
                         iterations += h.len();
                         log.push(format!(
@@ -398,22 +420,23 @@ impl Transient {
                             h[h.len() - 1],
                             h.len()
                         ));
-                        converged = false;
+                        solved = None;
                         break;
                     }
                 }
             }
-            if converged {
+            if solved.is_some() {
                 break;
             }
         }
-        if !converged {
+        // The last eps of every sequence is self.eps: `ev` is the converged
+        // evaluation at the model's regularisation.
+        let Some(ev) = solved else {
             return Err(ContactError::NoConvergence {
                 force,
                 reason: format!("Newton-Raphson on the local slips failed: {}", log.join("; ")),
             });
-        }
-        let ev = self.evaluate(&pb, &s, xi, self.eps);
+        };
         let mut sol = PatchSolution {
             creepage: Creepage { x: xi, y: input.creepage_y, spin: input.spin },
             pressure: p3,
