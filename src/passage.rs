@@ -244,6 +244,14 @@ pub enum PassageError {
     },
 }
 
+/// The previous step's patch, kept for the wear of the interval to the next.
+struct PreviousPatch {
+    x_c: f64,
+    a: f64,
+    b: f64,
+    rates: Vec<f64>,
+}
+
 /// Runs one passage; `progress(done, total)` is called after every step.
 pub fn run_passage(
     spec: &PassageSpec,
@@ -259,7 +267,8 @@ pub fn run_passage(
     let n_el = solver.mesh().len();
     let mut wear = Array2::zeros((grid.ny, grid.nx));
     let mut h = PatchHistory { fields: record_fields.then(|| PatchFields::new(steps, n_el)), ..Default::default() };
-    let mut previous: Option<(f64, f64, f64, Vec<f64>)> = None;
+    // The previous step's patch (x_c, a, b) and wear rates.
+    let mut previous: Option<PreviousPatch> = None;
     solver.reset();
     for n in 0..steps {
         let x = spec.position(n);
@@ -295,8 +304,8 @@ pub fn run_passage(
         check_finite(&sol, n, x)?;
         let rates = archard_rates(spec.k_over_h, &sol);
         let (w0, w1) = spec.wear_window;
-        if let Some((x0, a0, b0, r0)) = previous.as_ref().filter(|p| p.0 >= w0 - 1e-12 && x <= w1 + 1e-12) {
-            let from = PatchWear { x_c: *x0, a: *a0, b: *b0, rates: r0 };
+        if let Some(p) = previous.as_ref().filter(|p| p.x_c >= w0 - 1e-12 && x <= w1 + 1e-12) {
+            let from = PatchWear { x_c: p.x_c, a: p.a, b: p.b, rates: &p.rates };
             let to = PatchWear { x_c: x, a: patch.a, b: patch.b, rates: &rates };
             deposit.accumulate(grid, &mut wear, &from, &to, dt, spec.substeps);
         }
@@ -317,7 +326,7 @@ pub fn run_passage(
         if let Some(f) = h.fields.as_mut() {
             f.set(n, &sol, &rates);
         }
-        previous = Some((x, patch.a, patch.b, rates));
+        previous = Some(PreviousPatch { x_c: x, a: patch.a, b: patch.b, rates });
         progress(n + 1, steps);
     }
     Ok(PassageResult { wear, history: h })
