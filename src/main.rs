@@ -8,9 +8,10 @@ mod progress;
 use clap::{Parser, Subcommand};
 use corrugation::config::{self, Resolved};
 use corrugation::dynamics::TrackDynamics;
+use corrugation::growth::traffic::TrafficScaling;
 use corrugation::loads::LoadQuantity;
 use corrugation::params::ContactModelKind;
-use corrugation::run::{derive, run_scene, track_dynamics};
+use corrugation::run::{ResumeError, RunSummary, derive, run_scene, track_dynamics};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -34,6 +35,19 @@ enum Command {
         /// Override a config key, e.g. --set contact.elements_x=30 (repeatable).
         #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
         set: Vec<String>,
+    },
+    /// Continue a growth study from its run file (a checkpoint or a finished
+    /// run), bit for bit as if it had never stopped.
+    Resume {
+        /// Run file written by `corrugation run` (rewritten atomically).
+        file: PathBuf,
+        /// Passages in all when done (default: the stored growth.passes);
+        /// more than the stored number extends the study.
+        #[arg(long)]
+        passes: Option<usize>,
+        /// Write the continued run here instead of rewriting FILE.
+        #[arg(short, long)]
+        output: Option<PathBuf>,
     },
     /// Validate a config and print derived quantities.
     Check {
@@ -63,6 +77,7 @@ fn main() -> ExitCode {
             let out = output.unwrap_or_else(|| default_output(&config));
             run(&resolved, &out)
         }
+        Command::Resume { file, passes, output } => resume(&file, passes, output.as_deref()),
     }
 }
 
@@ -79,32 +94,68 @@ fn default_output(config: &Path) -> PathBuf {
 }
 
 fn run(resolved: &Resolved, out: &Path) -> ExitCode {
-    let steps = derive(&resolved.scene).passage.n_steps();
     let passes = resolved.scene.growth.as_ref().map_or(1, |g| g.passes);
     let label = if passes == 1 { "passage".to_string() } else { format!("{passes} passages") };
-    let mut bar = progress::Progress::new((steps * passes) as u64, &label);
-    let result = run_scene(resolved, out, &mut |done, _| bar.set(done as u64));
+    let mut bar = progress::Progress::new(&label, resolved.scene.growth.is_some());
+    let result = run_scene(resolved, out, &mut |e| bar.event(e));
     bar.finish();
     match result {
         Ok(s) => {
-            eprintln!(
-                "wrote {}: {} passage(s) of {} steps, last passage: max wear {:.4e} m, removed volume {:.4e} m^3; \
-                 rms corrugation {:.4e} m; {:.3} s CPU",
-                out.display(),
-                s.passes,
-                steps,
-                s.max_wear,
-                s.removed_volume,
-                s.rms_corrugation,
-                s.cpu_seconds
-            );
+            report(&s, out);
             ExitCode::SUCCESS
         }
         Err(e) => {
             eprintln!("error: {e}");
-            eprintln!("nothing was written to {}", out.display());
+            eprintln!("{} was not written (or holds the last checkpoint of a growth study)", out.display());
             ExitCode::from(1)
         }
+    }
+}
+
+fn resume(file: &Path, passes: Option<usize>, output: Option<&Path>) -> ExitCode {
+    let mut bar = progress::Progress::new("resume", true);
+    let result = corrugation::run::resume(file, passes, output, &mut |e| bar.event(e));
+    bar.finish();
+    let out = output.unwrap_or(file);
+    match result {
+        Ok(s) => {
+            report(&s, out);
+            ExitCode::SUCCESS
+        }
+        Err(ResumeError::Run(e)) => {
+            eprintln!("error: {e}");
+            eprintln!("{} holds the last checkpoint", out.display());
+            ExitCode::from(1)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn report(s: &RunSummary, out: &Path) {
+    eprintln!(
+        "wrote {}: {} passage(s) ({} computed now, {:.3} s CPU), traffic {:.4e}; last passage: max wear {:.4e} m, \
+         removed volume {:.4e} m^3; rms corrugation {:.4e} m",
+        out.display(),
+        s.passes,
+        s.computed,
+        s.cpu_seconds,
+        s.traffic,
+        s.max_wear,
+        s.removed_volume,
+        s.rms_corrugation,
+    );
+    let (q, pass) = s.max_update_ratio;
+    if q > s.update_bound {
+        eprintln!(
+            "warning: traffic scaling too coarse: the update of passage {pass} changed the corrugation by {q:.3} of \
+             its amplitude (bound {}); growth rates are off by about {:.0} % and growth beyond a ratio of 1 is \
+             spurious. Lower growth.traffic_scale or set growth.adaptive = true.",
+            s.update_bound,
+            50.0 * q
+        );
     }
 }
 
@@ -170,13 +221,20 @@ fn print_check(r: &Resolved) {
     let secs = p.n_steps() as f64 * (contact + p.substeps as f64 * nodes * 20e-9);
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
     if let Some(g) = &s.growth {
-        println!(
-            "growth             {} passages x traffic scale {} = {:.4e} real passages; dynamics {:?}",
-            g.passes,
-            g.traffic_scale,
-            g.passes as f64 * g.traffic_scale,
-            g.dynamics
-        );
+        match g.traffic {
+            TrafficScaling::Fixed { scale } => println!(
+                "growth             {} passages x traffic scale {scale} = {:.4e} real passages; dynamics {:?}",
+                g.passes,
+                g.passes as f64 * scale,
+                g.dynamics
+            ),
+            TrafficScaling::Adaptive { initial, max, max_update_ratio } => println!(
+                "growth             {} passages, adaptive traffic scale from {initial} up to {max} (update ratio <= \
+                 {max_update_ratio}); dynamics {:?}",
+                g.passes, g.dynamics
+            ),
+        }
+        println!("checkpoints        every {} passages; rail stored every {}", g.checkpoint_every, g.store_every);
         if let Some(t) = track_dynamics(s, &d) {
             for (label, f) in t.describe_resonances() {
                 println!("resonance          {f:8.1} Hz  {label}");

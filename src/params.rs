@@ -154,10 +154,12 @@ pub enum DynamicsKind {
 pub struct GrowthParams {
     /// Simulated passages.
     pub passes: usize,
-    /// Real passages per simulated passage, m (1).
-    pub traffic_scale: f64,
+    /// How many real passages one simulated passage stands for.
+    pub traffic: crate::growth::traffic::TrafficScaling,
     /// Store the rail profile and wear every this many passages (and the last).
     pub store_every: usize,
+    /// Rewrite the run file (a checkpoint) every this many passages.
+    pub checkpoint_every: usize,
     /// Passages whose contact-patch history is stored.
     pub contact_history: Vec<usize>,
     /// Initial irregularity.

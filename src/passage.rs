@@ -165,7 +165,8 @@ impl PatchHistory {
 }
 
 impl PatchFields {
-    fn new(steps: usize, elements: usize) -> Self {
+    /// Zero fields for `steps` steps of `elements` elements.
+    pub fn new(steps: usize, elements: usize) -> Self {
         let z = || Array2::zeros((steps, elements));
         PatchFields {
             pressure: z(),

@@ -1,48 +1,88 @@
 //! Progress report of the command line: an indicatif bar on a terminal, plain
-//! log lines every 10 % otherwise (CI logs, pipes).
+//! log lines otherwise (CI logs, pipes): every 10 % of a single passage, and
+//! for a growth study one line per passage at most every 2 s (and the last),
+//! with passages done / total, ETA and the current rms corrugation.
 
+use corrugation::run::Event;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-/// Progress over a known number of units.
+/// Progress of one run.
 pub struct Progress {
     bar: Option<ProgressBar>,
-    total: u64,
     label: String,
-    next_log: u64,
+    growth: bool,
+    next_log: usize,
     start: Instant,
+    last_line: Option<Instant>,
+    first_pass: Option<usize>,
 }
 
 impl Progress {
-    /// A progress report over `total` units.
-    pub fn new(total: u64, label: &str) -> Self {
+    /// A progress report for a run labelled `label`; `growth` for a
+    /// multi-passage study.
+    pub fn new(label: &str, growth: bool) -> Self {
         let bar = std::io::stderr().is_terminal().then(|| {
-            let b = ProgressBar::new(total);
+            let b = ProgressBar::new(0);
             b.set_style(
-                ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} steps, {elapsed} elapsed, ETA {eta}")
+                ProgressStyle::with_template("{msg} [{bar:30}] {percent}%, {elapsed} elapsed, ETA {eta}")
                     .expect("valid template")
                     .progress_chars("=> "),
             );
             b.set_message(label.to_string());
             b
         });
-        Progress { bar, total, label: label.to_string(), next_log: 0, start: Instant::now() }
+        Progress {
+            bar,
+            label: label.to_string(),
+            growth,
+            next_log: 0,
+            start: Instant::now(),
+            last_line: None,
+            first_pass: None,
+        }
     }
 
-    /// Sets the number of units done.
-    pub fn set(&mut self, done: u64) {
-        match &self.bar {
-            Some(b) => b.set_position(done),
-            None => {
-                if done >= self.next_log || done == self.total {
-                    eprintln!(
-                        "{}: {done}/{} steps ({:.1} s)",
-                        self.label,
-                        self.total,
-                        self.start.elapsed().as_secs_f64()
-                    );
-                    self.next_log = done + (self.total / 10).max(1);
+    /// Reports one event of the run.
+    pub fn event(&mut self, event: Event) {
+        match event {
+            Event::Steps { done, total } => match &self.bar {
+                Some(b) => {
+                    b.set_length(total as u64);
+                    b.set_position(done as u64);
+                }
+                None if !self.growth && (done >= self.next_log || done == total) => {
+                    let secs = self.start.elapsed().as_secs_f64();
+                    eprintln!("{}: {done}/{total} steps ({secs:.1} s)", self.label);
+                    self.next_log = done + (total / 10).max(1);
+                }
+                None => {}
+            },
+            Event::Passage { done, total, traffic, scale, rms, update_ratio } => {
+                let first = *self.first_pass.get_or_insert(done - 1);
+                let elapsed = self.start.elapsed().as_secs_f64();
+                let eta = elapsed / (done - first) as f64 * (total - done) as f64;
+                let text = format!(
+                    "passage {done}/{total}: traffic {traffic:.4e} (m = {scale:.3e}, update ratio {update_ratio:.2e}), \
+                     rms corrugation {rms:.4e} m"
+                );
+                match &self.bar {
+                    Some(b) => b.set_message(text),
+                    None => {
+                        let due = self.last_line.is_none_or(|t| t.elapsed() >= Duration::from_secs(2));
+                        if due || done == total {
+                            eprintln!("{text}; {elapsed:.1} s elapsed, ETA {eta:.0} s");
+                            self.last_line = Some(Instant::now());
+                        }
+                    }
+                }
+            }
+            Event::Checkpoint { done } => {
+                let text = format!("checkpoint written after passage {done}");
+                match &self.bar {
+                    Some(b) => b.println(text),
+                    None => eprintln!("{text}"),
                 }
             }
         }

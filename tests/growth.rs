@@ -65,7 +65,7 @@ fn run_growth(set: &[&str]) -> (tempfile::TempDir, std::path::PathBuf) {
     let r = load_str(GROWTH, "growth", &all).unwrap_or_else(|e| panic!("{e}"));
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("g.h5");
-    run_scene(&r, &out, &mut |_, _| {}).unwrap();
+    run_scene(&r, &out, &mut |_| {}).unwrap();
     (dir, out)
 }
 
@@ -129,8 +129,12 @@ fn growth_config_errors() {
     );
     let e = errors(&["passage.start=0"]);
     assert!(e.iter().any(|m| m.starts_with("passage.start: = 0 m must be <= rail.x_min - a")), "{e:?}");
-    let e = errors(&["growth.contact_history=[40]"]);
-    assert!(e.iter().any(|m| m.contains("growth.contact_history: passage 40 does not exist")), "{e:?}");
+    let e = errors(&["growth.checkpoint_every=0"]);
+    assert!(e.iter().any(|m| m.starts_with("growth.checkpoint_every: ")), "{e:?}");
+    let e = errors(&["growth.adaptive=true", "growth.traffic_scale_max=10"]);
+    assert!(e.iter().any(|m| m.contains("growth.traffic_scale_max: = 10 must be >= growth.traffic_scale")), "{e:?}");
+    let e = errors(&["growth.max_update_ratio=0"]);
+    assert!(e.iter().any(|m| m.starts_with("growth.max_update_ratio: ")), "{e:?}");
     let single = include_str!("../configs/paper_normal_30mm.toml").to_string() + "\n[dynamics]\nmodel = \"imposed\"\n";
     let e = load_str(&single, "x", &[]).unwrap_err();
     assert!(e.to_string().contains("dynamics: is only allowed with a [growth] section"));

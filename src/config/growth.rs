@@ -5,6 +5,7 @@
 use super::ConfigError;
 use super::reader::{Range, Section};
 use crate::growth::roughness::{ProfileHarmonic, Roughness};
+use crate::growth::traffic::{DEFAULT_MAX_UPDATE_RATIO, TrafficScaling};
 use crate::params::{DynamicsKind, GrowthParams};
 use toml::{Table, Value};
 
@@ -22,7 +23,22 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
     let mut s = Section::new(root, "", "growth", errors);
     let passes = s.usize("passes", None, 1, 1_000_000);
     let traffic_scale = s.f64("traffic_scale", Some(1.0), Range::Closed(1.0, 1e9));
+    let adaptive = s.bool("adaptive", false);
+    let scale_max = s.f64("traffic_scale_max", Some(1e9), Range::Closed(1.0, 1e9));
+    let ratio = s.f64("max_update_ratio", Some(DEFAULT_MAX_UPDATE_RATIO), Range::OpenClosed(0.0, 1.0));
+    let traffic = match (traffic_scale, adaptive, scale_max, ratio) {
+        (Some(scale), Some(false), Some(_), Some(_)) => Some(TrafficScaling::Fixed { scale }),
+        (Some(initial), Some(true), Some(max), Some(max_update_ratio)) if initial <= max => {
+            Some(TrafficScaling::Adaptive { initial, max, max_update_ratio })
+        }
+        (Some(initial), Some(true), Some(max), Some(_)) => {
+            s.error("traffic_scale_max", format!("= {max} must be >= growth.traffic_scale = {initial}"));
+            None
+        }
+        _ => None,
+    };
     let store_every = s.usize("store_every", Some(1), 1, 1_000_000);
+    let checkpoint_every = s.usize("checkpoint_every", Some(10), 1, 1_000_000);
     let history = s.usize_list("contact_history", vec![0], 1_000_000);
     resolved.insert("growth".into(), Value::Table(s.finish()));
 
@@ -62,15 +78,24 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
     };
     resolved.insert("dynamics".into(), Value::Table(s.finish()));
 
-    match (passes, traffic_scale, store_every, history, roughness, dynamics) {
+    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics) {
         (
             Some(passes),
-            Some(traffic_scale),
+            Some(traffic),
             Some(store_every),
+            Some(checkpoint_every),
             Some(contact_history),
             Some(roughness),
             Some(dynamics),
-        ) => Ok(Some(GrowthParams { passes, traffic_scale, store_every, contact_history, roughness, dynamics })),
+        ) => Ok(Some(GrowthParams {
+            passes,
+            traffic,
+            store_every,
+            checkpoint_every,
+            contact_history,
+            roughness,
+            dynamics,
+        })),
         _ => Err(()),
     }
 }

@@ -298,12 +298,6 @@ fn check_growth(
             format!("= {end} m must be >= rail.x_max = {x_max} m in a growth study"),
         ));
     }
-    if let Some(k) = g.contact_history.iter().find(|k| **k >= g.passes) {
-        errors.push(ConfigError::new(
-            "growth.contact_history",
-            format!("passage {k} does not exist: growth.passes = {}", g.passes),
-        ));
-    }
 }
 
 fn read_harmonic(s: &mut Section) -> Option<Harmonic> {

@@ -14,6 +14,7 @@
 
 pub mod roughness;
 pub mod spectrum;
+pub mod traffic;
 
 use crate::contact::TangentialSolver;
 use crate::dynamics::TrackDynamics;

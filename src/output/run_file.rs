@@ -2,15 +2,17 @@
 //! file, fsync, rename) so that a reader never sees a half-written file.
 //!
 //! * root attributes: `title`, `version`, `contact_model`, `config` (the
-//!   resolved TOML);
+//!   resolved TOML), `status` ("checkpoint" or "complete"), `passes_done`,
+//!   `passes_planned`;
 //! * group `rail`: coordinates `x`, `y`, `pass`; `traffic(pass)`,
-//!   `profile(pass, y, x)`, `wear(pass, y, x)`;
+//!   `profile(pass, y, x)`, `wear(pass, y, x)`, and `state(y, x)`, the
+//!   profile after the last passage done (what a resumed run starts from);
 //! * group `passes`: one row per simulated passage;
 //! * group `contact/pass_NNNNN`: the patch history of a stored passage.
 
 use super::netcdf::{NcError, NcGroup, write_atomically};
 use crate::contact::EllipseMesh;
-use crate::passage::PatchHistory;
+use crate::passage::{PatchFields, PatchHistory};
 use crate::wear::RailGrid;
 use ndarray::{Array1, Array2, Array3, ArrayView1};
 use std::path::Path;
@@ -30,6 +32,9 @@ pub struct PassRow {
     pub removed_volume: f64,
     /// CPU time of the passage (s).
     pub cpu_seconds: f64,
+    /// Relative profile change of the update, q = m max_k |W_k| / |R_k| (1);
+    /// see [`crate::growth::traffic`].
+    pub update_ratio: f64,
     /// Amplitude spectrum of the centre-line profile after the passage (m),
     /// on the record's `wavelengths`.
     pub spectrum: Vec<f64>,
@@ -51,6 +56,22 @@ pub struct RailSnapshot {
     pub wear: Array2<f64>,
 }
 
+/// The state of a run after some passages: everything a run file holds
+/// that changes from passage to passage, and everything a resumed run
+/// needs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunState {
+    /// Rail surface height change after the passages done, shape (ny, nx)
+    /// (m, wear negative).
+    pub profile: Array2<f64>,
+    /// One row per passage done.
+    pub rows: Vec<PassRow>,
+    /// Stored rail states.
+    pub rail: Vec<RailSnapshot>,
+    /// Stored patch histories: (passage index, history).
+    pub histories: Vec<(i64, PatchHistory)>,
+}
+
 /// Everything a run file holds.
 #[derive(Debug, Clone)]
 pub struct RunRecord<'a> {
@@ -64,14 +85,12 @@ pub struct RunRecord<'a> {
     pub grid: &'a RailGrid,
     /// Contact mesh (normalised).
     pub mesh: &'a EllipseMesh,
-    /// Rows of group `passes`.
-    pub passes: &'a [PassRow],
     /// Wavelengths of the spectra (m), longest first.
     pub wavelengths: &'a [f64],
-    /// Stored rail states.
-    pub rail: &'a [RailSnapshot],
-    /// Stored patch histories: (passage index, history).
-    pub contact: &'a [(i64, &'a PatchHistory)],
+    /// The run's state.
+    pub state: &'a RunState,
+    /// Passages the run will have when complete.
+    pub passes_planned: usize,
 }
 
 /// Writes `record` to `path` atomically.
@@ -82,10 +101,14 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         root.attr_str("program", "corrugation")?;
         root.attr_str("contact_model", record.contact_model)?;
         root.attr_str("config", record.config)?;
+        let done = record.state.rows.len();
+        root.attr_str("status", if done >= record.passes_planned { "complete" } else { "checkpoint" })?;
+        root.attr_i64("passes_done", done as i64)?;
+        root.attr_i64("passes_planned", record.passes_planned as i64)?;
         write_rail(&root.group("rail")?, record)?;
-        write_passes(&root.group("passes")?, record.passes, record.wavelengths)?;
+        write_passes(&root.group("passes")?, &record.state.rows, record.wavelengths)?;
         let contact = root.group("contact")?;
-        for (index, history) in record.contact {
+        for (index, history) in &record.state.histories {
             write_history(&contact.group(&format!("pass_{index:05}"))?, history, record.mesh)?;
         }
         Ok(())
@@ -94,15 +117,16 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
 
 fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
     let grid = r.grid;
+    let rail = &r.state.rail;
     g.coord_f64("x", &grid.xs(), "m", "position along the rail", false)?;
     g.coord_f64("y", &grid.ys(), "m", "lateral position on the rail head", false)?;
-    let idx: Vec<i64> = r.rail.iter().map(|s| s.index).collect();
+    let idx: Vec<i64> = rail.iter().map(|s| s.index).collect();
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
-    let traffic: Array1<f64> = r.rail.iter().map(|s| s.traffic).collect();
+    let traffic: Array1<f64> = rail.iter().map(|s| s.traffic).collect();
     g.var_f64("traffic", &["pass"], traffic.view().into_dyn(), "1", "real wheel passages represented")?;
     let stack = |f: &dyn Fn(&RailSnapshot) -> &Array2<f64>| {
-        let mut a = Array3::zeros((r.rail.len(), grid.ny, grid.nx));
-        for (k, s) in r.rail.iter().enumerate() {
+        let mut a = Array3::zeros((rail.len(), grid.ny, grid.nx));
+        for (k, s) in rail.iter().enumerate() {
             a.index_axis_mut(ndarray::Axis(0), k).assign(f(s));
         }
         a
@@ -123,6 +147,13 @@ fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
         "m",
         "wear depth of one simulated passage (unscaled by traffic)",
     )?;
+    g.var_f64(
+        "state",
+        &["y", "x"],
+        r.state.profile.view().into_dyn(),
+        "m",
+        "rail surface height change after the last passage done (the state a resumed run starts from)",
+    )?;
     Ok(())
 }
 
@@ -130,7 +161,7 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
     let idx: Vec<i64> = rows.iter().map(|r| r.index).collect();
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
     let col = |f: fn(&PassRow) -> f64| -> Array1<f64> { rows.iter().map(f).collect() };
-    let vars: [(&str, Array1<f64>, &str, &str); 5] = [
+    let vars: [(&str, Array1<f64>, &str, &str); 6] = [
         ("traffic", col(|r| r.traffic), "1", "real wheel passages represented"),
         ("traffic_scale", col(|r| r.traffic_scale), "1", "real passages per simulated passage"),
         ("rms_corrugation", col(|r| r.rms_corrugation), "m", "rms of the centre-line rail profile minus its mean"),
@@ -141,6 +172,12 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
             "volume removed from the rail grid by one simulated passage",
         ),
         ("cpu_seconds", col(|r| r.cpu_seconds), "s", "CPU time of the passage"),
+        (
+            "update_ratio",
+            col(|r| r.update_ratio),
+            "1",
+            "relative profile change of the update, m max_k |W_k|/|R_k| over the corrugation harmonics",
+        ),
     ];
     for (name, v, units, long_name) in vars {
         g.var_f64(name, &["pass"], v.view().into_dyn(), units, long_name)?;
@@ -167,33 +204,92 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
     Ok(())
 }
 
+/// Per-step variables of a patch history: (name, units, long_name), in the
+/// order of [`step_columns`].
+pub(super) const STEP_VARS: [(&str, &str, &str); 14] = [
+    ("time", "s", "time since the start of the passage"),
+    ("x_c", "m", "patch centre position along the rail"),
+    ("normal_force", "N", "normal force"),
+    ("longitudinal_force", "N", "longitudinal force on the wheel"),
+    ("creepage_x", "1", "longitudinal creepage (negative for a positive force on the wheel)"),
+    ("creepage_y", "1", "lateral creepage"),
+    ("spin", "1/m", "spin creepage"),
+    ("semi_axis_a", "m", "contact semi-axis along the rail"),
+    ("semi_axis_b", "m", "contact semi-axis across the rail"),
+    ("max_pressure", "Pa", "Hertz maximum pressure p0"),
+    ("stick_fraction", "1", "fraction of elements in stick"),
+    ("wear_volume_rate", "m3/s", "patch integral of the Archard wear rate"),
+    ("newton_iterations", "1", "Newton-Raphson iterations of the contact solve (0 for FASTSIM)"),
+    ("in_contact", "1", "1 in contact, 0 contact lost (N <= 0: no patch, fields zero)"),
+];
+
+/// The columns of [`STEP_VARS`].
+fn step_columns(h: &PatchHistory) -> [&Vec<f64>; 14] {
+    [
+        &h.time,
+        &h.x_c,
+        &h.normal_force,
+        &h.longitudinal_force,
+        &h.creepage_x,
+        &h.creepage_y,
+        &h.spin,
+        &h.semi_axis_a,
+        &h.semi_axis_b,
+        &h.max_pressure,
+        &h.stick_fraction,
+        &h.wear_volume_rate,
+        &h.newton_iterations,
+        &h.in_contact,
+    ]
+}
+
+/// The columns of [`STEP_VARS`], to fill in.
+pub(super) fn step_columns_mut(h: &mut PatchHistory) -> [&mut Vec<f64>; 14] {
+    [
+        &mut h.time,
+        &mut h.x_c,
+        &mut h.normal_force,
+        &mut h.longitudinal_force,
+        &mut h.creepage_x,
+        &mut h.creepage_y,
+        &mut h.spin,
+        &mut h.semi_axis_a,
+        &mut h.semi_axis_b,
+        &mut h.max_pressure,
+        &mut h.stick_fraction,
+        &mut h.wear_volume_rate,
+        &mut h.newton_iterations,
+        &mut h.in_contact,
+    ]
+}
+
+/// Real-valued patch fields on (step, element): (name, units, long_name),
+/// in the order of [`field_columns`]; the `stick` flag (i8) comes after.
+pub(super) const FIELD_VARS: [(&str, &str, &str); 6] = [
+    ("pressure", "Pa", "normal pressure"),
+    ("traction_x", "Pa", "longitudinal traction on the wheel"),
+    ("traction_y", "Pa", "lateral traction on the wheel"),
+    ("slip_x", "m/s", "longitudinal slip velocity of the wheel relative to the rail"),
+    ("slip_y", "m/s", "lateral slip velocity of the wheel relative to the rail"),
+    ("wear_rate", "m/s", "Archard wear rate"),
+];
+
+/// The columns of [`FIELD_VARS`].
+fn field_columns(f: &PatchFields) -> [&Array2<f64>; 6] {
+    [&f.pressure, &f.traction_x, &f.traction_y, &f.slip_x, &f.slip_y, &f.wear_rate]
+}
+
+/// The columns of [`FIELD_VARS`], to fill in.
+pub(super) fn field_columns_mut(f: &mut PatchFields) -> [&mut Array2<f64>; 6] {
+    [&mut f.pressure, &mut f.traction_x, &mut f.traction_y, &mut f.slip_x, &mut f.slip_y, &mut f.wear_rate]
+}
+
 fn write_history(g: &NcGroup, h: &PatchHistory, mesh: &EllipseMesh) -> Result<(), NcError> {
     let steps: Vec<i64> = (0..h.time.len() as i64).collect();
     g.coord_i64("step", &steps, "1", "contact time step", false)?;
     let elements: Vec<i64> = (0..mesh.len() as i64).collect();
     g.coord_i64("element", &elements, "1", "patch element (strip by strip, leading edge first)", false)?;
-    let per_step: [(&str, &Vec<f64>, &str, &str); 14] = [
-        ("time", &h.time, "s", "time since the start of the passage"),
-        ("x_c", &h.x_c, "m", "patch centre position along the rail"),
-        ("normal_force", &h.normal_force, "N", "normal force"),
-        ("longitudinal_force", &h.longitudinal_force, "N", "longitudinal force on the wheel"),
-        ("creepage_x", &h.creepage_x, "1", "longitudinal creepage (negative for a positive force on the wheel)"),
-        ("creepage_y", &h.creepage_y, "1", "lateral creepage"),
-        ("spin", &h.spin, "1/m", "spin creepage"),
-        ("semi_axis_a", &h.semi_axis_a, "m", "contact semi-axis along the rail"),
-        ("semi_axis_b", &h.semi_axis_b, "m", "contact semi-axis across the rail"),
-        ("max_pressure", &h.max_pressure, "Pa", "Hertz maximum pressure p0"),
-        ("stick_fraction", &h.stick_fraction, "1", "fraction of elements in stick"),
-        ("wear_volume_rate", &h.wear_volume_rate, "m3/s", "patch integral of the Archard wear rate"),
-        (
-            "newton_iterations",
-            &h.newton_iterations,
-            "1",
-            "Newton-Raphson iterations of the contact solve (0 for FASTSIM)",
-        ),
-        ("in_contact", &h.in_contact, "1", "1 in contact, 0 contact lost (N <= 0: no patch, fields zero)"),
-    ];
-    for (name, v, units, long_name) in per_step {
+    for ((name, units, long_name), v) in STEP_VARS.iter().zip(step_columns(h)) {
         g.var_f64(name, &["step"], ArrayView1::from(v.as_slice()).into_dyn(), units, long_name)?;
     }
     let d_xi: Vec<f64> = (0..mesh.len()).map(|k| mesh.d_xi[mesh.strip(k)]).collect();
@@ -209,15 +305,7 @@ fn write_history(g: &NcGroup, h: &PatchHistory, mesh: &EllipseMesh) -> Result<()
     }
     if let Some(f) = &h.fields {
         let dims = ["step", "element"];
-        let fields: [(&str, &Array2<f64>, &str, &str); 6] = [
-            ("pressure", &f.pressure, "Pa", "normal pressure"),
-            ("traction_x", &f.traction_x, "Pa", "longitudinal traction on the wheel"),
-            ("traction_y", &f.traction_y, "Pa", "lateral traction on the wheel"),
-            ("slip_x", &f.slip_x, "m/s", "longitudinal slip velocity of the wheel relative to the rail"),
-            ("slip_y", &f.slip_y, "m/s", "lateral slip velocity of the wheel relative to the rail"),
-            ("wear_rate", &f.wear_rate, "m/s", "Archard wear rate"),
-        ];
-        for (name, v, units, long_name) in fields {
+        for ((name, units, long_name), v) in FIELD_VARS.iter().zip(field_columns(f)) {
             g.var_f64(name, &dims, v.view().into_dyn(), units, long_name)?;
         }
         g.var_i8("stick", &dims, f.stick.view().into_dyn(), "1", "adhesion flag")?;

@@ -1,0 +1,142 @@
+//! Reading a run file back as the [`RunState`] a resumed run continues from.
+//!
+//! Everything is read at the stored precision (f64), so a resumed run
+//! starts from exactly the numbers the interrupted one had in memory.
+
+use super::netcdf::{NcError, read_f64, read_i8, read_i64};
+use super::run_file::{FIELD_VARS, PassRow, RailSnapshot, RunState, STEP_VARS, field_columns_mut, step_columns_mut};
+use crate::passage::{PatchFields, PatchHistory};
+use ndarray::{Array2, ArrayD, Axis, Ix1, Ix2, Ix3};
+use std::path::Path;
+
+/// What the reader must know from the run's config to read its state.
+#[derive(Debug, Clone)]
+pub struct StateLayout<'a> {
+    /// Rail grid nodes (ny, nx).
+    pub grid_shape: (usize, usize),
+    /// Number of spectrum wavelengths.
+    pub wavelengths: usize,
+    /// Patch elements.
+    pub elements: usize,
+    /// Whether stored histories carry the patch fields.
+    pub fields: bool,
+    /// Passages whose history the run stores.
+    pub history_passes: &'a [usize],
+}
+
+/// Reads the state of the run file at `path`, checking every shape against
+/// `layout`.
+pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcError> {
+    let invalid = |what: &str, msg: String| NcError::Invalid { path: path.to_owned(), what: what.into(), msg };
+    let dim = |a: ArrayD<f64>, what: &str| -> Result<ndarray::Array1<f64>, NcError> {
+        a.into_dimensionality::<Ix1>().map_err(|e| invalid(what, e.to_string()))
+    };
+    // Group `passes`.
+    let index =
+        read_i64(path, "passes", "pass")?.into_dimensionality::<Ix1>().map_err(|e| invalid("pass", e.to_string()))?;
+    let done = index.len();
+    if index.iter().enumerate().any(|(k, i)| *i != k as i64) {
+        return Err(invalid("passes/pass", "passage indices are not 0, 1, 2, ...".into()));
+    }
+    let column = |name: &str| -> Result<ndarray::Array1<f64>, NcError> {
+        let c = dim(read_f64(path, "passes", name)?, name)?;
+        if c.len() != done {
+            return Err(invalid(name, format!("has {} rows, not {done}", c.len())));
+        }
+        Ok(c)
+    };
+    let table = |name: &str| -> Result<Array2<f64>, NcError> {
+        let t =
+            read_f64(path, "passes", name)?.into_dimensionality::<Ix2>().map_err(|e| invalid(name, e.to_string()))?;
+        if t.dim() != (done, layout.wavelengths) {
+            return Err(invalid(name, format!("has shape {:?}, not ({done}, {})", t.dim(), layout.wavelengths)));
+        }
+        Ok(t)
+    };
+    let [traffic, scale, rms, volume, cpu, ratio] =
+        ["traffic", "traffic_scale", "rms_corrugation", "removed_volume", "cpu_seconds", "update_ratio"].map(column);
+    let (traffic, scale, rms, volume, cpu, ratio) = (traffic?, scale?, rms?, volume?, cpu?, ratio?);
+    let (spectrum, rate) = (table("spectrum")?, table("growth_rate")?);
+    let rows = (0..done)
+        .map(|k| PassRow {
+            index: k as i64,
+            traffic: traffic[k],
+            traffic_scale: scale[k],
+            rms_corrugation: rms[k],
+            removed_volume: volume[k],
+            cpu_seconds: cpu[k],
+            update_ratio: ratio[k],
+            spectrum: spectrum.row(k).to_vec(),
+            growth_rate: rate.row(k).to_vec(),
+        })
+        .collect();
+
+    // Group `rail`.
+    let (ny, nx) = layout.grid_shape;
+    let profile =
+        read_f64(path, "rail", "state")?.into_dimensionality::<Ix2>().map_err(|e| invalid("state", e.to_string()))?;
+    if profile.dim() != (ny, nx) {
+        return Err(invalid(
+            "rail/state",
+            format!("has shape {:?}, not the config's grid ({ny}, {nx})", profile.dim()),
+        ));
+    }
+    let stored =
+        read_i64(path, "rail", "pass")?.into_dimensionality::<Ix1>().map_err(|e| invalid("pass", e.to_string()))?;
+    let rail_traffic = dim(read_f64(path, "rail", "traffic")?, "traffic")?;
+    let stack = |name: &str| -> Result<ndarray::Array3<f64>, NcError> {
+        let a = read_f64(path, "rail", name)?.into_dimensionality::<Ix3>().map_err(|e| invalid(name, e.to_string()))?;
+        if a.dim() != (stored.len(), ny, nx) {
+            return Err(invalid(name, format!("has shape {:?}, not ({}, {ny}, {nx})", a.dim(), stored.len())));
+        }
+        Ok(a)
+    };
+    let (profiles, wear) = (stack("profile")?, stack("wear")?);
+    let rail = (0..stored.len())
+        .map(|k| RailSnapshot {
+            index: stored[k],
+            traffic: rail_traffic[k],
+            profile: profiles.index_axis(Axis(0), k).to_owned(),
+            wear: wear.index_axis(Axis(0), k).to_owned(),
+        })
+        .collect();
+
+    // Group `contact`.
+    let mut histories = Vec::new();
+    for &k in layout.history_passes.iter().filter(|k| **k < done) {
+        let group = format!("contact/pass_{k:05}");
+        histories.push((k as i64, read_history(path, &group, layout)?));
+    }
+    Ok(RunState { profile, rows, rail, histories })
+}
+
+fn read_history(path: &Path, group: &str, layout: &StateLayout) -> Result<PatchHistory, NcError> {
+    let invalid = |what: &str, msg: String| NcError::Invalid { path: path.to_owned(), what: what.into(), msg };
+    let mut h = PatchHistory::default();
+    for ((name, _, _), column) in STEP_VARS.iter().zip(step_columns_mut(&mut h)) {
+        *column = read_f64(path, group, name)?.into_raw_vec_and_offset().0;
+    }
+    let steps = h.time.len();
+    if let Some(((name, _, _), c)) = STEP_VARS.iter().zip(step_columns_mut(&mut h)).find(|(_, c)| c.len() != steps) {
+        return Err(invalid(name, format!("has {} steps, not {steps}", c.len())));
+    }
+    if !layout.fields {
+        return Ok(h);
+    }
+    let mut f = PatchFields::new(steps, layout.elements);
+    for ((name, _, _), column) in FIELD_VARS.iter().zip(field_columns_mut(&mut f)) {
+        let a = read_f64(path, group, name)?.into_dimensionality::<Ix2>().map_err(|e| invalid(name, e.to_string()))?;
+        if a.dim() != column.dim() {
+            return Err(invalid(name, format!("has shape {:?}, not {:?}", a.dim(), column.dim())));
+        }
+        *column = a;
+    }
+    let stick =
+        read_i8(path, group, "stick")?.into_dimensionality::<Ix2>().map_err(|e| invalid("stick", e.to_string()))?;
+    if stick.dim() != f.stick.dim() {
+        return Err(invalid("stick", format!("has shape {:?}, not {:?}", stick.dim(), f.stick.dim())));
+    }
+    f.stick = stick;
+    h.fields = Some(f);
+    Ok(h)
+}

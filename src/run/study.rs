@@ -1,0 +1,355 @@
+//! The pass loop of DESIGN.md section 3, with checkpoints and resume:
+//!
+//! ```text
+//! for each simulated passage n:
+//!     W_n   = passage(r_n)                  (dynamics -> contact -> wear)
+//!     m_n   = traffic scaling(rho(r_n, W_n)) (fixed, or adaptive)
+//!     r_n+1 = r_n - m_n W_n
+//!     record rms, spectrum, growth rate; store / checkpoint
+//! ```
+//!
+//! A checkpoint rewrites the whole run file atomically; it holds the
+//! current profile (`rail/state`), every passage row, the stored snapshots
+//! and histories, and the resolved config, which is all a resumed run
+//! needs. The passage itself carries no state from one passage to the next
+//! (every passage starts with a run-in from a reset solver), so a resumed
+//! run computes bit for bit what the uninterrupted run would have.
+
+use super::{build_solver, derive, periodic_grid, track_dynamics};
+use crate::config::{ConfigErrors, Resolved, load_str};
+use crate::contact::EllipseMesh;
+use crate::dynamics::TrackDynamics;
+use crate::growth::growth_passage;
+use crate::growth::roughness::profile_line;
+use crate::growth::spectrum::{amplitudes, growth_rates, wavelengths};
+use crate::growth::traffic::{TrafficScaling, change_rate};
+use crate::metrics::{centre_row, rms_corrugation};
+use crate::output::checkpoint::{StateLayout, read_run_state};
+use crate::output::netcdf::{NcError, read_attr_str};
+pub use crate::output::run_file::RunState;
+use crate::output::run_file::{PassRow, RailSnapshot, RunRecord, write_run_file};
+use crate::params::Scene;
+use crate::passage::{PassageError, run_passage};
+use crate::wear::{RailGrid, WearDeposit};
+use ndarray::Array2;
+use std::path::{Path, PathBuf};
+
+/// What a run reports while it goes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Event {
+    /// Contact steps done, of the steps this invocation computes.
+    Steps {
+        /// Steps done.
+        done: usize,
+        /// Steps in all.
+        total: usize,
+    },
+    /// A passage finished.
+    Passage {
+        /// Passages done (all, including those before a resume).
+        done: usize,
+        /// Passages the run will have.
+        total: usize,
+        /// Real passages represented so far (1).
+        traffic: f64,
+        /// Real passages this one stood for (1).
+        scale: f64,
+        /// rms corrugation after it (m).
+        rms: f64,
+        /// Relative profile change of its update (1).
+        update_ratio: f64,
+    },
+    /// The run file was rewritten after `done` passages.
+    Checkpoint {
+        /// Passages in the file.
+        done: usize,
+    },
+}
+
+/// Why a run failed.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The physics could not be solved.
+    #[error("passage {pass} failed: {source}")]
+    Passage {
+        /// Simulated passage index.
+        pass: usize,
+        /// Cause.
+        source: PassageError,
+    },
+    /// Writing the run file failed.
+    #[error("{0}")]
+    Output(#[from] NcError),
+}
+
+/// Why a run could not be resumed.
+#[derive(Debug, thiserror::Error)]
+pub enum ResumeError {
+    /// The file could not be read as a run file.
+    #[error("cannot resume from {path}: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Cause.
+        source: NcError,
+    },
+    /// The config stored in the file is not valid (any more).
+    #[error("cannot resume from {path}: its stored config is not valid:\n{source}")]
+    Config {
+        /// The file.
+        path: PathBuf,
+        /// The problems.
+        source: ConfigErrors,
+    },
+    /// The file is a single-passage run.
+    #[error("cannot resume from {path}: it is a single-passage run, not a growth study (no [growth] section)")]
+    NotGrowth {
+        /// The file.
+        path: PathBuf,
+    },
+    /// Fewer passages asked for than the file already has.
+    #[error("cannot resume from {path}: --passes {asked} is below the {done} passages it already holds")]
+    Passes {
+        /// The file.
+        path: PathBuf,
+        /// Passages asked for.
+        asked: usize,
+        /// Passages in the file.
+        done: usize,
+    },
+    /// The resumed run failed (nothing more was written than its checkpoints).
+    #[error("{0}")]
+    Run(#[from] RunError),
+}
+
+/// Summary of a finished run.
+#[derive(Debug, Clone)]
+pub struct RunSummary {
+    /// Passages in the run file.
+    pub passes: usize,
+    /// Passages computed by this invocation.
+    pub computed: usize,
+    /// CPU seconds of the passages computed by this invocation.
+    pub cpu_seconds: f64,
+    /// Volume removed by the last simulated passage, unscaled (m^3).
+    pub removed_volume: f64,
+    /// Maximum wear depth of the last simulated passage computed (m).
+    pub max_wear: f64,
+    /// rms corrugation of the final profile (m).
+    pub rms_corrugation: f64,
+    /// Real passages represented (1).
+    pub traffic: f64,
+    /// Largest relative profile change of an update, and its passage.
+    pub max_update_ratio: (f64, usize),
+    /// The bound the update ratio should stay under (1).
+    pub update_bound: f64,
+}
+
+/// Runs the scene (one passage, or a growth study over `growth.passes`
+/// passages) and writes the run file to `out`, with checkpoints.
+pub fn run_scene(resolved: &Resolved, out: &Path, progress: &mut dyn FnMut(Event)) -> Result<RunSummary, RunError> {
+    let scene = &resolved.scene;
+    let grid = study_grid(scene);
+    let profile = match &scene.growth {
+        Some(g) => {
+            let line = profile_line(&g.roughness, &grid.xs(), grid.nx as f64 * grid.dx);
+            Array2::from_shape_fn((grid.ny, grid.nx), |(_, i)| line[i])
+        }
+        None => Array2::zeros((grid.ny, grid.nx)),
+    };
+    let state = RunState { profile, rows: Vec::new(), rail: Vec::new(), histories: Vec::new() };
+    continue_run(resolved, state, out, progress)
+}
+
+/// Continues the growth study in the run file `path` up to `passes`
+/// passages in all (default: the stored config's `growth.passes`), writing
+/// to `out` (default: `path` itself, rewritten atomically).
+pub fn resume(
+    path: &Path,
+    passes: Option<usize>,
+    out: Option<&Path>,
+    progress: &mut dyn FnMut(Event),
+) -> Result<RunSummary, ResumeError> {
+    let read = |source| ResumeError::Read { path: path.to_owned(), source };
+    let toml = read_attr_str(path, "", "config").map_err(read)?;
+    let source = format!("stored in {}", path.display());
+    let overrides: Vec<String> = passes.map(|n| format!("growth.passes={n}")).into_iter().collect();
+    let resolved =
+        load_str(&toml, &source, &overrides).map_err(|source| ResumeError::Config { path: path.to_owned(), source })?;
+    let scene = &resolved.scene;
+    let Some(growth) = &scene.growth else {
+        return Err(ResumeError::NotGrowth { path: path.to_owned() });
+    };
+    let grid = study_grid(scene);
+    let d = derive(scene);
+    let elements = build_solver(scene, &d.shape).mesh().len();
+    let layout = StateLayout {
+        grid_shape: (grid.ny, grid.nx),
+        wavelengths: wavelengths(grid.nx, grid.dx).len(),
+        elements,
+        fields: scene.output.store_fields,
+        history_passes: &growth.contact_history,
+    };
+    let mut state = read_run_state(path, &layout).map_err(read)?;
+    let done = state.rows.len();
+    if growth.passes < done {
+        return Err(ResumeError::Passes { path: path.to_owned(), asked: growth.passes, done });
+    }
+    // A snapshot stored only because the earlier run ended there is not one
+    // the longer run stores.
+    if growth.passes > done
+        && let Some(last) = state.rail.last()
+        && (last.index as usize + 1) % growth.store_every != 0
+    {
+        state.rail.pop();
+    }
+    Ok(continue_run(&resolved, state, out.unwrap_or(path), progress)?)
+}
+
+/// The rail grid of a scene: periodic for a growth study.
+fn study_grid(scene: &Scene) -> RailGrid {
+    match scene.growth {
+        Some(_) => periodic_grid(scene),
+        None => derive(scene).grid,
+    }
+}
+
+/// Runs the passages from `state.rows.len()` to the planned number, with
+/// checkpoints, and writes the run file.
+fn continue_run(
+    resolved: &Resolved,
+    mut state: RunState,
+    out: &Path,
+    progress: &mut dyn FnMut(Event),
+) -> Result<RunSummary, RunError> {
+    let scene = &resolved.scene;
+    let d = derive(scene);
+    let mut solver = build_solver(scene, &d.shape);
+    let mesh: EllipseMesh = solver.mesh().clone();
+    let deposit = WearDeposit::new(&mesh);
+    let growth = scene.growth.as_ref();
+    let grid = study_grid(scene);
+    let passes = growth.map_or(1, |g| g.passes);
+    let scaling = growth.map_or(TrafficScaling::Fixed { scale: 1.0 }, |g| g.traffic);
+    let dynamics = track_dynamics(scene, &d);
+    let steps = d.passage.n_steps();
+    let first = state.rows.len();
+    let waves = wavelengths(grid.nx, grid.dx);
+    let centre = centre_row(&grid);
+    let line = |p: &Array2<f64>| p.row(centre).to_vec();
+    let write = |state: &RunState| {
+        let title = if scene.output.title.is_empty() { "corrugation run" } else { scene.output.title.as_str() };
+        let record = RunRecord {
+            title,
+            contact_model: scene.contact.model.name(),
+            config: &resolved.toml,
+            grid: &grid,
+            mesh: &mesh,
+            wavelengths: &waves,
+            state,
+            passes_planned: passes,
+        };
+        write_run_file(out, &record)
+    };
+    let mut summary = RunSummary {
+        passes,
+        computed: passes - first,
+        cpu_seconds: 0.0,
+        removed_volume: state.rows.last().map_or(0.0, |r| r.removed_volume),
+        max_wear: 0.0,
+        rms_corrugation: rms_corrugation(state.profile.view(), &grid),
+        traffic: state.rows.last().map_or(0.0, |r| r.traffic),
+        max_update_ratio: (0.0, 0),
+        update_bound: scaling.max_update_ratio(),
+    };
+    for pass in first..passes {
+        let keep_history = growth.is_none_or(|g| g.contact_history.contains(&pass));
+        let record_fields = keep_history && scene.output.store_fields;
+        let clock = cpu_time::ProcessTime::now();
+        let total_steps = (passes - first) * steps;
+        let mut report =
+            |done: usize, _: usize| progress(Event::Steps { done: (pass - first) * steps + done, total: total_steps });
+        let (wear, history) = match growth {
+            None => {
+                let r = run_passage(&d.passage, &d.shape, solver.as_mut(), &deposit, &grid, record_fields, &mut report)
+                    .map_err(|source| RunError::Passage { pass, source })?;
+                (r.wear, r.history)
+            }
+            Some(_) => {
+                let g = growth_passage(
+                    &d.passage,
+                    &d.shape,
+                    solver.as_mut(),
+                    &deposit,
+                    &grid,
+                    &state.profile,
+                    dynamics.as_ref().map(|t| t as &dyn TrackDynamics),
+                    record_fields,
+                    &mut report,
+                )
+                .map_err(|source| RunError::Passage { pass, source })?;
+                (g.wear, g.passage.history)
+            }
+        };
+        let cpu_seconds = clock.elapsed().as_secs_f64();
+        // With imposed dynamics the wear does not depend on the profile: the
+        // update is exact for any m (growth::traffic).
+        let rho = if dynamics.is_some() { change_rate(&line(&state.profile), &line(&wear)) } else { 0.0 };
+        let previous = state.rows.last();
+        let m = scaling.scale(previous.map(|r| r.traffic_scale), rho);
+        let before = match previous {
+            Some(r) => r.spectrum.clone(),
+            None => amplitudes(&line(&state.profile)),
+        };
+        let traffic = previous.map_or(0.0, |r| r.traffic) + m;
+        state.profile.scaled_add(-m, &wear);
+        let spectrum = amplitudes(&line(&state.profile));
+        let row = PassRow {
+            index: pass as i64,
+            traffic,
+            traffic_scale: m,
+            rms_corrugation: rms_corrugation(state.profile.view(), &grid),
+            removed_volume: wear.sum() * grid.dx * grid.dy,
+            cpu_seconds,
+            update_ratio: m * rho,
+            // Below 1e-12 m (1 pm) an amplitude is numerical noise.
+            growth_rate: growth_rates(&before, &spectrum, m, 1e-12),
+            spectrum,
+        };
+        progress(Event::Passage {
+            done: pass + 1,
+            total: passes,
+            traffic,
+            scale: m,
+            rms: row.rms_corrugation,
+            update_ratio: row.update_ratio,
+        });
+        summary.cpu_seconds += cpu_seconds;
+        summary.removed_volume = row.removed_volume;
+        summary.max_wear = wear.iter().cloned().fold(0.0, f64::max);
+        summary.rms_corrugation = row.rms_corrugation;
+        summary.traffic = traffic;
+        let store_every = growth.map_or(1, |g| g.store_every);
+        if (pass + 1) % store_every == 0 || pass + 1 == passes {
+            state.rail.push(RailSnapshot { index: pass as i64, traffic, profile: state.profile.clone(), wear });
+        }
+        if keep_history {
+            state.histories.push((pass as i64, history));
+        }
+        state.rows.push(row);
+        if let Some(g) = growth
+            && (pass + 1) % g.checkpoint_every == 0
+            && pass + 1 < passes
+        {
+            write(&state)?;
+            progress(Event::Checkpoint { done: pass + 1 });
+        }
+    }
+    write(&state)?;
+    summary.max_update_ratio = state
+        .rows
+        .iter()
+        .map(|r| (r.update_ratio, r.index as usize))
+        .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a });
+    Ok(summary)
+}
