@@ -199,7 +199,7 @@ pub fn resume(
     // the longer run stores.
     if growth.passes > done
         && let Some(last) = state.rail.last()
-        && (last.index as usize + 1) % growth.store_every != 0
+        && !(last.index as usize + 1).is_multiple_of(growth.store_every)
     {
         state.rail.pop();
     }

@@ -1,0 +1,155 @@
+//! Checkpoints and resume: a resumed growth study is bit for bit the study
+//! that was never interrupted, also after a kill -9.
+use corrugation::config::load_str;
+use corrugation::output::netcdf::{read_attr_str, read_f64, read_i64};
+use corrugation::run::{resume, run_scene};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+const GROWTH: &str = include_str!("../configs/growth_fastsim.toml");
+
+/// The coarse growth study of the tests (about 0.05 s per passage).
+fn overrides(extra: &[&str]) -> Vec<String> {
+    let coarse =
+        ["contact.elements_x=6", "contact.elements_y=6", "rail.dx=5e-4", "rail.dy=1e-3", "passage.step_length=5e-4"];
+    coarse.iter().chain(extra).map(|s| s.to_string()).collect()
+}
+
+fn run(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
+    let r = load_str(GROWTH, "growth", &overrides(extra)).unwrap_or_else(|e| panic!("{e}"));
+    let out = dir.join(name);
+    run_scene(&r, &out, &mut |_| {}).unwrap();
+    out
+}
+
+/// Every dataset of the file as raw bits, by path (`passes/cpu_seconds`, a
+/// wall-clock measurement, left out), and the root attributes.
+fn contents(path: &Path) -> Vec<(String, Vec<u64>)> {
+    use hdf5::types::{IntSize, TypeDescriptor as TD};
+    fn walk(g: &hdf5::Group, prefix: &str, out: &mut Vec<(String, Vec<u64>)>) {
+        let mut names = g.member_names().unwrap();
+        names.sort();
+        for name in names {
+            let full = format!("{prefix}/{name}");
+            if let Ok(sub) = g.group(&name) {
+                walk(&sub, &full, out);
+                continue;
+            }
+            if full == "/passes/cpu_seconds" {
+                continue;
+            }
+            let ds = g.dataset(&name).unwrap();
+            let bits: Vec<u64> = match ds.dtype().unwrap().to_descriptor().unwrap() {
+                TD::Float(_) => ds.read_raw::<f64>().unwrap().iter().map(|v| v.to_bits()).collect(),
+                TD::Integer(IntSize::U8) => ds.read_raw::<i64>().unwrap().iter().map(|v| *v as u64).collect(),
+                TD::Integer(IntSize::U1) => ds.read_raw::<i8>().unwrap().iter().map(|v| *v as u64).collect(),
+                other => panic!("{full}: unexpected type {other:?}"),
+            };
+            out.push((full, bits));
+        }
+    }
+    let file = hdf5::File::open(path).unwrap();
+    let mut out = Vec::new();
+    walk(&file.group("/").unwrap(), "", &mut out);
+    for attr in ["config", "status", "contact_model", "title"] {
+        let text = read_attr_str(path, "", attr).unwrap();
+        out.push((format!("@{attr}"), text.bytes().map(u64::from).collect()));
+    }
+    out
+}
+
+fn assert_same(a: &Path, b: &Path) {
+    let (ca, cb) = (contents(a), contents(b));
+    let names = |c: &[(String, Vec<u64>)]| c.iter().map(|(n, _)| n.clone()).collect::<Vec<_>>();
+    assert_eq!(names(&ca), names(&cb), "same variables");
+    for ((name, x), (_, y)) in ca.iter().zip(&cb) {
+        assert!(x == y, "{name} differs between {} and {}", a.display(), b.display());
+    }
+}
+
+#[test]
+fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
+    // 4 passages straight, against 2 + resume to 4. store_every = 3 makes the
+    // short run store an end-of-run snapshot (passage 1) that the long run
+    // does not have; contact_history = [0, 3] asks for a history the short
+    // run does not reach; the patch fields are stored.
+    let dir = tempfile::tempdir().unwrap();
+    let set = ["growth.store_every=3", "growth.contact_history=[0, 3]", "output.store_fields=true"];
+    let full = run(dir.path(), "full.h5", &[&set[..], &["growth.passes=4"]].concat());
+    let part = run(dir.path(), "part.h5", &[&set[..], &["growth.passes=2"]].concat());
+    assert_eq!(read_attr_str(&part, "", "status").unwrap(), "complete");
+    let resumed = dir.path().join("resumed.h5");
+    let s = resume(&part, Some(4), Some(&resumed), &mut |_| {}).unwrap();
+    assert_eq!((s.passes, s.computed), (4, 2));
+    assert_same(&full, &resumed);
+    assert_eq!(read_i64(&resumed, "rail", "pass").unwrap().as_slice().unwrap(), &[2, 3]);
+    // The source file is left as it was.
+    assert_eq!(read_f64(&part, "passes", "traffic").unwrap().len(), 2);
+    // In place, and an adaptive study (its m depends on the stored rows).
+    let adaptive = ["growth.adaptive=true", "growth.traffic_scale=1e3", "growth.contact_history=[]"];
+    let full = run(dir.path(), "afull.h5", &[&adaptive[..], &["growth.passes=5"]].concat());
+    let part = run(dir.path(), "apart.h5", &[&adaptive[..], &["growth.passes=3"]].concat());
+    resume(&part, Some(5), None, &mut |_| {}).unwrap();
+    assert_same(&full, &part);
+    let m = read_f64(&full, "passes", "traffic_scale").unwrap();
+    assert!(m[1] > m[0], "adaptive m grows: {m:?}");
+}
+
+#[test]
+fn killed_run_resumes_from_its_last_checkpoint() {
+    let dir = tempfile::tempdir().unwrap();
+    let set = ["growth.passes=40", "growth.checkpoint_every=2", "growth.store_every=4"];
+    let reference = run(dir.path(), "reference.h5", &set);
+    let out = dir.path().join("killed.h5");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_corrugation"));
+    cmd.arg("run").arg("configs/growth_fastsim.toml").arg("-o").arg(&out);
+    for s in overrides(&set) {
+        cmd.arg("--set").arg(s);
+    }
+    let mut child = cmd.stderr(std::process::Stdio::null()).spawn().unwrap();
+    // Kill -9 once the second checkpoint (4 passages) is on disk.
+    let clock = Instant::now();
+    let done = loop {
+        let done = out.exists().then(|| read_f64(&out, "passes", "traffic").map(|t| t.len()).unwrap_or(0));
+        if done.unwrap_or(0) >= 4 || clock.elapsed() > Duration::from_secs(120) {
+            break done;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let done = done.expect("a checkpoint appeared");
+    // The file at the moment of the kill is a valid checkpoint.
+    let held = read_f64(&out, "passes", "traffic").unwrap().len();
+    assert!(held >= done && held % 2 == 0 && held < 40, "killed at a checkpoint (every 2 passages): {held}");
+    assert_eq!(read_attr_str(&out, "", "status").unwrap(), "checkpoint");
+    let status = Command::new(env!("CARGO_BIN_EXE_corrugation")).arg("resume").arg(&out).output().unwrap();
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
+    assert_same(&reference, &out);
+}
+
+#[test]
+fn resume_refuses_what_it_cannot_continue() {
+    let dir = tempfile::tempdir().unwrap();
+    let part = run(dir.path(), "part.h5", &["growth.passes=2", "growth.contact_history=[]"]);
+    let resume_cli = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_corrugation")).arg("resume").args(args).output().unwrap();
+        (o.status.code(), String::from_utf8_lossy(&o.stderr).to_string())
+    };
+    let before = std::fs::read(&part).unwrap();
+    let (code, err) = resume_cli(&[part.to_str().unwrap(), "--passes", "1"]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("--passes 1 is below the 2 passages it already holds"), "{err}");
+    assert_eq!(std::fs::read(&part).unwrap(), before, "file untouched");
+    let missing = dir.path().join("missing.h5");
+    let (code, err) = resume_cli(&[missing.to_str().unwrap()]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("cannot resume from") && err.contains("missing.h5"), "{err}");
+    let single = dir.path().join("single.h5");
+    let r = load_str(include_str!("../configs/paper_steady.toml"), "steady", &[]).unwrap();
+    run_scene(&r, &single, &mut |_| {}).unwrap();
+    let (code, err) = resume_cli(&[single.to_str().unwrap()]);
+    assert_eq!(code, Some(2));
+    assert!(err.contains("single-passage run, not a growth study"), "{err}");
+}
