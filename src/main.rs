@@ -148,7 +148,7 @@ fn report(s: &RunSummary, out: &Path) {
         s.rms_corrugation,
     );
     let (q, pass) = s.max_update_ratio;
-    if q > s.update_bound {
+    if q > s.update_bound * (1.0 + 1e-9) {
         eprintln!(
             "warning: traffic scaling too coarse: the update of passage {pass} changed the corrugation by {q:.3} of \
              its amplitude (bound {}); growth rates are off by about {:.0} % and growth beyond a ratio of 1 is \

@@ -59,6 +59,7 @@ fn run_growth(set: &[&str]) -> (tempfile::TempDir, std::path::PathBuf) {
     let mut all: Vec<String> =
         ["contact.elements_x=6", "contact.elements_y=6", "rail.dx=5e-4", "rail.dy=1e-3", "passage.step_length=5e-4"]
             .iter()
+            .chain(&["growth.adaptive=false", "growth.traffic_scale=2e4"])
             .map(|s| s.to_string())
             .collect();
     all.extend(set.iter().map(|s| s.to_string()));
@@ -138,4 +139,51 @@ fn growth_config_errors() {
     let single = include_str!("../configs/paper_normal_30mm.toml").to_string() + "\n[dynamics]\nmodel = \"imposed\"\n";
     let e = load_str(&single, "x", &[]).unwrap_err();
     assert!(e.to_string().contains("dynamics: is only allowed with a [growth] section"));
+}
+
+/// Growth rate of the 40 mm harmonic per real passage over a study of
+/// `passes` passages (dB per 1e5 passages), and the run's largest update
+/// ratio.
+fn rate_40mm(set: &[&str]) -> (f64, f64) {
+    let harmonic = ["roughness.kind=harmonics", "roughness.harmonics=[{amplitude=1e-6, wavelength=0.04}]"];
+    let (_d, f) = run_growth(&[&harmonic[..], &["growth.contact_history=[]"], set].concat());
+    let waves = read_f64(&f, "passes", "wavelength").unwrap();
+    let k = waves.iter().position(|w| (w - 0.04).abs() < 1e-9).unwrap();
+    let spectrum = read_f64(&f, "passes", "spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    let traffic = read_f64(&f, "passes", "traffic").unwrap();
+    let last = traffic.len() - 1;
+    let rate = 20.0 * (spectrum[[last, k]] / 1e-6).log10() * 1e5 / traffic[last];
+    let q = read_f64(&f, "passes", "update_ratio").unwrap().iter().fold(0.0f64, |a, b| a.max(*b));
+    (rate, q)
+}
+
+#[test]
+fn traffic_scaling_keeps_the_growth_rate_until_the_criterion_flags_it() {
+    // Receptance feedback on a 1 um, 40 mm harmonic (it decays at about
+    // -0.39 dB per 1e5 passages on this coarse mesh). Three passages with
+    // m = 1, 10, 100 give the same rate per real passage (within 5 %); the
+    // update ratio q (growth::traffic) stays under the 0.05 bound. Where the
+    // rate is off by more than 5 %, q is over the bound; at m = 1e6 (q ~ 0.6)
+    // the Euler update turns the decay into spurious growth.
+    let bound = corrugation::growth::traffic::DEFAULT_MAX_UPDATE_RATIO;
+    let (reference, q1) = rate_40mm(&["growth.passes=3", "growth.traffic_scale=1"]);
+    assert!(reference < -0.1, "the harmonic decays: {reference}");
+    assert!(q1 < 1e-5);
+    let mut flagged = 0;
+    for m in ["10", "100", "1e4", "1e6"] {
+        let (rate, q) = rate_40mm(&["growth.passes=3", &format!("growth.traffic_scale={m}")]);
+        let error = (rate / reference - 1.0).abs();
+        if ["10", "100"].contains(&m) {
+            assert!(error < 0.05 && q < bound, "m = {m}: rate {rate} vs {reference}, q = {q}");
+        }
+        if error > 0.05 {
+            assert!(q > bound, "m = {m}: rate off by {error:.3} but the criterion did not flag it (q = {q})");
+            flagged += 1;
+        }
+    }
+    assert_eq!(flagged, 1, "m = 1e6 is flagged");
+    // Adaptive m from 1e3 doubles up to the bound and keeps the rate.
+    let (rate, q) = rate_40mm(&["growth.passes=10", "growth.traffic_scale=1e3", "growth.adaptive=true"]);
+    assert!(q <= bound * (1.0 + 1e-12), "q = {q}");
+    assert!((rate / reference - 1.0).abs() < 0.05, "adaptive: {rate} vs {reference}");
 }

@@ -9,6 +9,9 @@ use crate::growth::traffic::{DEFAULT_MAX_UPDATE_RATIO, TrafficScaling};
 use crate::params::{DynamicsKind, GrowthParams};
 use toml::{Table, Value};
 
+/// Keys of `roughness.kind = "random"`.
+const RANDOM_KEYS: [&str; 4] = ["seed", "rms", "wavelength_min", "wavelength_max"];
+
 /// Reads the growth sections; `Ok(None)` for a single-passage scene, `Err`
 /// when a key is invalid (the errors are recorded).
 pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError>) -> Result<Option<GrowthParams>, ()> {
@@ -44,24 +47,29 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
 
     let mut s = Section::new(root, "", "roughness", errors);
     let kind = s.choice("kind", Some("none"), &["none", "harmonics", "random"]);
-    let roughness = match kind.as_deref() {
-        Some("harmonics") => s.array_of_tables("harmonics", read_harmonic).map(Roughness::Harmonics),
-        Some("random") => {
-            let seed = s.usize("seed", None, 0, usize::MAX >> 1);
-            let rms = s.f64("rms", None, Range::NonNegative);
-            let lo = s.f64("wavelength_min", None, Range::Positive);
-            let hi = s.f64("wavelength_max", None, Range::Positive);
-            match (seed, rms, lo, hi) {
-                (Some(seed), Some(rms), Some(lo), Some(hi)) if lo <= hi => {
-                    Some(Roughness::Random { seed: seed as u64, rms, wavelength_min: lo, wavelength_max: hi })
-                }
-                (Some(_), Some(_), Some(lo), Some(hi)) => {
-                    s.error("wavelength_max", format!("= {hi} must be >= roughness.wavelength_min = {lo}"));
-                    None
-                }
-                _ => None,
+    // The keys of the other kinds may stay (validated, unused), so that
+    // --set roughness.kind=... can switch kinds.
+    let harmonics = (kind.as_deref() == Some("harmonics") || s.has("harmonics"))
+        .then(|| s.array_of_tables("harmonics", read_harmonic));
+    let random = (kind.as_deref() == Some("random") || RANDOM_KEYS.iter().any(|k| s.has(k))).then(|| {
+        let seed = s.usize("seed", None, 0, usize::MAX >> 1);
+        let rms = s.f64("rms", None, Range::NonNegative);
+        let lo = s.f64("wavelength_min", None, Range::Positive);
+        let hi = s.f64("wavelength_max", None, Range::Positive);
+        match (seed, rms, lo, hi) {
+            (Some(seed), Some(rms), Some(lo), Some(hi)) if lo <= hi => {
+                Some(Roughness::Random { seed: seed as u64, rms, wavelength_min: lo, wavelength_max: hi })
             }
+            (Some(_), Some(_), Some(lo), Some(hi)) => {
+                s.error("wavelength_max", format!("= {hi} must be >= roughness.wavelength_min = {lo}"));
+                None
+            }
+            _ => None,
         }
+    });
+    let roughness = match kind.as_deref() {
+        Some("harmonics") => harmonics.flatten().map(Roughness::Harmonics),
+        Some("random") => random.flatten(),
         Some(_) => Some(Roughness::None),
         None => None,
     };

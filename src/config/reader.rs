@@ -88,6 +88,11 @@ impl<'a> Section<'a> {
         format!("{}.{key}", self.path)
     }
 
+    /// Whether `key` is (still) in the section.
+    pub fn has(&self, key: &str) -> bool {
+        self.table.contains_key(key)
+    }
+
     /// Records an error on `key`.
     pub fn error(&mut self, key: &str, message: String) {
         let k = self.key(key);
