@@ -123,7 +123,7 @@ fn killed_run_resumes_from_its_last_checkpoint() {
     let done = done.expect("a checkpoint appeared");
     // The file at the moment of the kill is a valid checkpoint.
     let held = read_f64(&out, "passes", "traffic").unwrap().len();
-    assert!(held >= done && held % 2 == 0 && held < 40, "killed at a checkpoint (every 2 passages): {held}");
+    assert!(held >= done && held.is_multiple_of(2) && held < 40, "killed at a checkpoint (every 2 passages): {held}");
     assert_eq!(read_attr_str(&out, "", "status").unwrap(), "checkpoint");
     let status = Command::new(env!("CARGO_BIN_EXE_corrugation")).arg("resume").arg(&out).output().unwrap();
     assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stderr));
