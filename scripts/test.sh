@@ -17,4 +17,5 @@ mkdir -p "$run_dir"
 # without the dev-dependencies and rebuild faer).
 ./target/debug/corrugation run configs/paper_normal_15mm.toml -o "$run_dir/paper_normal_15mm.h5" \
   --set contact.elements_x=12 --set contact.elements_y=12
-CORRUGATION_RUN_FILE="$PWD/$run_dir/paper_normal_15mm.h5" .venv/bin/python -m pytest -q postprocess/tests
+CORRUGATION_RUN_FILE="$PWD/$run_dir/paper_normal_15mm.h5" CORRUGATION_BIN="$PWD/target/debug/corrugation" \
+  .venv/bin/python -m pytest -q postprocess/tests

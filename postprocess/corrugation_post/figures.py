@@ -240,19 +240,55 @@ def spectrum(run: Run, pass_index: int, out_dir: Path) -> Path | None:
 
 
 def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
-    """RMS corrugation vs traffic, when more than one passage is recorded."""
+    """RMS corrugation vs traffic, when more than one passage is recorded; with
+    the traffic scale m and the update ratio (its stability criterion) below
+    when the run file has them."""
     with run.pass_table() as ps:
         if "rms_corrugation" not in ps or ps.sizes.get("pass", 0) < 2:
             return None
         traffic = ps["traffic"].values if "traffic" in ps else ps["pass"].values
         rms = values_in(ps["rms_corrugation"], "um")
-    fig = Figure(figsize=(8, 4), layout="constrained")
-    ax = fig.add_subplot()
-    ax.plot(traffic, rms, "o-", ms=3)
-    ax.set(xlabel="traffic (passages)", ylabel="rms corrugation (µm)",
-           title=f"Corrugation growth\ncontact model: {run.contact_model}")
-    ax.grid(alpha=0.3)
+        scaling = "traffic_scale" in ps and "update_ratio" in ps
+        if scaling:
+            scale, ratio = ps["traffic_scale"].values, ps["update_ratio"].values
+    fig = Figure(figsize=(8, 6 if scaling else 4), layout="constrained")
+    axes = fig.subplots(2 if scaling else 1, 1, squeeze=False, sharex=True)[:, 0]
+    axes[0].plot(traffic, rms, "o-", ms=3)
+    axes[0].set(ylabel="rms corrugation (µm)", title=f"Corrugation growth\ncontact model: {run.contact_model}")
+    axes[0].grid(alpha=0.3)
+    if scaling:
+        axes[1].semilogy(traffic, scale, "o-", ms=3, label="traffic scale m (passages per update)")
+        axes[1].set_ylabel("m")
+        twin = axes[1].twinx()
+        twin.plot(traffic, ratio, "s-", ms=2, color="tab:red", label="update ratio q")
+        twin.set_ylabel("update ratio q = m max|W_k|/|R_k|", color="tab:red")
+        axes[1].grid(alpha=0.3)
+    axes[-1].set_xlabel("traffic (passages)")
     return _save(fig, out_dir, "rms_corrugation.png")
+
+
+def profile_snapshots(run: Run, pass_index: int, out_dir: Path) -> Path | None:
+    """Centre-line rail profile (minus its mean) at up to six stored passages,
+    coloured by traffic (growth studies)."""
+    with run.rail() as rail:
+        if "profile" not in rail or rail.sizes.get("pass", 0) < 2:
+            return None
+        centre = int(np.argmin(np.abs(rail["y"].values)))
+        line = rail["profile"].isel(y=centre).load()
+        traffic = rail["traffic"].values if "traffic" in rail else rail["pass"].values
+        x_mm = values_in(rail["x"], "mm")
+    picks = np.unique(np.linspace(0, line.sizes["pass"] - 1, min(6, line.sizes["pass"])).round().astype(int))
+    um = values_in(line, "um")
+    fig = Figure(figsize=(9, 4), layout="constrained")
+    ax = fig.add_subplot()
+    colours = [f"C{k}" for k in range(len(picks))]
+    for colour, k in zip(colours, picks):
+        ax.plot(x_mm, um[k] - um[k].mean(), color=colour, lw=1.2, label=f"traffic {traffic[k]:.3g}")
+    ax.set(xlabel="x (mm)", ylabel="profile minus mean (µm)",
+           title=f"Rail profile on the centre line at stored passages\ncontact model: {run.contact_model}")
+    ax.legend(fontsize=8, ncols=2)
+    ax.grid(alpha=0.3)
+    return _save(fig, out_dir, "profile_snapshots.png")
 
 
 def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
@@ -293,7 +329,7 @@ def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
 FigureFn = Callable[[Run, int, Path], "Path | None"]
 RAIL_FIGURES: tuple[FigureFn, ...] = (wear_map, wear_centreline)
 CONTACT_FIGURES: tuple[FigureFn, ...] = (loads, traction_snapshots)
-OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram)
+OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram, profile_snapshots)
 
 
 def make_figures(path, out_dir, pass_index: int | None = None):

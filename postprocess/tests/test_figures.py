@@ -59,7 +59,7 @@ def test_optional_and_unknown_variables(tmp_path, capsys):
     out = tmp_path / "figs"
     assert main(["figures", str(run), "--out", str(out)]) == 0
     printed = capsys.readouterr().out
-    for name in REQUIRED + ("spectrum.png", "rms_corrugation.png", "spectrogram.png"):
+    for name in REQUIRED + ("spectrum.png", "rms_corrugation.png", "spectrogram.png", "profile_snapshots.png"):
         assert name in printed
         _assert_png(out / name)
 
