@@ -41,10 +41,10 @@ enum Command {
     Resume {
         /// Run file written by `corrugation run` (rewritten atomically).
         file: PathBuf,
-        /// Passages in all when done (default: the stored growth.passes);
-        /// more than the stored number extends the study.
-        #[arg(long)]
-        passes: Option<usize>,
+        /// Run this many passages more than the file holds (default: up to
+        /// the stored growth.passes); extends a finished study.
+        #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+        passes: Option<u32>,
         /// Write the continued run here instead of rewriting FILE.
         #[arg(short, long)]
         output: Option<PathBuf>,
@@ -77,7 +77,7 @@ fn main() -> ExitCode {
             let out = output.unwrap_or_else(|| default_output(&config));
             run(&resolved, &out)
         }
-        Command::Resume { file, passes, output } => resume(&file, passes, output.as_deref()),
+        Command::Resume { file, passes, output } => resume(&file, passes.map(|n| n as usize), output.as_deref()),
     }
 }
 

@@ -33,6 +33,12 @@ def _parser() -> argparse.ArgumentParser:
     cmp_.add_argument("--pass", dest="pass_index", type=int, default=None,
                       help="stored passage index (default: the last one stored in every run)")
 
+    grw = sub.add_parser("growth", help="compare growth studies: rms and one harmonic against traffic")
+    grw.add_argument("runs", nargs="+", help="growth-study run files; the first is the reference")
+    grw.add_argument("--out", required=True, help="output folder (created if needed)")
+    grw.add_argument("--wavelength", type=float, default=None,
+                     help="harmonic to follow (m; default: the one that grew most in the first run)")
+
     chk = sub.add_parser("check", help="check a run file against the layout contract")
     chk.add_argument("run", help="run file (.h5)")
     return parser
@@ -66,6 +72,16 @@ def _compare(args) -> int:
     return EXIT_PARTIAL if problems else EXIT_OK
 
 
+def _growth(args) -> int:
+    from .growth import compare_growth, format_table
+
+    rows, paths = compare_growth(args.runs, args.out, args.wavelength)
+    print(format_table(rows))
+    for p in paths:
+        print(p)
+    return EXIT_OK
+
+
 def _check(args) -> int:
     from .schema import check_file
 
@@ -82,7 +98,7 @@ def main(argv: list[str] | None = None) -> int:
 
     matplotlib.use("Agg")
     args = _parser().parse_args(argv)
-    handler = {"figures": _figures, "compare": _compare, "check": _check}[args.command]
+    handler = {"figures": _figures, "compare": _compare, "growth": _growth, "check": _check}[args.command]
     try:
         return handler(args)
     except RunFileError as err:

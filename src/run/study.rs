@@ -25,7 +25,7 @@ use crate::growth::spectrum::{amplitudes, growth_rates, wavelengths};
 use crate::growth::traffic::{TrafficScaling, change_rate};
 use crate::metrics::{centre_row, rms_corrugation};
 use crate::output::checkpoint::{StateLayout, read_run_state};
-use crate::output::netcdf::{NcError, read_attr_str};
+use crate::output::netcdf::{NcError, read_attr_str, read_f64};
 pub use crate::output::run_file::RunState;
 use crate::output::run_file::{PassRow, RailSnapshot, RunRecord, write_run_file};
 use crate::params::Scene;
@@ -107,16 +107,6 @@ pub enum ResumeError {
         /// The file.
         path: PathBuf,
     },
-    /// Fewer passages asked for than the file already has.
-    #[error("cannot resume from {path}: --passes {asked} is below the {done} passages it already holds")]
-    Passes {
-        /// The file.
-        path: PathBuf,
-        /// Passages asked for.
-        asked: usize,
-        /// Passages in the file.
-        done: usize,
-    },
     /// The resumed run failed (nothing more was written than its checkpoints).
     #[error("{0}")]
     Run(#[from] RunError),
@@ -161,21 +151,25 @@ pub fn run_scene(resolved: &Resolved, out: &Path, progress: &mut dyn FnMut(Event
     continue_run(resolved, state, out, progress)
 }
 
-/// Continues the growth study in the run file `path` up to `passes`
-/// passages in all (default: the stored config's `growth.passes`), writing
-/// to `out` (default: `path` itself, rewritten atomically).
+/// Continues the growth study in the run file `path`: to the stored
+/// config's `growth.passes`, or for `more` passages beyond those it holds
+/// (the stored `growth.passes` becomes their sum). Writes to `out`
+/// (default: `path` itself, rewritten atomically).
 pub fn resume(
     path: &Path,
-    passes: Option<usize>,
+    more: Option<usize>,
     out: Option<&Path>,
     progress: &mut dyn FnMut(Event),
 ) -> Result<RunSummary, ResumeError> {
     let read = |source| ResumeError::Read { path: path.to_owned(), source };
     let toml = read_attr_str(path, "", "config").map_err(read)?;
     let source = format!("stored in {}", path.display());
-    let overrides: Vec<String> = passes.map(|n| format!("growth.passes={n}")).into_iter().collect();
-    let resolved =
-        load_str(&toml, &source, &overrides).map_err(|source| ResumeError::Config { path: path.to_owned(), source })?;
+    let config_err = |source| ResumeError::Config { path: path.to_owned(), source };
+    let mut resolved = load_str(&toml, &source, &[]).map_err(config_err)?;
+    let done = read_f64(path, "passes", "traffic").map_err(read)?.len();
+    if let Some(more) = more {
+        resolved = load_str(&toml, &source, &[format!("growth.passes={}", done + more)]).map_err(config_err)?;
+    }
     let scene = &resolved.scene;
     let Some(growth) = &scene.growth else {
         return Err(ResumeError::NotGrowth { path: path.to_owned() });
@@ -190,11 +184,11 @@ pub fn resume(
         fields: scene.output.store_fields,
         history_passes: &growth.contact_history,
     };
-    let mut state = read_run_state(path, &layout).map_err(read)?;
-    let done = state.rows.len();
-    if growth.passes < done {
-        return Err(ResumeError::Passes { path: path.to_owned(), asked: growth.passes, done });
+    if done > growth.passes {
+        let msg = format!("holds {done} passages, more than its config's growth.passes = {}", growth.passes);
+        return Err(read(NcError::Invalid { path: path.to_owned(), what: "passes/pass".into(), msg }));
     }
+    let mut state = read_run_state(path, &layout).map_err(read)?;
     // A snapshot stored only because the earlier run ended there is not one
     // the longer run stores.
     if growth.passes > done

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Where traffic scaling makes growth spurious: the growth_fastsim study with
+# a fixed m = 2e3, 1e4, 4e4, 1e5, 2e5 real passages per simulated passage,
+# all to the same traffic of 4e5 wheel passages, compared with
+# `corrugation_post growth` (rms and the fastest-growing harmonic against
+# traffic, growth rate relative to m = 2e3, largest update ratio q).
+# Output in out/traffic_scaling/. About 2 minutes on 2 cores.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=out/traffic_scaling
+bash scripts/setup.sh
+cargo build --release --quiet
+mkdir -p "$out"
+files=()
+for m in 2e3 1e4 4e4 1e5 2e5; do
+  passes=$(python3 -c "print(round(4e5 / $m))")
+  f="$out/m_$m.h5"
+  ./target/release/corrugation run configs/growth_fastsim.toml -o "$f" --set growth.adaptive=false \
+    --set growth.traffic_scale="$m" --set growth.passes="$passes" --set growth.store_every="$passes" \
+    --set 'growth.contact_history=[]' 2>&1 | grep -E "^(wrote|warning|error)" || true
+  [ -f "$f" ] && files+=("$f")
+done
+PYTHONPATH=postprocess .venv/bin/python -m corrugation_post growth "${files[@]}" --out "$out"
