@@ -108,11 +108,14 @@ fn receptance_feedback_changes_the_spectrum_and_is_recorded() {
     assert!(spectrum.row(2).iter().zip(spectrum.row(0).iter()).any(|(a, b)| (a - b).abs() > 1e-3 * b.abs()));
     let profile = read_f64(&f, "rail", "profile").unwrap();
     assert_eq!(profile.shape()[0], 3);
-    // growth_rate of passage k = 20 log10(A_k / A_{k-1}) * 1e5 / m (dB per 1e5 passages).
+    // growth_rate of passage k = 20 log10(A_k / A_{k-1}) * 1e5 / m (dB per
+    // 1e5 passages), A the amplitudes of the contact-filtered profile.
     let rate = read_f64(&f, "passes", "growth_rate").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    let filtered =
+        read_f64(&f, "passes", "filtered_spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
     let m = read_f64(&f, "passes", "traffic_scale").unwrap()[0];
     for k in 0..wavelengths.len().min(12) {
-        let expected = 20.0 * (spectrum[[2, k]] / spectrum[[1, k]]).log10() * 1e5 / m;
+        let expected = 20.0 * (filtered[[2, k]] / filtered[[1, k]]).log10() * 1e5 / m;
         assert!((rate[[2, k]] - expected).abs() < 1e-9 * expected.abs().max(1.0), "harmonic {k}");
     }
 }
@@ -149,7 +152,11 @@ fn rate_40mm(set: &[&str]) -> (f64, f64) {
     let (_d, f) = run_growth(&[&harmonic[..], &["growth.contact_history=[]"], set].concat());
     let waves = read_f64(&f, "passes", "wavelength").unwrap();
     let k = waves.iter().position(|w| (w - 0.04).abs() < 1e-9).unwrap();
-    let spectrum = read_f64(&f, "passes", "spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    // The contact-filtered amplitude (what the wheel sees) evolves as one
+    // exponential per harmonic; the centre line beats between the initial
+    // roughness, uniform across the head, and the worn pattern.
+    let spectrum =
+        read_f64(&f, "passes", "filtered_spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
     let traffic = read_f64(&f, "passes", "traffic").unwrap();
     let last = traffic.len() - 1;
     let rate = 20.0 * (spectrum[[last, k]] / 1e-6).log10() * 1e5 / traffic[last];
@@ -159,18 +166,20 @@ fn rate_40mm(set: &[&str]) -> (f64, f64) {
 
 #[test]
 fn traffic_scaling_keeps_the_growth_rate_until_the_criterion_flags_it() {
-    // Receptance feedback on a 1 um, 40 mm harmonic (it decays at about
-    // -0.39 dB per 1e5 passages on this coarse mesh). Three passages with
-    // m = 1, 10, 100 give the same rate per real passage (within 5 %); the
-    // update ratio q (growth::traffic) stays under the 0.05 bound. Where the
-    // rate is off by more than 5 %, q is over the bound; at m = 1e6 (q ~ 0.6)
-    // the Euler update turns the decay into spurious growth.
+    // Receptance feedback on a 1 um, 40 mm harmonic: its contact-filtered
+    // amplitude decays at -0.22 dB per 1e5 passages on this coarse mesh.
+    // Three passages with m = 1, 10, 100 give the same rate per real passage
+    // (within 5 %; measured 1e-6); the update ratio q (growth::traffic, on
+    // the centre line, which changes faster than the filtered line) stays
+    // under the 0.05 bound. Where the rate is off by more than 5 %, q is over
+    // the bound: m = 1e6 (q = 0.68) is flagged at 4.9 % off, m = 3e6
+    // (q = 1.7) is 68 % off.
     let bound = corrugation::growth::traffic::DEFAULT_MAX_UPDATE_RATIO;
     let (reference, q1) = rate_40mm(&["growth.passes=3", "growth.traffic_scale=1"]);
     assert!(reference < -0.1, "the harmonic decays: {reference}");
     assert!(q1 < 1e-5);
     let mut flagged = 0;
-    for m in ["10", "100", "1e4", "1e6"] {
+    for m in ["10", "100", "1e4", "1e6", "3e6"] {
         let (rate, q) = rate_40mm(&["growth.passes=3", &format!("growth.traffic_scale={m}")]);
         let error = (rate / reference - 1.0).abs();
         if ["10", "100"].contains(&m) {
@@ -181,7 +190,7 @@ fn traffic_scaling_keeps_the_growth_rate_until_the_criterion_flags_it() {
             flagged += 1;
         }
     }
-    assert_eq!(flagged, 1, "m = 1e6 is flagged");
+    assert_eq!(flagged, 1, "m = 3e6 is flagged");
     // Adaptive m from 1e3 doubles up to the bound and keeps the rate.
     let (rate, q) = rate_40mm(&["growth.passes=10", "growth.traffic_scale=1e3", "growth.adaptive=true"]);
     assert!(q <= bound * (1.0 + 1e-12), "q = {q}");

@@ -56,7 +56,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
     let [traffic, scale, rms, volume, cpu, ratio] =
         ["traffic", "traffic_scale", "rms_corrugation", "removed_volume", "cpu_seconds", "update_ratio"].map(column);
     let (traffic, scale, rms, volume, cpu, ratio) = (traffic?, scale?, rms?, volume?, cpu?, ratio?);
-    let (spectrum, rate) = (table("spectrum")?, table("growth_rate")?);
+    let (spectrum, filtered, rate) = (table("spectrum")?, table("filtered_spectrum")?, table("growth_rate")?);
     let rows = (0..done)
         .map(|k| PassRow {
             index: k as i64,
@@ -67,6 +67,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             cpu_seconds: cpu[k],
             update_ratio: ratio[k],
             spectrum: spectrum.row(k).to_vec(),
+            filtered_spectrum: filtered.row(k).to_vec(),
             growth_rate: rate.row(k).to_vec(),
         })
         .collect();

@@ -38,8 +38,12 @@ pub struct PassRow {
     /// Amplitude spectrum of the centre-line profile after the passage (m),
     /// on the record's `wavelengths`.
     pub spectrum: Vec<f64>,
-    /// Growth rate of each harmonic over this passage (dB per 1e5 real
-    /// passages), on the record's `wavelengths`.
+    /// Amplitude spectrum of the contact-filtered profile after the passage
+    /// (m): the profile averaged across the mean patch width with the Hertz
+    /// line-load weight, the line the wheel sees and the dynamics is driven by.
+    pub filtered_spectrum: Vec<f64>,
+    /// Growth rate of each harmonic of the contact-filtered profile over this
+    /// passage (dB per 1e5 real passages), on the record's `wavelengths`.
     pub growth_rate: Vec<f64>,
 }
 
@@ -193,13 +197,21 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
     let dims = ["pass", "wavelength"];
     let spectrum = table(|r| &r.spectrum);
     g.var_f64("spectrum", &dims, spectrum.view().into_dyn(), "m", "corrugation amplitude spectrum (centre line)")?;
+    let filtered = table(|r| &r.filtered_spectrum);
+    g.var_f64(
+        "filtered_spectrum",
+        &dims,
+        filtered.view().into_dyn(),
+        "m",
+        "amplitude spectrum of the contact-filtered profile (Hertz line-load weights across the mean patch width)",
+    )?;
     let rate = table(|r| &r.growth_rate);
     g.var_f64(
         "growth_rate",
         &dims,
         rate.view().into_dyn(),
         "dB/1e5 passages",
-        "growth rate of each harmonic over the passage",
+        "growth rate of each harmonic of the contact-filtered profile over the passage",
     )?;
     Ok(())
 }

@@ -5,7 +5,8 @@
 //!     W_n   = passage(r_n)                  (dynamics -> contact -> wear)
 //!     m_n   = traffic scaling(rho(r_n, W_n)) (fixed, or adaptive)
 //!     r_n+1 = r_n - m_n W_n
-//!     record rms, spectrum, growth rate; store / checkpoint
+//!     record rms, spectra (centre line, contact-filtered), growth rate;
+//!     store / checkpoint
 //! ```
 //!
 //! A checkpoint rewrites the whole run file atomically; it holds the
@@ -19,7 +20,7 @@ use super::{build_solver, derive, periodic_grid, track_dynamics};
 use crate::config::{ConfigErrors, Resolved, load_str};
 use crate::contact::EllipseMesh;
 use crate::dynamics::TrackDynamics;
-use crate::growth::growth_passage;
+use crate::growth::{contact_filtered_line, growth_passage};
 use crate::growth::roughness::profile_line;
 use crate::growth::spectrum::{amplitudes, growth_rates, wavelengths};
 use crate::growth::traffic::{TrafficScaling, change_rate};
@@ -231,6 +232,8 @@ fn continue_run(
     let waves = wavelengths(grid.nx, grid.dx);
     let centre = centre_row(&grid);
     let line = |p: &Array2<f64>| p.row(centre).to_vec();
+    // What the wheel sees: the profile weighted across the mean patch width.
+    let filtered = |p: &Array2<f64>| contact_filtered_line(p, &grid, d.patch_mean.b);
     let write = |state: &RunState| {
         let title = if scene.output.title.is_empty() { "corrugation run" } else { scene.output.title.as_str() };
         let record = RunRecord {
@@ -292,12 +295,13 @@ fn continue_run(
         let previous = state.rows.last();
         let m = scaling.scale(previous.map(|r| r.traffic_scale), rho);
         let before = match previous {
-            Some(r) => r.spectrum.clone(),
-            None => amplitudes(&line(&state.profile)),
+            Some(r) => r.filtered_spectrum.clone(),
+            None => amplitudes(&filtered(&state.profile)),
         };
         let traffic = previous.map_or(0.0, |r| r.traffic) + m;
         state.profile.scaled_add(-m, &wear);
         let spectrum = amplitudes(&line(&state.profile));
+        let filtered_spectrum = amplitudes(&filtered(&state.profile));
         let row = PassRow {
             index: pass as i64,
             traffic,
@@ -307,8 +311,9 @@ fn continue_run(
             cpu_seconds,
             update_ratio: m * rho,
             // Below 1e-12 m (1 pm) an amplitude is numerical noise.
-            growth_rate: growth_rates(&before, &spectrum, m, 1e-12),
+            growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
             spectrum,
+            filtered_spectrum,
         };
         progress(Event::Passage {
             done: pass + 1,
