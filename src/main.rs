@@ -10,8 +10,8 @@ use corrugation::config::{self, Resolved};
 use corrugation::dynamics::TrackDynamics;
 use corrugation::growth::traffic::TrafficScaling;
 use corrugation::loads::LoadQuantity;
-use corrugation::params::ContactModelKind;
-use corrugation::run::{ResumeError, RunSummary, derive, run_scene, track_dynamics};
+use corrugation::params::{ContactModelKind, DynamicsKind};
+use corrugation::run::{ResumeError, RunSummary, derive, periodic_grid, run_scene, track_dynamics};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -149,12 +149,15 @@ fn report(s: &RunSummary, out: &Path) {
     );
     let (q, pass) = s.max_update_ratio;
     if q > s.update_bound * (1.0 + 1e-9) {
+        let effect = if q <= 1.0 {
+            format!("growth rates are off by about {:.0} %", 50.0 * q)
+        } else {
+            "harmonics can change sign between updates: growth is spurious".to_string()
+        };
         eprintln!(
             "warning: traffic scaling too coarse: the update of passage {pass} changed the corrugation by {q:.3} of \
-             its amplitude (bound {}); growth rates are off by about {:.0} % and growth beyond a ratio of 1 is \
-             spurious. Lower growth.traffic_scale or set growth.adaptive = true.",
-            s.update_bound,
-            50.0 * q
+             its amplitude (bound {}); {effect}. Lower growth.traffic_scale or set growth.adaptive = true.",
+            s.update_bound
         );
     }
 }
@@ -201,21 +204,31 @@ fn print_check(r: &Resolved) {
         p.dt(),
         p.substeps
     );
-    let g = &d.grid;
-    println!("rail grid          {} x {} nodes, dx = {:.4} mm, dy = {:.4} mm", g.nx, g.ny, mm(g.dx), mm(g.dy));
+    let g = if s.growth.is_some() { periodic_grid(s) } else { d.grid.clone() };
+    let periodic = if s.growth.is_some() { " (periodic)" } else { "" };
+    println!(
+        "rail grid          {} x {} nodes{periodic}, dx = {:.4} mm, dy = {:.4} mm",
+        g.nx,
+        g.ny,
+        mm(g.dx),
+        mm(g.dy)
+    );
     // Cost model from measurements on 2 cores (README, Performance), per
-    // step: wear ~ 20 ns per node visit; FASTSIM ~ 12 ns per element and
+    // step: wear ~ 20 ns per node visit; FASTSIM ~ 18 ns per element and
     // solve, 25 solves; simplified-transient ~ 3 us per element; the exact
-    // model ~ 60 ms (constant N) or 170 ms (varying N) at 400 elements,
-    // growing as N^3 (dense LU).
+    // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
+    // LU); with a varying N (harmonics or track dynamics) 4.8 ms at 100 and
+    // 170 ms at 400 elements, fitted as c2 N^2 (previous-displacement map)
+    // + c3 N^3.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
     let contact = match s.contact.model {
-        ContactModelKind::Fastsim => 25.0 * 12e-9 * n_el,
+        ContactModelKind::Fastsim => 25.0 * 18e-9 * n_el,
         ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
         ContactModelKind::ExactTransient => {
-            let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce);
-            (if varying { 0.17 } else { 0.06 }) * (n_el / 400.0).powi(3)
+            let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
+                || s.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
+            if varying { 2.86e-7 * n_el.powi(2) + 1.94e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
         }
     };
     let secs = p.n_steps() as f64 * (contact + p.substeps as f64 * nodes * 20e-9);

@@ -111,8 +111,7 @@ fn receptance_feedback_changes_the_spectrum_and_is_recorded() {
     // growth_rate of passage k = 20 log10(A_k / A_{k-1}) * 1e5 / m (dB per
     // 1e5 passages), A the amplitudes of the contact-filtered profile.
     let rate = read_f64(&f, "passes", "growth_rate").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
-    let filtered =
-        read_f64(&f, "passes", "filtered_spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    let filtered = read_f64(&f, "passes", "filtered_spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
     let m = read_f64(&f, "passes", "traffic_scale").unwrap()[0];
     for k in 0..wavelengths.len().min(12) {
         let expected = 20.0 * (filtered[[2, k]] / filtered[[1, k]]).log10() * 1e5 / m;
@@ -155,8 +154,7 @@ fn rate_40mm(set: &[&str]) -> (f64, f64) {
     // The contact-filtered amplitude (what the wheel sees) evolves as one
     // exponential per harmonic; the centre line beats between the initial
     // roughness, uniform across the head, and the worn pattern.
-    let spectrum =
-        read_f64(&f, "passes", "filtered_spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    let spectrum = read_f64(&f, "passes", "filtered_spectrum").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
     let traffic = read_f64(&f, "passes", "traffic").unwrap();
     let last = traffic.len() - 1;
     let rate = 20.0 * (spectrum[[last, k]] / 1e-6).log10() * 1e5 / traffic[last];

@@ -208,13 +208,15 @@ def traction_snapshots(run: Run, pass_index: int, out_dir: Path, count: int = 4)
 
 # ---------------------------------------------------------------- optional figures
 
-def _find_spectrum(run: Run):
-    """The first ``spectrum(pass, <wavelength>)`` variable in ``passes`` or ``rail``."""
-    for opener in (run.pass_table, run.rail):
-        with opener() as ds:
-            spec = ds.get("spectrum")
-            if spec is not None and spec.ndim == 2 and "pass" in spec.dims:
-                return spec.load()
+def _find_spectrum(run: Run, names=("spectrum",)):
+    """The first ``<name>(pass, <wavelength>)`` variable, trying ``names`` in
+    order, in ``passes`` or ``rail``."""
+    for name in names:
+        for opener in (run.pass_table, run.rail):
+            with opener() as ds:
+                spec = ds.get(name)
+                if spec is not None and spec.ndim == 2 and "pass" in spec.dims:
+                    return spec.load()
     return None
 
 
@@ -293,8 +295,10 @@ def profile_snapshots(run: Run, pass_index: int, out_dir: Path) -> Path | None:
 
 def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     """Corrugation amplitude against wavelength and traffic (growth studies),
-    with the growth rate per wavelength averaged over the run when present."""
-    spec = _find_spectrum(run)
+    with the growth rate per wavelength averaged over the run when present.
+    Uses the contact-filtered spectrum (what the wheel sees, on which the
+    growth rates are computed) when the file has it."""
+    spec = _find_spectrum(run, ("filtered_spectrum", "spectrum"))
     if spec is None or spec.sizes.get("pass", 0) < 2:
         return None
     with run.pass_table() as ps:
@@ -312,16 +316,21 @@ def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
         amp, label = ordered.values[keep], f"{spec.attrs.get('long_name', 'spectrum')} ({spec.attrs.get('units', '?')})"
     mesh = axes[0].pcolormesh(traffic, wl_mm[keep], amp, shading="nearest", cmap="magma")
     fig.colorbar(mesh, ax=axes[0], label=label)
+    what = "contact-filtered " if spec.name == "filtered_spectrum" else ""
     axes[0].set(yscale="log", xlabel="traffic (passages)", ylabel="wavelength (mm)",
-                title=f"Corrugation spectrum over traffic\ncontact model: {run.contact_model}")
+                title=f"Corrugation {what}spectrum over traffic\ncontact model: {run.contact_model}")
     if rate is not None:
         mean_rate = rate.mean("pass").values
-        # Rates of harmonics far below the dominant ones are noise in dB.
-        strong = np.nanmax(spec.values, axis=0) > 0.05 * np.nanmax(spec.values)
+        # Rates of harmonics far below the dominant ones are noise in dB, and a
+        # harmonic built up from nothing has no meaningful rate: keep those
+        # present from the first passage (any time, if none was).
+        first = spec.values[0]
+        strong = first > 0.05 * np.nanmax(first) if np.nanmax(first) > 0 else \
+            np.nanmax(spec.values, axis=0) > 0.05 * np.nanmax(spec.values)
         axes[1].semilogx(wl_mm[strong], mean_rate[strong], "o-", ms=3)
         axes[1].axhline(0.0, color="k", lw=0.8)
         axes[1].set(xlabel="wavelength (mm)", ylabel="growth rate (dB / 1e5 passages)",
-                    title="mean growth rate over the run (harmonics above 5 % of the largest)")
+                    title="mean growth rate over the run (harmonics above 5 % of the largest at the first passage)")
         axes[1].grid(alpha=0.3, which="both")
     return _save(fig, out_dir, "spectrogram.png")
 

@@ -48,7 +48,10 @@ def load(path) -> GrowthCurves:
             if name not in ps:
                 raise RunFileError(f"{run.path}: passes/{name} missing: not a growth study")
         ratio = ps["update_ratio"].values if "update_ratio" in ps else np.zeros(ps.sizes["pass"])
-        spectrum, scale = ps["spectrum"].values, ps["traffic_scale"].values
+        # The contact-filtered spectrum (what the wheel sees; growth_rate is
+        # computed on it) when the file has it.
+        name = "filtered_spectrum" if "filtered_spectrum" in ps else "spectrum"
+        spectrum, scale = ps[name].values, ps["traffic_scale"].values
         # growth_rate[0] = 20 log10(A_1 / A_0) 1e5 / m_0 gives back A_0.
         first_rate = ps["growth_rate"].values[0] if "growth_rate" in ps else np.zeros(spectrum.shape[1])
         initial = spectrum[0] / 10.0 ** (first_rate * scale[0] / 2e6)
@@ -61,9 +64,10 @@ def load(path) -> GrowthCurves:
 
 def fastest_growing(c: GrowthCurves) -> float:
     """Wavelength (m) whose amplitude grew the most (dB) over the run, among
-    harmonics above 5 % of the largest at the end."""
+    the harmonics of the initial roughness (at least 10 % of its largest):
+    one built up from nothing has no meaningful rate in dB."""
     end = c.spectrum[-1]
-    strong = end > 0.05 * end.max()
+    strong = c.initial >= 0.1 * c.initial.max()
     gain = np.where(strong, np.log(np.maximum(end, 1e-300) / np.maximum(c.initial, 1e-300)), -np.inf)
     return float(c.wavelengths[int(np.argmax(gain))])
 

@@ -39,6 +39,7 @@ def _check_layout(path: Path, done: int):
         assert ps["spectrum"].dims == ("pass", "wavelength")
         assert ps.sizes["pass"] == done
         assert np.all(np.isfinite(ps["spectrum"].values))
+        assert ps["filtered_spectrum"].dims == ("pass", "wavelength")
         for name in ("traffic", "traffic_scale", "rms_corrugation", "update_ratio", "growth_rate"):
             assert ps[name].dims[0] == "pass", name
         # traffic is the running sum of the traffic scale
