@@ -59,6 +59,7 @@ impl Progress {
                 }
                 None => {}
             },
+            Event::Passage { .. } if !self.growth => {}
             Event::Passage { done, total, traffic, scale, rms, update_ratio } => {
                 let first = *self.first_pass.get_or_insert(done - 1);
                 let elapsed = self.start.elapsed().as_secs_f64();

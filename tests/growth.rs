@@ -130,6 +130,21 @@ fn growth_config_errors() {
         e.iter().any(|m| m.contains("roughness.harmonics[0].wavelength: = 0.035 m does not fit the periodic stretch")),
         "{e:?}"
     );
+    // A one-third-octave level spectrum: the 100 mm band (89-112 mm) holds no
+    // harmonic of the 120 mm stretch (120, 60, 40 mm ...).
+    let levels = [
+        "roughness.kind=levels",
+        "roughness.bands=[{wavelength = 0.016, level = 0.0}, {wavelength = 0.1, level = 3.0}]",
+    ];
+    let e = errors(&levels);
+    assert!(
+        e.iter().any(|m| m.starts_with("roughness.bands[1].wavelength: = 0.1 m: its one-third-octave band")),
+        "{e:?}"
+    );
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(errors(&["roughness.kind=levels", "roughness.bands=[{wavelength = 0.016, level = -3.0}]"]).is_empty());
+    let e = errors(&["roughness.kind=levels", "roughness.bands=[{wavelength = 0.016, level = 300.0}]"]);
+    assert!(e.iter().any(|m| m.starts_with("roughness.bands[0].level: ")), "{e:?}");
     let e = errors(&["passage.start=0"]);
     assert!(e.iter().any(|m| m.starts_with("passage.start: = 0 m must be <= rail.x_min - a")), "{e:?}");
     let e = errors(&["growth.checkpoint_every=0"]);

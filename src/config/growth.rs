@@ -4,13 +4,13 @@
 
 use super::ConfigError;
 use super::reader::{Range, Section};
-use crate::growth::roughness::{ProfileHarmonic, Roughness};
+use crate::growth::roughness::{LevelBand, ProfileHarmonic, Roughness, band_harmonics};
 use crate::growth::traffic::{DEFAULT_MAX_UPDATE_RATIO, TrafficScaling};
 use crate::params::{DynamicsKind, GrowthParams};
 use toml::{Table, Value};
 
-/// Keys of `roughness.kind = "random"`.
-const RANDOM_KEYS: [&str; 4] = ["seed", "rms", "wavelength_min", "wavelength_max"];
+/// Keys of `roughness.kind = "random"` (besides the seed).
+const RANDOM_KEYS: [&str; 3] = ["rms", "wavelength_min", "wavelength_max"];
 
 /// Reads the growth sections; `Ok(None)` for a single-passage scene, `Err`
 /// when a key is invalid (the errors are recorded).
@@ -46,17 +46,17 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
     resolved.insert("growth".into(), Value::Table(s.finish()));
 
     let mut s = Section::new(root, "", "roughness", errors);
-    let kind = s.choice("kind", Some("none"), &["none", "harmonics", "random"]);
+    let kind = s.choice("kind", Some("none"), &["none", "harmonics", "random", "levels"]);
+    let is = |k: &str| kind.as_deref() == Some(k);
     // The keys of the other kinds may stay (validated, unused), so that
     // --set roughness.kind=... can switch kinds.
-    let harmonics = (kind.as_deref() == Some("harmonics") || s.has("harmonics"))
-        .then(|| s.array_of_tables("harmonics", read_harmonic));
-    let random = (kind.as_deref() == Some("random") || RANDOM_KEYS.iter().any(|k| s.has(k))).then(|| {
-        let seed = s.usize("seed", None, 0, usize::MAX >> 1);
+    let harmonics = (is("harmonics") || s.has("harmonics")).then(|| s.array_of_tables("harmonics", read_harmonic));
+    let seed = (is("random") || is("levels") || s.has("seed")).then(|| s.usize("seed", None, 0, usize::MAX >> 1));
+    let random = (is("random") || RANDOM_KEYS.iter().any(|k| s.has(k))).then(|| {
         let rms = s.f64("rms", None, Range::NonNegative);
         let lo = s.f64("wavelength_min", None, Range::Positive);
         let hi = s.f64("wavelength_max", None, Range::Positive);
-        match (seed, rms, lo, hi) {
+        match (seed.flatten(), rms, lo, hi) {
             (Some(seed), Some(rms), Some(lo), Some(hi)) if lo <= hi => {
                 Some(Roughness::Random { seed: seed as u64, rms, wavelength_min: lo, wavelength_max: hi })
             }
@@ -67,9 +67,21 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
             _ => None,
         }
     });
+    let levels = (is("levels") || s.has("bands")).then(|| {
+        let bands = s.array_of_tables("bands", read_band);
+        match (seed.flatten(), bands) {
+            (Some(seed), Some(bands)) if !bands.is_empty() => Some(Roughness::Levels { seed: seed as u64, bands }),
+            (Some(_), Some(_)) => {
+                s.error("bands", "must list at least one band".into());
+                None
+            }
+            _ => None,
+        }
+    });
     let roughness = match kind.as_deref() {
         Some("harmonics") => harmonics.flatten().map(Roughness::Harmonics),
         Some("random") => random.flatten(),
+        Some("levels") => levels.flatten(),
         Some(_) => Some(Roughness::None),
         None => None,
     };
@@ -108,11 +120,37 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
     }
 }
 
+fn read_band(s: &mut Section) -> Option<LevelBand> {
+    let wavelength = s.f64("wavelength", None, Range::Positive);
+    let level = s.f64("level", None, Range::Closed(-100.0, 60.0));
+    Some(LevelBand { wavelength: wavelength?, level: level? })
+}
+
 fn read_harmonic(s: &mut Section) -> Option<ProfileHarmonic> {
     let amplitude = s.f64("amplitude", None, Range::NonNegative);
     let wavelength = s.f64("wavelength", None, Range::Positive);
     let phase = s.f64("phase", Some(0.0), Range::Finite);
     Some(ProfileHarmonic { amplitude: amplitude?, wavelength: wavelength?, phase: phase? })
+}
+
+/// Checks that every band of a level spectrum holds at least one harmonic
+/// of the periodic stretch of length `length`.
+pub fn check_bands(bands: &[LevelBand], length: f64, errors: &mut Vec<ConfigError>) {
+    for (i, (b, ns)) in bands.iter().zip(band_harmonics(length, bands)).enumerate() {
+        if ns.is_empty() {
+            let edge = 2f64.powf(1.0 / 6.0);
+            errors.push(ConfigError::new(
+                &format!("roughness.bands[{i}].wavelength"),
+                format!(
+                    "= {} m: its one-third-octave band [{:.4e}, {:.4e}] m holds no harmonic L/n of the periodic \
+                     stretch L = {length} m (or each lies nearer another band); lengthen the stretch or drop the band",
+                    b.wavelength,
+                    b.wavelength / edge,
+                    b.wavelength * edge
+                ),
+            ));
+        }
+    }
 }
 
 /// Checks that every wavelength fits the periodic stretch of length `length`

@@ -279,10 +279,14 @@ fn check_growth(
     for (i, h) in loads.harmonics.iter().enumerate() {
         growth::check_periodic(&format!("load.harmonics[{i}].wavelength"), h.wavelength, length, errors);
     }
-    if let crate::growth::roughness::Roughness::Harmonics(hs) = &g.roughness {
-        for (i, h) in hs.iter().enumerate() {
-            growth::check_periodic(&format!("roughness.harmonics[{i}].wavelength"), h.wavelength, length, errors);
+    match &g.roughness {
+        crate::growth::roughness::Roughness::Harmonics(hs) => {
+            for (i, h) in hs.iter().enumerate() {
+                growth::check_periodic(&format!("roughness.harmonics[{i}].wavelength"), h.wavelength, length, errors);
+            }
         }
+        crate::growth::roughness::Roughness::Levels { bands, .. } => growth::check_bands(bands, length, errors),
+        _ => {}
     }
     if let Some(p) = shape.and_then(|s| s.patch(loads.max_normal_force()).ok())
         && start > x_min - p.a
