@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,check}``.
+"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,check}``.
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -38,6 +38,10 @@ def _parser() -> argparse.ArgumentParser:
     grw.add_argument("--out", required=True, help="output folder (created if needed)")
     grw.add_argument("--wavelength", type=float, default=None,
                      help="harmonic to follow (m; default: the one that grew most in the first run)")
+
+    spa = sub.add_parser("speed-accuracy", help="errors against a reference and CPU time per model and mesh")
+    spa.add_argument("manifest", help="CSV: scene, model, mesh, file, reference (1 for the reference run)")
+    spa.add_argument("--out", required=True, help="output folder (created if needed)")
 
     chk = sub.add_parser("check", help="check a run file against the layout contract")
     chk.add_argument("run", help="run file (.h5)")
@@ -82,6 +86,16 @@ def _growth(args) -> int:
     return EXIT_OK
 
 
+def _speed_accuracy(args) -> int:
+    from .speed_accuracy import format_table, run
+
+    rows, paths = run(args.manifest, args.out)
+    print(format_table(rows))
+    for p in paths:
+        print(p)
+    return EXIT_OK
+
+
 def _check(args) -> int:
     from .schema import check_file
 
@@ -98,7 +112,8 @@ def main(argv: list[str] | None = None) -> int:
 
     matplotlib.use("Agg")
     args = _parser().parse_args(argv)
-    handler = {"figures": _figures, "compare": _compare, "growth": _growth, "check": _check}[args.command]
+    handler = {"figures": _figures, "compare": _compare, "growth": _growth,
+               "speed-accuracy": _speed_accuracy, "check": _check}[args.command]
     try:
         return handler(args)
     except RunFileError as err:

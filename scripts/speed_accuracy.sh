@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Speed against accuracy of the contact models on the paper scenes: every
+# model over a range of meshes, CPU time per passage (median of 3 repeats for
+# FASTSIM and simplified-transient, one run of the exact model), errors
+# against the finest exact-transient run of each scene (centre-line wear
+# profile, its first harmonic's amplitude and phase, creepage history).
+# Writes out/speed_accuracy/{speed_accuracy.csv,speed_accuracy.png}.
+#   bash scripts/speed_accuracy.sh           # 4 scenes, meshes 6-40, reference exact 20 x 20 (~15 min)
+#   bash scripts/speed_accuracy.sh --quick   # one scene, meshes 6 and 10, reference exact 10 x 10 (~1 min)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=out/speed_accuracy
+if [ "${1:-}" = "--quick" ]; then
+  scenes=(paper_normal_30mm); cheap=(6 10); exact=(6); ref=10; out=out/speed_accuracy_quick
+else
+  scenes=(paper_normal_30mm paper_normal_15mm paper_longitudinal_30mm paper_longitudinal_15mm)
+  cheap=(6 10 14 20 30 40); exact=(6 10 14); ref=20
+fi
+bash scripts/setup.sh
+cargo build --release --quiet
+mkdir -p "$out/runs"
+manifest="$out/manifest.csv"
+echo "scene,model,mesh,file,reference" > "$manifest"
+run() { # scene model mesh repeat reference
+  local f="$out/runs/$1_$2_$3_r$4.h5"
+  ./target/release/corrugation run "configs/$1.toml" -o "$f" --set contact.model="$2" \
+    --set contact.elements_x="$3" --set contact.elements_y="$3" --set output.store_fields=false 2>/dev/null
+  echo "$1,$2,$3,$f,$5" >> "$manifest"
+}
+for scene in "${scenes[@]}"; do
+  run "$scene" exact-transient "$ref" 1 1
+  for n in "${exact[@]}"; do run "$scene" exact-transient "$n" 1 0; done
+  for model in fastsim simplified-transient; do
+    for n in "${cheap[@]}"; do for r in 1 2 3; do run "$scene" "$model" "$n" "$r" 0; done; done
+  done
+  echo "$scene done" >&2
+done
+PYTHONPATH=postprocess .venv/bin/python -m corrugation_post speed-accuracy "$manifest" --out "$out"
