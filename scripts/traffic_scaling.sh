@@ -15,9 +15,13 @@ files=()
 for m in 2e3 1e4 4e4 1e5 2e5; do
   passes=$(python3 -c "print(round(4e5 / $m))")
   f="$out/m_$m.h5"
-  ./target/release/corrugation run configs/growth_fastsim.toml -o "$f" --set growth.adaptive=false \
+  if ./target/release/corrugation run configs/growth_fastsim.toml -o "$f" --set growth.adaptive=false \
     --set growth.traffic_scale="$m" --set growth.passes="$passes" --set growth.store_every="$passes" \
-    --set 'growth.contact_history=[]' 2>&1 | grep -E "^(wrote|warning|error)" || true
-  [ -f "$f" ] && files+=("$f")
+    --set 'growth.contact_history=[]' 2> "$out/m_$m.log"; then
+    grep -E "^(wrote|warning)" "$out/m_$m.log"
+    files+=("$f")
+  else
+    echo "m = $m failed (left out):"; grep -E "^error" "$out/m_$m.log"
+  fi
 done
 PYTHONPATH=postprocess .venv/bin/python -m corrugation_post growth "${files[@]}" --out "$out"

@@ -150,7 +150,7 @@ fn report(s: &RunSummary, out: &Path) {
     let (q, pass) = s.max_update_ratio;
     if q > s.update_bound * (1.0 + 1e-9) {
         let effect = if q <= 1.0 {
-            format!("growth rates are off by about {:.0} %", 50.0 * q)
+            format!("growth rates are off by about {:.0} % for standing patterns, more for travelling ones", 50.0 * q)
         } else {
             "harmonics can change sign between updates: growth is spurious".to_string()
         };
@@ -235,7 +235,7 @@ fn print_check(r: &Resolved) {
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
     if let Some(g) = &s.growth {
         match g.traffic {
-            TrafficScaling::Fixed { scale } => println!(
+            TrafficScaling::Fixed { scale, .. } => println!(
                 "growth             {} passages x traffic scale {scale} = {:.4e} real passages; dynamics {:?}",
                 g.passes,
                 g.passes as f64 * scale,

@@ -17,7 +17,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .figures import DPI
-from .io import Run, RunFileError
+from .io import Run, RunFileError, root_attrs
 
 CSV_NAME = "growth_compare.csv"
 CSV_COLUMNS = (
@@ -43,6 +43,9 @@ class GrowthCurves:
 
 def load(path) -> GrowthCurves:
     run = Run.open(path)
+    status = root_attrs(run.path).get("status", "complete")
+    if status != "complete":
+        raise RunFileError(f"{run.path}: status {status!r}: an unfinished study (resume it first)")
     with run.pass_table() as ps:
         for name in ("traffic", "traffic_scale", "rms_corrugation", "spectrum"):
             if name not in ps:
@@ -55,6 +58,9 @@ def load(path) -> GrowthCurves:
         # growth_rate[0] = 20 log10(A_1 / A_0) 1e5 / m_0 gives back A_0.
         first_rate = ps["growth_rate"].values[0] if "growth_rate" in ps else np.zeros(spectrum.shape[1])
         initial = spectrum[0] / 10.0 ** (first_rate * scale[0] / 2e6)
+        # A harmonic that started under the 1 pm floor has rate 0 there: no
+        # initial amplitude to recover.
+        initial = np.where((first_rate == 0.0) & (spectrum[0] > 0.0), np.nan, initial)
         return GrowthCurves(
             label=Path(path).stem, path=run.path, traffic=ps["traffic"].values,
             scale=ps["traffic_scale"].values, rms=ps["rms_corrugation"].values, ratio=ratio,
@@ -67,8 +73,9 @@ def fastest_growing(c: GrowthCurves) -> float:
     the harmonics of the initial roughness (at least 10 % of its largest):
     one built up from nothing has no meaningful rate in dB."""
     end = c.spectrum[-1]
-    strong = c.initial >= 0.1 * c.initial.max()
-    gain = np.where(strong, np.log(np.maximum(end, 1e-300) / np.maximum(c.initial, 1e-300)), -np.inf)
+    strong = c.initial >= 0.1 * np.nanmax(c.initial)
+    gain = np.where(strong & np.isfinite(c.initial),
+                    np.log(np.maximum(end, 1e-300) / np.maximum(np.nan_to_num(c.initial), 1e-300)), -np.inf)
     return float(c.wavelengths[int(np.argmax(gain))])
 
 
@@ -78,7 +85,7 @@ def mean_rate(c: GrowthCurves, wavelength: float) -> float:
     k = int(np.argmin(np.abs(c.wavelengths - wavelength)))
     a0, a1 = c.initial[k], c.spectrum[-1, k]
     span = c.traffic[-1]
-    if span <= 0 or a0 <= 0 or a1 <= 0:
+    if span <= 0 or not a0 > 0 or a1 <= 0:
         return float("nan")
     return float(20.0 * np.log10(a1 / a0) * 1e5 / span)
 

@@ -30,7 +30,9 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
     let scale_max = s.f64("traffic_scale_max", Some(1e9), Range::Closed(1.0, 1e9));
     let ratio = s.f64("max_update_ratio", Some(DEFAULT_MAX_UPDATE_RATIO), Range::OpenClosed(0.0, 1.0));
     let traffic = match (traffic_scale, adaptive, scale_max, ratio) {
-        (Some(scale), Some(false), Some(_), Some(_)) => Some(TrafficScaling::Fixed { scale }),
+        (Some(scale), Some(false), Some(_), Some(max_update_ratio)) => {
+            Some(TrafficScaling::Fixed { scale, max_update_ratio })
+        }
         (Some(initial), Some(true), Some(max), Some(max_update_ratio)) if initial <= max => {
             Some(TrafficScaling::Adaptive { initial, max, max_update_ratio })
         }
@@ -133,12 +135,25 @@ fn read_harmonic(s: &mut Section) -> Option<ProfileHarmonic> {
     Some(ProfileHarmonic { amplitude: amplitude?, wavelength: wavelength?, phase: phase? })
 }
 
-/// Checks that every band of a level spectrum holds at least one harmonic
-/// of the periodic stretch of length `length`.
-pub fn check_bands(bands: &[LevelBand], length: f64, errors: &mut Vec<ConfigError>) {
+/// Checks that every band of a level spectrum is resolved on the rail grid
+/// (lower edge above 2 `dx`) and holds at least one harmonic of the periodic
+/// stretch of length `length`.
+pub fn check_bands(bands: &[LevelBand], length: f64, dx: f64, errors: &mut Vec<ConfigError>) {
+    let edge = 2f64.powf(1.0 / 6.0);
+    if let Some((i, b)) = bands.iter().enumerate().find(|(_, b)| b.wavelength / edge <= 2.0 * dx) {
+        errors.push(ConfigError::new(
+            &format!("roughness.bands[{i}].wavelength"),
+            format!(
+                "= {} m: its band's lower edge {:.4e} m must be > 2 rail.dx = {} m (resolved on the rail grid)",
+                b.wavelength,
+                b.wavelength / edge,
+                2.0 * dx
+            ),
+        ));
+        return;
+    }
     for (i, (b, ns)) in bands.iter().zip(band_harmonics(length, bands)).enumerate() {
         if ns.is_empty() {
-            let edge = 2f64.powf(1.0 / 6.0);
             errors.push(ConfigError::new(
                 &format!("roughness.bands[{i}].wavelength"),
                 format!(

@@ -236,7 +236,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         return (None, resolved);
     };
     if let Some(g) = &growth {
-        check_growth(g, &loads, start, end, x_min, x_max, shape.as_ref(), errors);
+        check_growth(g, &loads, start, end, (x_min, x_max, dx), shape.as_ref(), errors);
     }
     let scene = Scene {
         material,
@@ -270,8 +270,7 @@ fn check_growth(
     loads: &ImposedLoads,
     start: f64,
     end: f64,
-    x_min: f64,
-    x_max: f64,
+    (x_min, x_max, dx): (f64, f64, f64),
     shape: Option<&HertzShape>,
     errors: &mut Vec<ConfigError>,
 ) {
@@ -285,7 +284,13 @@ fn check_growth(
                 growth::check_periodic(&format!("roughness.harmonics[{i}].wavelength"), h.wavelength, length, errors);
             }
         }
-        crate::growth::roughness::Roughness::Levels { bands, .. } => growth::check_bands(bands, length, errors),
+        crate::growth::roughness::Roughness::Levels { bands, .. } => growth::check_bands(bands, length, dx, errors),
+        crate::growth::roughness::Roughness::Random { wavelength_min, .. } if *wavelength_min <= 2.0 * dx => {
+            errors.push(ConfigError::new(
+                "roughness.wavelength_min",
+                format!("= {wavelength_min} m must be > 2 rail.dx = {} m (resolved on the rail grid)", 2.0 * dx),
+            ));
+        }
         _ => {}
     }
     if let Some(p) = shape.and_then(|s| s.patch(loads.max_normal_force()).ok())

@@ -40,10 +40,13 @@ pub fn fold_periodic(ext: &Array2<f64>, ext_grid: &RailGrid, grid: &RailGrid) ->
 }
 
 /// The centre-line profile seen by the wheel: the profile averaged across
-/// the patch width with the Hertz line-load weight sqrt(1 - (y/b)^2).
+/// the patch width with the Hertz line-load weight: the pressure integrated
+/// along x, `int p dx = (pi/2) a p0 (1 - (y/b)^2)`, so the weight is
+/// `1 - (y/b)^2` (the profile as the pressure-weighted patch sees it across
+/// the rail).
 pub fn contact_filtered_line(profile: &Array2<f64>, grid: &RailGrid, b: f64) -> Vec<f64> {
     let weights: Vec<(usize, f64)> =
-        (0..grid.ny).map(|j| (j, (1.0 - (grid.y(j) / b).powi(2)).max(0.0).sqrt())).filter(|(_, w)| *w > 0.0).collect();
+        (0..grid.ny).map(|j| (j, (1.0 - (grid.y(j) / b).powi(2)).max(0.0))).filter(|(_, w)| *w > 0.0).collect();
     if weights.is_empty() {
         return profile.row(centre_row(grid)).to_vec();
     }
@@ -97,4 +100,22 @@ pub fn growth_passage(
     let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, progress)?;
     let wear = fold_periodic(&passage.wear, &ext, grid);
     Ok(GrowthPass { passage, wear, dynamic_force })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn filtered_line_is_the_line_load_weighted_mean_across_the_patch() {
+        // Uniform across the head: the line itself. A profile (y/b)^2: the
+        // mean of u^2 under the weight 1 - u^2 is (2/3 - 2/5) / (4/3) = 1/5.
+        let grid = RailGrid { x_min: 0.0, dx: 1e-3, nx: 3, half_width: 0.012, dy: 1e-5, ny: 2401 };
+        let b = 0.01;
+        let flat = Array2::from_shape_fn((grid.ny, grid.nx), |(_, i)| i as f64);
+        assert!(contact_filtered_line(&flat, &grid, b).iter().enumerate().all(|(i, v)| (v - i as f64).abs() < 1e-12));
+        let bowl = Array2::from_shape_fn((grid.ny, grid.nx), |(j, _)| (grid.y(j) / b).powi(2));
+        let line = contact_filtered_line(&bowl, &grid, b);
+        assert!((line[0] - 0.2).abs() < 1e-6, "{}", line[0]);
+    }
 }

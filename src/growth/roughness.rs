@@ -179,6 +179,19 @@ mod tests {
     }
 
     #[test]
+    fn a_harmonic_goes_to_the_nearest_band_only() {
+        // Bands 1/6 octave apart overlap; a harmonic in both goes to the
+        // nearer centre in log wavelength. L = 1 m: 1/85 = 0.01176 m is
+        // 0.049 from 0.0112 and 0.061 from 0.0125; 1/84 = 0.01190 m is 0.061
+        // and 0.049.
+        let bands = [LevelBand { wavelength: 0.0112, level: 0.0 }, LevelBand { wavelength: 0.0125, level: 0.0 }];
+        let members = band_harmonics(1.0, &bands);
+        let n85 = |m: &Vec<usize>| m.contains(&85);
+        assert!(n85(&members[0]) && !n85(&members[1]), "{members:?}");
+        assert!(members[1].contains(&84) && !members[0].contains(&84), "{members:?}");
+    }
+
+    #[test]
     fn adjacent_bands_share_no_harmonic() {
         let bands: Vec<LevelBand> =
             [0.008, 0.010, 0.0125, 0.016, 0.020].iter().map(|w| LevelBand { wavelength: *w, level: 0.0 }).collect();

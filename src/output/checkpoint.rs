@@ -32,16 +32,17 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         a.into_dimensionality::<Ix1>().map_err(|e| invalid(what, e.to_string()))
     };
     // Group `passes`.
-    let index =
-        read_i64(path, "passes", "pass")?.into_dimensionality::<Ix1>().map_err(|e| invalid("pass", e.to_string()))?;
+    let index = read_i64(path, "passes", "pass")?
+        .into_dimensionality::<Ix1>()
+        .map_err(|e| invalid("passes/pass", e.to_string()))?;
     let done = index.len();
     if index.iter().enumerate().any(|(k, i)| *i != k as i64) {
         return Err(invalid("passes/pass", "passage indices are not 0, 1, 2, ...".into()));
     }
     let column = |name: &str| -> Result<ndarray::Array1<f64>, NcError> {
-        let c = dim(read_f64(path, "passes", name)?, name)?;
+        let c = dim(read_f64(path, "passes", name)?, &format!("passes/{name}"))?;
         if c.len() != done {
-            return Err(invalid(name, format!("has {} rows, not {done}", c.len())));
+            return Err(invalid(&format!("passes/{name}"), format!("has {} rows, not {done}", c.len())));
         }
         Ok(c)
     };
@@ -84,7 +85,15 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
     }
     let stored =
         read_i64(path, "rail", "pass")?.into_dimensionality::<Ix1>().map_err(|e| invalid("pass", e.to_string()))?;
-    let rail_traffic = dim(read_f64(path, "rail", "traffic")?, "traffic")?;
+    let rail_traffic = dim(read_f64(path, "rail", "traffic")?, "rail/traffic")?;
+    if rail_traffic.len() != stored.len() {
+        return Err(invalid("rail/traffic", format!("has {} entries, not {}", rail_traffic.len(), stored.len())));
+    }
+    if stored.iter().zip(stored.iter().skip(1)).any(|(a, b)| a >= b)
+        || stored.iter().any(|i| *i < 0 || *i as usize >= done)
+    {
+        return Err(invalid("rail/pass", format!("stored passages must increase within 0 .. {done}")));
+    }
     let stack = |name: &str| -> Result<ndarray::Array3<f64>, NcError> {
         let a = read_f64(path, "rail", name)?.into_dimensionality::<Ix3>().map_err(|e| invalid(name, e.to_string()))?;
         if a.dim() != (stored.len(), ny, nx) {
@@ -104,7 +113,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
 
     // Group `contact`.
     let mut histories = Vec::new();
-    for &k in layout.history_passes.iter().filter(|k| **k < done) {
+    for k in (0..done).filter(|k| layout.history_passes.contains(k)) {
         let group = format!("contact/pass_{k:05}");
         histories.push((k as i64, read_history(path, &group, layout)?));
     }

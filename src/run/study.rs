@@ -35,6 +35,9 @@ use crate::wear::{RailGrid, WearDeposit};
 use ndarray::Array2;
 use std::path::{Path, PathBuf};
 
+/// The largest `growth.passes` the config accepts.
+const MAX_PASSES: usize = 1_000_000;
+
 /// What a run reports while it goes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Event {
@@ -108,6 +111,18 @@ pub enum ResumeError {
         /// The file.
         path: PathBuf,
     },
+    /// `--passes` would take the study beyond the largest `growth.passes`.
+    #[error(
+        "cannot resume from {path}: --passes {more} on top of its {done} passages exceeds growth.passes <= {MAX_PASSES}"
+    )]
+    TooMany {
+        /// The file.
+        path: PathBuf,
+        /// Passages in the file.
+        done: usize,
+        /// Passages asked for.
+        more: usize,
+    },
     /// The resumed run failed (nothing more was written than its checkpoints).
     #[error("{0}")]
     Run(#[from] RunError),
@@ -167,8 +182,14 @@ pub fn resume(
     let source = format!("stored in {}", path.display());
     let config_err = |source| ResumeError::Config { path: path.to_owned(), source };
     let mut resolved = load_str(&toml, &source, &[]).map_err(config_err)?;
+    if resolved.scene.growth.is_none() {
+        return Err(ResumeError::NotGrowth { path: path.to_owned() });
+    }
     let done = read_f64(path, "passes", "traffic").map_err(read)?.len();
     if let Some(more) = more {
+        if done + more > MAX_PASSES {
+            return Err(ResumeError::TooMany { path: path.to_owned(), done, more });
+        }
         resolved = load_str(&toml, &source, &[format!("growth.passes={}", done + more)]).map_err(config_err)?;
     }
     let scene = &resolved.scene;
@@ -225,7 +246,7 @@ fn continue_run(
     let growth = scene.growth.as_ref();
     let grid = study_grid(scene);
     let passes = growth.map_or(1, |g| g.passes);
-    let scaling = growth.map_or(TrafficScaling::Fixed { scale: 1.0 }, |g| g.traffic);
+    let scaling = growth.map_or(TrafficScaling::Fixed { scale: 1.0, max_update_ratio: 1.0 }, |g| g.traffic);
     let dynamics = track_dynamics(scene, &d);
     let steps = d.passage.n_steps();
     let first = state.rows.len();
