@@ -62,7 +62,7 @@ fn transient_step(c: &mut Criterion) {
     for n in [10, 20, 30] {
         let mesh = EllipseMesh::new(n, n);
         let e = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
-        let mut solver = Transient::new(mesh, ElasticModel::Exact(e), PressureShape::Hertz, 1e-5);
+        let mut solver = Transient::new(mesh, ElasticModel::Exact(Box::new(e)), PressureShape::Hertz, 1e-5);
         for _ in 0..60 {
             solver.step(&input).unwrap();
         }

@@ -12,7 +12,7 @@ use corrugation::hertz::{Curvatures, Elastic, HertzPatch, HertzShape};
 fn exact(shape: &HertzShape, el: Elastic, nx: usize, ny: usize, eps: f64) -> Transient {
     let mesh = EllipseMesh::new(nx, ny);
     let e = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
-    Transient::new(mesh, ElasticModel::Exact(e), PressureShape::Hertz, eps)
+    Transient::new(mesh, ElasticModel::Exact(Box::new(e)), PressureShape::Hertz, eps)
 }
 
 fn input(patch: HertzPatch, speed: f64, step: f64, mu: f64, force_x: f64) -> StepInput {

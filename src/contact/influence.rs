@@ -93,24 +93,25 @@ fn corner_fast(x: f64, y: f64) -> [f64; 4] {
     [a + b, b, a, -r]
 }
 
+/// A strip of contiguous rectangles: element `i` spans `edges[i + 1] ..
+/// edges[i]` along x (m, decreasing) and `y_lo .. y_hi` along y (m).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Strip {
+    /// x-edges (m), decreasing, one more than the elements.
+    pub edges: Vec<f64>,
+    /// Lower y-edge (m).
+    pub y_lo: f64,
+    /// Upper y-edge (m).
+    pub y_hi: f64,
+}
+
 /// Displacement difference at the point (`x`, `y`) (m) under uniform
-/// tractions on a strip of contiguous rectangles between the x-edges `edges`
-/// (m, decreasing: element `i` spans `edges[i + 1] .. edges[i]`) and the
-/// y-edges `y_lo < y_hi` (m), element `i` carrying `(px[i], py[i])` (Pa).
-/// The same corner rule as [`influence`], with the corners shared by
-/// neighbouring elements evaluated once: `2 (n + 1)` corners instead of `4 n`.
-pub fn strip_displacement(
-    edges: &[f64],
-    y_lo: f64,
-    y_hi: f64,
-    px: &[f64],
-    py: &[f64],
-    x: f64,
-    y: f64,
-    g: f64,
-    nu: f64,
-) -> [f64; 2] {
-    let (ya, yb) = (y - y_hi, y - y_lo);
+/// tractions `(px[i], py[i])` (Pa) on the elements of `strip`. The same
+/// corner rule as [`influence`], with the corners shared by neighbouring
+/// elements evaluated once: `2 (n + 1)` corners instead of `4 n`.
+pub fn strip_displacement(strip: &Strip, (px, py): (&[f64], &[f64]), (x, y): (f64, f64), g: f64, nu: f64) -> [f64; 2] {
+    let edges = &strip.edges;
+    let (ya, yb) = (y - strip.y_hi, y - strip.y_lo);
     let edge = |e: f64| {
         let (hi, lo) = (corner_fast(x - e, yb), corner_fast(x - e, ya));
         [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], hi[3] - lo[3]]
@@ -145,7 +146,8 @@ mod tests {
         let px: Vec<f64> = (0..7).map(|i| 1e8 * (1.0 + 0.3 * i as f64)).collect();
         let py: Vec<f64> = (0..7).map(|i| -2e7 * (i as f64 - 2.5)).collect();
         for (x, y) in [(0.0, 0.0), (3e-3, 0.3e-3), (-2.6e-3, -0.4e-3), (1.234e-3, 5e-3), (0.02, -0.005), (-0.2, 0.0)] {
-            let fast = strip_displacement(&edges, y_lo, y_hi, &px, &py, x, y, g, nu);
+            let strip = Strip { edges: edges.clone(), y_lo, y_hi };
+            let fast = strip_displacement(&strip, (&px, &py), (x, y), g, nu);
             let (mut ux, mut uy) = (0.0, 0.0);
             for i in 0..7 {
                 let r = Rect {

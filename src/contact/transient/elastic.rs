@@ -17,7 +17,7 @@
 //!   outside the previous patch).
 
 use crate::contact::EllipseMesh;
-use crate::contact::influence::{Influence, Rect, influence, strip_displacement};
+use crate::contact::influence::{Influence, Rect, Strip, influence, strip_displacement};
 use faer::Mat;
 use rayon::prelude::*;
 
@@ -146,19 +146,22 @@ fn previous_direct(
 ) {
     let px: Vec<f64> = p.iter().step_by(2).copied().collect();
     let py: Vec<f64> = p.iter().skip(1).step_by(2).copied().collect();
-    let strips: Vec<(Vec<f64>, f64, f64)> = (0..mesh.ny)
+    let strips: Vec<Strip> = (0..mesh.ny)
         .map(|j| {
             let c = mesh.half_chord[j];
-            let edges = (0..=mesh.nx).map(|e| frame.a * (c - e as f64 * mesh.d_xi[j])).collect();
             let eta = mesh.eta[j * mesh.nx];
-            (edges, frame.b * (eta - 0.5 * mesh.d_eta), frame.b * (eta + 0.5 * mesh.d_eta))
+            Strip {
+                edges: (0..=mesh.nx).map(|e| frame.a * (c - e as f64 * mesh.d_xi[j])).collect(),
+                y_lo: frame.b * (eta - 0.5 * mesh.d_eta),
+                y_hi: frame.b * (eta + 0.5 * mesh.d_eta),
+            }
         })
         .collect();
-    u.par_chunks_mut(2).zip(points.par_iter()).for_each(|(uk, (x, y))| {
+    u.par_chunks_mut(2).zip(points.par_iter()).for_each(|(uk, point)| {
         let (mut ux, mut uy) = (0.0, 0.0);
-        for (j, (edges, y_lo, y_hi)) in strips.iter().enumerate() {
+        for (j, strip) in strips.iter().enumerate() {
             let range = j * mesh.nx..(j + 1) * mesh.nx;
-            let d = strip_displacement(edges, *y_lo, *y_hi, &px[range.clone()], &py[range], *x, *y, g, nu);
+            let d = strip_displacement(strip, (&px[range.clone()], &py[range]), *point, g, nu);
             ux += d[0];
             uy += d[1];
         }

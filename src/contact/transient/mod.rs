@@ -46,7 +46,7 @@ const STEP_GROWTH: f64 = 10.0;
 #[derive(Debug, Clone)]
 pub enum ElasticModel {
     /// Kalker's exact theory (half-space influence coefficients).
-    Exact(ExactElastic),
+    Exact(Box<ExactElastic>),
     /// Kalker's simplified theory (Winkler, u = L p).
     Winkler(WinklerElastic),
 }
