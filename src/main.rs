@@ -217,9 +217,8 @@ fn print_check(r: &Resolved) {
     // step: wear ~ 20 ns per node visit; FASTSIM ~ 18 ns per element and
     // solve, 25 solves; simplified-transient ~ 3 us per element; the exact
     // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
-    // LU); with a varying N (harmonics or track dynamics) 4.8 ms at 100 and
-    // 170 ms at 400 elements, fitted as c2 N^2 (previous-displacement map)
-    // + c3 N^3.
+    // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
+    // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
     let contact = match s.contact.model {
@@ -228,7 +227,7 @@ fn print_check(r: &Resolved) {
         ContactModelKind::ExactTransient => {
             let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
                 || s.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
-            if varying { 2.86e-7 * n_el.powi(2) + 1.94e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
+            if varying { 2.7e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
         }
     };
     let secs = p.n_steps() as f64 * (contact + p.substeps as f64 * nodes * 20e-9);

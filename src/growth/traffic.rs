@@ -27,7 +27,7 @@
 //! accumulation, which the Euler update integrates exactly) does not hold `m`
 //! down, while it still counts once it is a visible part of the corrugation.
 //! The default bound is 0.05 (growth rates within 2.5 % for standing
-//! patterns; measured +10 % at q = 0.1 for the travelling 15 mm pattern of
+//! patterns; measured +16 % at q = 0.1 for the travelling 15 mm pattern of
 //! growth_fastsim). With `imposed` dynamics the wear does not depend on the
 //! profile, the update is exact for any `m`, and `q` is reported as 0.
 //!
