@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,check}``.
+"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,stability,check}``.
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -42,6 +42,10 @@ def _parser() -> argparse.ArgumentParser:
     spa = sub.add_parser("speed-accuracy", help="errors against a reference and CPU time per model and mesh")
     spa.add_argument("manifest", help="CSV: scene, model, mesh, file, reference (1 for the reference run)")
     spa.add_argument("--out", required=True, help="output folder (created if needed)")
+
+    stb = sub.add_parser("stability", help="outcome table of scripts/stability_map.sh")
+    stb.add_argument("manifest", help="CSV: sweep, value, file, exit_code, message (one 'baseline' row)")
+    stb.add_argument("--out", required=True, help="output folder (created if needed)")
 
     chk = sub.add_parser("check", help="check a run file against the layout contract")
     chk.add_argument("run", help="run file (.h5)")
@@ -96,6 +100,16 @@ def _speed_accuracy(args) -> int:
     return EXIT_OK
 
 
+def _stability(args) -> int:
+    from .stability import markdown, run
+
+    rows, paths = run(args.manifest, args.out)
+    print(markdown(rows))
+    for p in paths:
+        print(p)
+    return EXIT_OK
+
+
 def _check(args) -> int:
     from .schema import check_file
 
@@ -113,7 +127,7 @@ def main(argv: list[str] | None = None) -> int:
     matplotlib.use("Agg")
     args = _parser().parse_args(argv)
     handler = {"figures": _figures, "compare": _compare, "growth": _growth,
-               "speed-accuracy": _speed_accuracy, "check": _check}[args.command]
+               "speed-accuracy": _speed_accuracy, "stability": _stability, "check": _check}[args.command]
     try:
         return handler(args)
     except RunFileError as err:
