@@ -20,12 +20,19 @@ bash scripts/setup.sh
 cargo build --release --quiet
 mkdir -p "$out/runs"
 manifest="$out/manifest.csv"
+failures=0
 echo "scene,model,mesh,file,reference" > "$manifest"
 run() { # scene model mesh repeat reference
   local f="$out/runs/$1_$2_$3_r$4.h5"
-  ./target/release/corrugation run "configs/$1.toml" -o "$f" --set contact.model="$2" \
-    --set contact.elements_x="$3" --set contact.elements_y="$3" --set output.store_fields=false 2>/dev/null
-  echo "$1,$2,$3,$f,$5" >> "$manifest"
+  rm -f "$f"
+  if ./target/release/corrugation run "configs/$1.toml" -o "$f" --set contact.model="$2" \
+    --set contact.elements_x="$3" --set contact.elements_y="$3" --set output.store_fields=false 2> "$f.log"; then
+    echo "$1,$2,$3,$f,$5" >> "$manifest"
+  else
+    echo "$1 $2 $3: failed, left out:" >&2
+    grep -m1 -A1 "^error" "$f.log" >&2 || true
+    failures=$((failures + 1))
+  fi
 }
 for scene in "${scenes[@]}"; do
   run "$scene" exact-transient "$ref" 1 1
@@ -36,3 +43,7 @@ for scene in "${scenes[@]}"; do
   echo "$scene done" >&2
 done
 PYTHONPATH=postprocess .venv/bin/python -m corrugation_post speed-accuracy "$manifest" --out "$out"
+if [ "$failures" -gt 0 ]; then
+  echo "$failures run(s) failed and are missing from the table" >&2
+  exit 1
+fi

@@ -6,7 +6,10 @@ scene is compared with, the finest exact-transient run). For every run the
 errors against its scene's reference are:
 
 * ``wear_l2``: relative L2 difference of the centre-line wear profile
-  ``||w - w_ref|| / ||w_ref||`` on the recorded stretch;
+  ``||w - w_ref|| / ||w_ref||`` on the recorded stretch (dominated by the
+  mean wear depth);
+* ``wear_fluct_l2``: the same for the profile minus its mean, the part that
+  makes corrugation (``||w' - w'_ref|| / ||w'_ref||``);
 * ``harmonic_amp``: relative error of the amplitude of the centre-line wear
   at the imposed load wavelength (the first harmonic, which drives growth);
 * ``harmonic_phase``: its phase error (rad, wrapped to (-pi, pi]);
@@ -35,7 +38,7 @@ from matplotlib.figure import Figure
 from .figures import DPI
 from .io import Run, RunFileError, parse_config, root_attrs
 
-CSV_COLUMNS = ("scene", "model", "mesh", "repeats", "cpu_seconds", "wear_l2", "harmonic_amp",
+CSV_COLUMNS = ("scene", "model", "mesh", "repeats", "cpu_seconds", "wear_l2", "wear_fluct_l2", "harmonic_amp",
                "harmonic_phase", "creepage_l2", "pareto")
 MARKERS = {"exact-transient": "o", "simplified-transient": "s", "fastsim": "^"}
 
@@ -57,7 +60,9 @@ def _curves(path):
         w = rail["wear"].sel({"pass": last}).sel(y=0.0, method="nearest").values
         x = rail["x"].values
     with run.contact(run.contact_passes()[0]) as ct:
-        creep = ct["creepage_x"].values[ct["x_c"].values >= x[0]]
+        xc = ct["x_c"].values
+        on_stretch = (xc >= x[0]) & (xc <= x[-1])
+        creep = ct["creepage_x"].values[on_stretch]
     with run.pass_table() as ps:
         cpu = float(ps["cpu_seconds"].values.sum())
     return x, w, creep, cpu
@@ -72,9 +77,10 @@ def _harmonic(x, w, wavelength):
 
 
 def _rel_l2(a, ref):
-    n = min(len(a), len(ref))
-    norm = np.linalg.norm(ref[:n])
-    return float(np.linalg.norm(a[:n] - ref[:n]) / norm) if norm > 0 else math.nan
+    if len(a) != len(ref):
+        raise RunFileError(f"cannot compare histories of {len(a)} and {len(ref)} steps (different step length?)")
+    norm = np.linalg.norm(ref)
+    return float(np.linalg.norm(a - ref) / norm) if norm > 0 else math.nan
 
 
 def pareto(points):
@@ -108,6 +114,7 @@ def evaluate(manifest_rows):
         out.append({
             "scene": scene, "model": model, "mesh": mesh, "repeats": len(files), "cpu_seconds": cpu,
             "wear_l2": _rel_l2(np.interp(rx, x, w), rw),
+            "wear_fluct_l2": _rel_l2(np.interp(rx, x, w) - np.mean(np.interp(rx, x, w)), rw - np.mean(rw)),
             "harmonic_amp": float(abs(h) / abs(h_ref) - 1.0) if abs(h_ref) > 0 else math.nan,
             "harmonic_phase": phase, "creepage_l2": _rel_l2(creep, rc), "pareto": 0,
         })
@@ -159,10 +166,10 @@ def run(manifest: Path, out_dir: Path):
 
 
 def format_table(rows) -> str:
-    lines = [f"{'scene':<26} {'model':<21} {'mesh':>4} {'cpu s':>8} {'wear L2':>8} {'amp':>8} "
+    lines = [f"{'scene':<26} {'model':<21} {'mesh':>4} {'cpu s':>8} {'wear L2':>8} {'fluct L2':>8} {'amp':>8} "
              f"{'phase':>8} {'creep L2':>8} P"]
     for r in rows:
         lines.append(f"{r['scene']:<26} {r['model']:<21} {r['mesh']:>4} {r['cpu_seconds']:>8.3f} "
-                     f"{r['wear_l2']:>8.4f} {r['harmonic_amp']:>+8.4f} {r['harmonic_phase']:>+8.4f} "
+                     f"{r['wear_l2']:>8.4f} {r['wear_fluct_l2']:>8.4f} {r['harmonic_amp']:>+8.4f} {r['harmonic_phase']:>+8.4f} "
                      f"{r['creepage_l2']:>8.4f} {'*' if r['pareto'] else ''}")
     return "\n".join(lines)

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .io import Run
+from .io import Run, RunFileError
 
 COLUMNS = ("sweep", "value", "outcome", "newton_mean", "newton_max", "cpu_seconds", "wear_l2_vs_baseline",
            "message")
@@ -37,7 +37,9 @@ def _load(path):
 
 
 def evaluate(rows):
-    base = next(r for r in rows if r["sweep"] == "baseline")
+    base = next((r for r in rows if r["sweep"] == "baseline"), None)
+    if base is None or int(base["exit_code"]) != 0:
+        raise RunFileError("the baseline run is missing or failed: no reference for the wear differences")
     bx, bw, _, _ = _load(base["file"])
     out = []
     for r in rows:

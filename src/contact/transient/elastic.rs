@@ -71,6 +71,13 @@ impl ExactElastic {
         ExactElastic { g, nu, aspect, c_unit, previous_cache: None, last_key: None }
     }
 
+    /// Forgets the earlier-displacement matrix and key, so that what follows
+    /// does not depend on what came before.
+    pub fn reset(&mut self) {
+        self.previous_cache = None;
+        self.last_key = None;
+    }
+
     /// Semi-axis ratio a/b the matrix was built for.
     pub fn aspect(&self) -> f64 {
         self.aspect

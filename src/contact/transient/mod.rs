@@ -463,6 +463,11 @@ impl TangentialSolver for Transient {
     fn reset(&mut self) {
         self.history = None;
         self.factor = None;
+        // The earlier-displacement cache too: a passage must not depend on
+        // the ones before it (a resumed run starts with a fresh solver).
+        if let ElasticModel::Exact(e) = &mut self.model {
+            e.reset();
+        }
     }
 
     fn mesh(&self) -> &EllipseMesh {
