@@ -93,3 +93,18 @@ fn non_convergence_is_reported_with_step_and_residuals() {
     let msg = e.to_string();
     assert!(msg.starts_with("step 0 at X = -1.500000e-2 m (N = 1.000000e5 N, F_x = 2.000000e4 N)"), "{msg}");
 }
+
+#[test]
+fn tiny_regularisation_converges_through_eps_continuation() {
+    // Stability map, eps row: at eps = 1e-7 m/s (8 x 8) one step needs the
+    // continuation 100 eps -> 10 eps -> eps after the direct attempt (60
+    // iterations) fails; the passage completes and its wear is within 1 %
+    // of the eps = 1e-6 passage (the regularised law converges as eps -> 0).
+    let mesh = ["contact.elements_x=8", "contact.elements_y=8"];
+    let (tiny, _) = passage("exact-transient", &[&mesh[..], &["contact.regularisation=1e-7"]].concat());
+    let (small, _) = passage("exact-transient", &[&mesh[..], &["contact.regularisation=1e-6"]].concat());
+    let most = tiny.history.newton_iterations.iter().fold(0.0f64, |m, v| m.max(*v));
+    assert!(most > 60.0, "continuation used: {most} iterations on the hardest step");
+    let diff = (&tiny.wear - &small.wear).mapv(|v| v * v).sum().sqrt() / small.wear.mapv(|v| v * v).sum().sqrt();
+    assert!(diff < 0.01, "wear 1e-7 vs 1e-6: {diff}");
+}
