@@ -80,34 +80,31 @@ def _compare(args) -> int:
     return EXIT_PARTIAL if problems else EXIT_OK
 
 
-def _growth(args) -> int:
-    from .growth import compare_growth, format_table
-
-    rows, paths = compare_growth(args.runs, args.out, args.wavelength)
-    print(format_table(rows))
+def _print_table(result, fmt) -> int:
+    """Prints a table command's rows with ``fmt`` and the files it wrote."""
+    rows, paths = result
+    print(fmt(rows))
     for p in paths:
         print(p)
     return EXIT_OK
+
+
+def _growth(args) -> int:
+    from .growth import compare_growth, format_table
+
+    return _print_table(compare_growth(args.runs, args.out, args.wavelength), format_table)
 
 
 def _speed_accuracy(args) -> int:
     from .speed_accuracy import format_table, run
 
-    rows, paths = run(args.manifest, args.out)
-    print(format_table(rows))
-    for p in paths:
-        print(p)
-    return EXIT_OK
+    return _print_table(run(args.manifest, args.out), format_table)
 
 
 def _stability(args) -> int:
     from .stability import markdown, run
 
-    rows, paths = run(args.manifest, args.out)
-    print(markdown(rows))
-    for p in paths:
-        print(p)
-    return EXIT_OK
+    return _print_table(run(args.manifest, args.out), markdown)
 
 
 def _check(args) -> int:

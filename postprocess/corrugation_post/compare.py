@@ -7,7 +7,6 @@ first run.  Relative difference = (value - reference) / |reference|.
 
 from __future__ import annotations
 
-import csv
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,6 +16,7 @@ from matplotlib.figure import Figure
 
 from .figures import DPI, contact_mask
 from .io import Run, RunFileError
+from .io import write_csv as io_write_csv
 from .units import values_in
 
 CSV_NAME = "compare.csv"
@@ -173,11 +173,7 @@ def _side_by_side_maps(runs: list[Run], labels: list[str], pass_index: int, out_
 
 
 def write_csv(rows: list[dict], path: Path) -> Path:
-    with open(path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=CSV_COLUMNS)
-        writer.writeheader()
-        writer.writerows(rows)
-    return path
+    return io_write_csv(path, CSV_COLUMNS, rows)
 
 
 def compare_runs(paths, out_dir, pass_index: int | None = None):

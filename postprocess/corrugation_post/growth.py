@@ -9,7 +9,6 @@ whose amplitude grew the most (in dB) over the run.
 
 from __future__ import annotations
 
-import csv
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -17,7 +16,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .figures import DPI
-from .io import Run, RunFileError, root_attrs
+from .io import Run, RunFileError, root_attrs, write_csv
 
 CSV_NAME = "growth_compare.csv"
 CSV_COLUMNS = (
@@ -123,12 +122,7 @@ def compare_growth(paths, out_dir, wavelength: float | None = None):
     ax_rms.legend(fontsize=8)
     png = out_dir / "growth_compare.png"
     fig.savefig(png, dpi=DPI)
-    table = out_dir / CSV_NAME
-    with open(table, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=CSV_COLUMNS)
-        w.writeheader()
-        w.writerows(rows)
-    return rows, [png, table]
+    return rows, [png, write_csv(out_dir / CSV_NAME, CSV_COLUMNS, rows)]
 
 
 def format_table(rows) -> str:

@@ -11,6 +11,7 @@ Note that ``pass`` is a Python keyword: use ``ds["pass"]`` and
 
 from __future__ import annotations
 
+import csv
 import re
 import tomllib
 from dataclasses import dataclass, field
@@ -192,3 +193,19 @@ def _short(values: list[int], keep: int = 8) -> str:
     head = ", ".join(map(str, values[: keep // 2]))
     tail = ", ".join(map(str, values[-keep // 2 :]))
     return f"{head}, ..., {tail} ({len(values)} in all)"
+
+
+def write_csv(path: str | Path, columns, rows) -> Path:
+    """Writes ``rows`` (dicts) with the header ``columns`` to ``path``."""
+    path = Path(path)
+    with open(path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=list(columns))
+        writer.writeheader()
+        writer.writerows(rows)
+    return path
+
+
+def read_csv(path: str | Path) -> list[dict]:
+    """The rows of a CSV file with a header, as dicts."""
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))

@@ -27,7 +27,6 @@ models of a scene circled).
 
 from __future__ import annotations
 
-import csv
 import math
 from collections import defaultdict
 from pathlib import Path
@@ -36,7 +35,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from .figures import DPI
-from .io import Run, RunFileError, parse_config, root_attrs
+from .io import Run, RunFileError, parse_config, read_csv, root_attrs, write_csv
 
 CSV_COLUMNS = ("scene", "model", "mesh", "repeats", "cpu_seconds", "wear_l2", "wear_fluct_l2", "harmonic_amp",
                "harmonic_phase", "creepage_l2", "pareto")
@@ -155,13 +154,8 @@ def chart(rows, path: Path) -> Path:
 def run(manifest: Path, out_dir: Path):
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    with open(manifest, newline="") as f:
-        rows = evaluate(list(csv.DictReader(f)))
-    table = out_dir / "speed_accuracy.csv"
-    with open(table, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=CSV_COLUMNS)
-        w.writeheader()
-        w.writerows(rows)
+    rows = evaluate(read_csv(manifest))
+    table = write_csv(out_dir / "speed_accuracy.csv", CSV_COLUMNS, rows)
     return rows, [table, chart(rows, out_dir / "speed_accuracy.png")]
 
 

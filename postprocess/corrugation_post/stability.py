@@ -11,13 +11,12 @@ same rail grid and load).
 
 from __future__ import annotations
 
-import csv
 import math
 from pathlib import Path
 
 import numpy as np
 
-from .io import Run, RunFileError
+from .io import Run, RunFileError, read_csv, write_csv
 
 COLUMNS = ("sweep", "value", "outcome", "newton_mean", "newton_max", "cpu_seconds", "wear_l2_vs_baseline",
            "message")
@@ -72,13 +71,8 @@ def markdown(rows) -> str:
 def run(manifest: Path, out_dir: Path):
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    with open(manifest, newline="") as f:
-        rows = evaluate(list(csv.DictReader(f)))
-    table = out_dir / "stability.csv"
-    with open(table, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=COLUMNS)
-        w.writeheader()
-        w.writerows(rows)
+    rows = evaluate(read_csv(manifest))
+    table = write_csv(out_dir / "stability.csv", COLUMNS, rows)
     md = out_dir / "stability.md"
     md.write_text(markdown(rows) + "\n")
     return rows, [table, md]

@@ -197,8 +197,8 @@ pub fn resume(
         return Err(ResumeError::NotGrowth { path: path.to_owned() });
     };
     let grid = study_grid(scene);
-    let d = derive(scene);
-    let elements = build_solver(scene, &d.shape).mesh().len();
+    // The contact mesh has elements_x * elements_y elements (EllipseMesh).
+    let elements = scene.contact.elements_x * scene.contact.elements_y;
     let layout = StateLayout {
         grid_shape: (grid.ny, grid.nx),
         wavelengths: wavelengths(grid.nx, grid.dx).len(),
