@@ -2,6 +2,7 @@
 //! Built from a config by [`crate::config`]; SI units throughout.
 
 use crate::contact::PressureShape;
+use crate::contact::transient::StepSolver;
 use crate::hertz::{Curvatures, Elastic};
 use crate::loads::ImposedLoads;
 
@@ -76,6 +77,9 @@ pub struct ContactParams {
     pub regularisation: f64,
     /// Traction bound of FASTSIM.
     pub fastsim_bound: PressureShape,
+    /// How the exact-transient model solves each step (Gauss-Seidel, or the
+    /// Newton-Raphson reference).
+    pub solver: StepSolver,
 }
 
 /// Rail-surface grid.

@@ -2,7 +2,7 @@
 //! and non-convergence reported with where and why.
 use corrugation::config::load_str;
 use corrugation::contact::transient::elastic::ExactElastic;
-use corrugation::contact::transient::{ElasticModel, Transient};
+use corrugation::contact::transient::{DEFAULT_TOLERANCE, ElasticModel, StepSolver, Transient};
 use corrugation::contact::{EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use corrugation::passage::{PassageError, PassageResult, run_passage};
 use corrugation::run::{build_solver, derive};
@@ -96,15 +96,63 @@ fn non_convergence_is_reported_with_step_and_residuals() {
 
 #[test]
 fn tiny_regularisation_converges_through_eps_continuation() {
-    // Stability map, eps row: at eps = 1e-7 m/s (8 x 8) one step needs the
-    // continuation 100 eps -> 10 eps -> eps after the direct attempt (60
-    // iterations) fails; the passage completes and its wear is within 1 %
+    // Stability map, eps row: at eps = 1e-7 m/s (8 x 8) one step needs
+    // Newton's continuation 100 eps -> 10 eps -> eps after the direct attempt
+    // (60 iterations) fails; the passage completes and its wear is within 1 %
     // of the eps = 1e-6 passage (the regularised law converges as eps -> 0).
-    let mesh = ["contact.elements_x=8", "contact.elements_y=8"];
-    let (tiny, _) = passage("exact-transient", &[&mesh[..], &["contact.regularisation=1e-7"]].concat());
-    let (small, _) = passage("exact-transient", &[&mesh[..], &["contact.regularisation=1e-6"]].concat());
+    // Gauss-Seidel needs no continuation (each element problem is solved
+    // exactly) and lands on the same wear.
+    let run = |solver: &str, eps: &str| {
+        let (solver, eps) = (format!("contact.solver={solver}"), format!("contact.regularisation={eps}"));
+        passage("exact-transient", &["contact.elements_x=8", "contact.elements_y=8", &solver, &eps]).0
+    };
+    let rel = |a: &PassageResult, b: &PassageResult| {
+        (&a.wear - &b.wear).mapv(|v| v * v).sum().sqrt() / b.wear.mapv(|v| v * v).sum().sqrt()
+    };
+    let (tiny, small) = (run("newton", "1e-7"), run("newton", "1e-6"));
     let most = tiny.history.newton_iterations.iter().fold(0.0f64, |m, v| m.max(*v));
     assert!(most > 60.0, "continuation used: {most} iterations on the hardest step");
-    let diff = (&tiny.wear - &small.wear).mapv(|v| v * v).sum().sqrt() / small.wear.mapv(|v| v * v).sum().sqrt();
-    assert!(diff < 0.01, "wear 1e-7 vs 1e-6: {diff}");
+    assert!(rel(&tiny, &small) < 0.01, "wear 1e-7 vs 1e-6: {}", rel(&tiny, &small));
+    let gs = run("gauss-seidel", "1e-7");
+    assert!(rel(&gs, &tiny) < 1e-6, "Gauss-Seidel vs Newton at eps = 1e-7: {}", rel(&gs, &tiny));
+}
+
+/// The first 19 mm of paper_normal_15mm (95 steps, more than a wavelength)
+/// with the exact model on 8 x 8, solved by `solver` to `tolerance` eps.
+fn exact_passage(solver: StepSolver, tolerance: f64) -> PassageResult {
+    let set: Vec<String> =
+        ["contact.elements_x=8", "contact.elements_y=8", "passage.end=0.004"].iter().map(|s| s.to_string()).collect();
+    let r = load_str(BASE, "x", &set).unwrap();
+    let d = derive(&r.scene);
+    let mesh = EllipseMesh::new(8, 8);
+    let el = r.scene.material.elastic;
+    let e = ExactElastic::new(&mesh, d.shape.aspect(), el.shear_modulus(), el.poisson_ratio);
+    let mut solver = Transient::new(mesh, ElasticModel::Exact(Box::new(e)), PressureShape::Hertz, 1e-5)
+        .with_solver(solver)
+        .with_tolerance(tolerance);
+    let dep = WearDeposit::new(solver.mesh());
+    run_passage(&d.passage, &d.shape, &mut solver, &dep, &d.grid, true, &mut |_, _| {}).unwrap()
+}
+
+/// Largest difference of `a` and `b`, relative to the largest |b|.
+fn rel_diff<'a>(a: impl IntoIterator<Item = &'a f64>, b: impl IntoIterator<Item = &'a f64> + Clone) -> f64 {
+    let scale = b.clone().into_iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    a.into_iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale
+}
+
+#[test]
+fn gauss_seidel_converges_to_the_newton_solution() {
+    // The same equations to the same tolerance: the two solvers differ by
+    // what the tolerance leaves, and by less when it is tightened.
+    for (tolerance, bound) in [(DEFAULT_TOLERANCE, 5e-8), (1e-8, 1e-11)] {
+        let gs = exact_passage(StepSolver::GaussSeidel, tolerance);
+        let nr = exact_passage(StepSolver::Newton, tolerance);
+        let (g, n) = (gs.history.fields.as_ref().unwrap(), nr.history.fields.as_ref().unwrap());
+        let creepage = rel_diff(&gs.history.creepage_x, &nr.history.creepage_x);
+        let traction = rel_diff(g.traction_x.iter(), n.traction_x.iter());
+        let wear = rel_diff(gs.wear.iter(), nr.wear.iter());
+        eprintln!("tolerance {tolerance:e}: creepage {creepage:.2e}, traction {traction:.2e}, wear {wear:.2e}");
+        assert!(creepage < bound && traction < bound && wear < bound, "tolerance {tolerance:e}");
+        assert!(gs.history.newton_iterations.iter().all(|v| *v >= 1.0), "every step swept");
+    }
 }

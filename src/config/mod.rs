@@ -12,6 +12,7 @@ mod overrides;
 mod reader;
 
 use crate::contact::PressureShape;
+use crate::contact::transient::StepSolver;
 use crate::creep_coefficients::creep_coefficients;
 use crate::hertz::{Elastic, HertzShape};
 use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};
@@ -142,6 +143,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let ny = s.usize("elements_y", Some(20), 2, 200);
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
     let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
+    let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
     resolved.insert("contact".into(), Value::Table(s.finish()));
 
     let mut s = section(&mut root, "wear", errors);
@@ -191,7 +193,8 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let loads = ImposedLoads { normal_force: normal, longitudinal_force: longitudinal, harmonics };
     check_loads(&loads, mu, dx, errors);
 
-    let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound)) = (model, nx, ny, eps, bound) else {
+    let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound), Some(solver)) = (model, nx, ny, eps, bound, solver)
+    else {
         return (None, resolved);
     };
     let model = ContactModelKind::ALL.into_iter().find(|m| m.name() == model).expect("validated choice");
@@ -251,6 +254,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             elements_y: ny,
             regularisation: eps,
             fastsim_bound: if bound == "elliptic" { PressureShape::Hertz } else { PressureShape::Parabolic },
+            solver: if solver == "newton" { StepSolver::Newton } else { StepSolver::GaussSeidel },
         },
         k_over_h,
         wear_substeps: substeps,

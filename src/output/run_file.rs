@@ -231,7 +231,11 @@ pub(super) const STEP_VARS: [(&str, &str, &str); 14] = [
     ("max_pressure", "Pa", "Hertz maximum pressure p0"),
     ("stick_fraction", "1", "fraction of elements in stick"),
     ("wear_volume_rate", "m3/s", "patch integral of the Archard wear rate"),
-    ("newton_iterations", "1", "Newton-Raphson iterations of the contact solve (0 for FASTSIM)"),
+    (
+        "newton_iterations",
+        "1",
+        "iterations of the contact solve: Newton-Raphson iterations, or Gauss-Seidel sweeps (exact-transient with contact.solver = gauss-seidel); 0 for FASTSIM",
+    ),
     ("in_contact", "1", "1 in contact, 0 contact lost (N <= 0: no patch, fields zero)"),
 ];
 

@@ -83,7 +83,10 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
             let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
             let el = scene.material.elastic;
             let exact = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
-            Box::new(Transient::new(mesh, ElasticModel::Exact(Box::new(exact)), PressureShape::Hertz, c.regularisation))
+            Box::new(
+                Transient::new(mesh, ElasticModel::Exact(Box::new(exact)), PressureShape::Hertz, c.regularisation)
+                    .with_solver(c.solver),
+            )
         }
         ContactModelKind::SimplifiedTransient => {
             let el = scene.material.elastic;

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Cost of the exact-transient model against the element count N, for both
+# step solvers (contact.solver = gauss-seidel | newton), on a whole
+# paper_normal_30mm passage (491 steps, varying load): wall time per passage
+# and per step (median of REPEATS runs, release build), iterations per step
+# (Gauss-Seidel sweeps or Newton iterations), and the fitted exponent of the
+# time per step in N between successive meshes.
+# Writes out/solver_scaling/scaling.csv and prints the table. About 10
+# minutes on 2 cores (Newton at 20 x 20 is 1.5 minutes a run).
+#   REPEATS=1 bash scripts/solver_scaling.sh    # one run per point
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repeats=${REPEATS:-3}
+out=out/solver_scaling
+bash scripts/setup.sh
+cargo build --release --quiet
+mkdir -p "$out"
+csv="$out/scaling.csv"
+echo "solver,n,elements,run,wall_s,steps,iterations_mean" > "$csv"
+for solver in gauss-seidel newton; do
+  if [ "$solver" = newton ]; then meshes="8 10 14 20"; else meshes="8 10 14 20 28"; fi
+  for n in $meshes; do
+    for r in $(seq 1 "$repeats"); do
+      f="$out/${solver}_${n}.h5"
+      rm -f "$f"
+      start=$(date +%s.%N)
+      ./target/release/corrugation run configs/paper_normal_30mm.toml -o "$f" --set contact.model=exact-transient \
+        --set contact.solver="$solver" --set contact.elements_x="$n" --set contact.elements_y="$n" \
+        --set output.store_fields=false > /dev/null 2>&1
+      end=$(date +%s.%N)
+      stats=$(.venv/bin/python -c "
+import h5py, numpy as np
+with h5py.File('$f') as h:
+    it = h['contact/pass_00000/newton_iterations'][:]
+    print(f'{len(it)},{it.mean():.2f}')")
+      echo "$solver,$n,$((n * n)),$r,$(python3 -c "print(round($end - $start, 3))"),$stats" >> "$csv"
+    done
+  done
+done
+.venv/bin/python - "$csv" <<'EOF'
+import csv, sys, statistics, math
+rows = list(csv.DictReader(open(sys.argv[1])))
+keys = sorted({(r["solver"], int(r["n"])) for r in rows})
+print(f"{'solver':13} {'mesh':>7} {'N':>5} {'wall/passage s':>15} {'ms/step':>9} {'iter/step':>9} {'exponent':>9}")
+prev = {}
+for solver, n in keys:
+    sel = [r for r in rows if r["solver"] == solver and int(r["n"]) == n]
+    wall = statistics.median(float(r["wall_s"]) for r in sel)
+    step = 1e3 * wall / int(sel[0]["steps"])
+    exp = ""
+    if solver in prev:
+        n0, s0 = prev[solver]
+        exp = f"{math.log(step / s0) / math.log(n * n / (n0 * n0)):.2f}"
+    prev[solver] = (n, step)
+    print(f"{solver:13} {n:>3}x{n:<3} {n*n:>5} {wall:>15.2f} {step:>9.2f} {float(sel[0]['iterations_mean']):>9.1f} {exp:>9}")
+EOF
