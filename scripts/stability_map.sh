@@ -1,19 +1,21 @@
 #!/usr/bin/env bash
-# Stability map of the exact transient model (10 x 10) on paper_normal_15mm:
-# where Newton-Raphson converges and how the answer moves, against
+# Stability map of the exact transient model (10 x 10) on paper_normal_15mm,
+# for each step solver (Newton-Raphson, the reference, and Gauss-Seidel, the
+# default): where it converges and how the answer moves, against
 #   - the regularisation eps (1e-3 ... 1e-7 m/s),
 #   - the step V dt (0.2 ... 3.6 mm, 0.17 ... 3 element lengths),
 #   - the force ratio F_x / (mu N_min) up to 0.99,
 #   - the normal-force amplitude up to contact loss (F_x = 0, lateral creepage 1e-3).
-# Each run's outcome (converged, or the program's error), Newton iterations
+# Each run's outcome (converged, or the program's error), iterations (Newton or sweeps)
 # per step, CPU time, and the centre-line wear difference against the
-# baseline (eps 1e-5, 0.2 mm) go to out/stability_map/stability.{csv,md}.
-# About 3 minutes on 2 cores.
+# baseline (eps 1e-5, 0.2 mm) go to out/stability_map/{newton,gauss-seidel}/stability.{csv,md}.
+# About 5 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=out/stability_map
 bash scripts/setup.sh
 cargo build --release --quiet
+for solver in newton gauss-seidel; do
+out=out/stability_map/$solver
 mkdir -p "$out/runs"
 manifest="$out/manifest.csv"
 echo "sweep,value,file,exit_code,message" > "$manifest"
@@ -23,6 +25,7 @@ run() { # sweep value --set ...
   rm -f "$f"
   local code=0
   ./target/release/corrugation run configs/paper_normal_15mm.toml -o "$f" --set contact.model=exact-transient \
+    --set contact.solver="$solver" \
     --set contact.elements_x=10 --set contact.elements_y=10 --set output.store_fields=false "$@" 2> "$log" || code=$?
   local msg
   msg=$(grep -m1 -A1 "^error" "$log" | tr '\n,|' ' ;/' | cut -c1-200 || true)
@@ -40,3 +43,4 @@ for amp in 0.45 0.9 0.99 1.2; do
     --set load.harmonics[0].amplitude="$(python3 -c "print($amp * 1e5)")"
 done
 PYTHONPATH=postprocess .venv/bin/python -m corrugation_post stability "$manifest" --out "$out"
+done

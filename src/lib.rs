@@ -16,6 +16,7 @@ pub mod growth;
 pub mod hertz;
 pub mod loads;
 pub mod metrics;
+pub mod model_choice;
 pub mod numerics;
 pub mod output;
 pub mod params;

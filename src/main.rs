@@ -7,9 +7,11 @@ mod progress;
 
 use clap::{Parser, Subcommand};
 use corrugation::config::{self, Resolved};
+use corrugation::contact::transient::StepSolver;
 use corrugation::dynamics::TrackDynamics;
 use corrugation::growth::traffic::TrafficScaling;
 use corrugation::loads::LoadQuantity;
+use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, departures};
 use corrugation::params::{ContactModelKind, DynamicsKind};
 use corrugation::run::{ResumeError, RunSummary, derive, periodic_grid, run_scene, track_dynamics};
 use std::path::{Path, PathBuf};
@@ -162,12 +164,58 @@ fn report(s: &RunSummary, out: &Path) {
     }
 }
 
+/// What contact.model = "auto" chose and why.
+fn print_auto(a: &AutoChoice) {
+    let ms = |c: &Candidate| c.cpu_per_step * 1e3;
+    println!(
+        "auto               tolerance {} (relative centre-line wear error); shortest wavelength {:.4} mm, \
+         lambda / 2a_max = {:.3}",
+        a.tolerance,
+        a.wavelength * 1e3,
+        a.lambda_over_2a
+    );
+    let c = &a.chosen;
+    println!(
+        "auto choice        {} {} x {}: predicted error {:.4}, {:.3} ms CPU per step (the cheapest within the tolerance)",
+        c.model.name(),
+        c.mesh,
+        c.mesh,
+        c.wear_error,
+        ms(c)
+    );
+    if let Some(e) = &a.exact {
+        println!(
+            "auto exact         exact-transient would need {} x {}: predicted error {:.4}, {:.3} ms CPU per step",
+            e.mesh,
+            e.mesh,
+            e.wear_error,
+            ms(e)
+        );
+    }
+    let list: Vec<String> = AccuracyMap::builtin()
+        .candidates(a.lambda_over_2a)
+        .iter()
+        .map(|c| {
+            let mark = if c.wear_error <= a.tolerance { "ok" } else { "no" };
+            format!("{} {}: {:.3} in {:.2} ms {mark}", c.model.name(), c.mesh, c.wear_error, ms(c))
+        })
+        .collect();
+    println!("auto candidates    (cheapest first) {}", list.join("; "));
+}
+
 fn print_check(r: &Resolved) {
     let s = &r.scene;
     let d = derive(s);
     let mm = |v: f64| v * 1e3;
     println!("config OK");
-    println!("contact model      {}", s.contact.model.name());
+    let by = if s.contact.auto.is_some() { " (chosen by contact.model = \"auto\")" } else { "" };
+    println!("contact model      {}{by}", s.contact.model.name());
+    if let Some(a) = &s.contact.auto {
+        print_auto(a);
+        for note in departures(s) {
+            println!("note               outside the map's conditions: {note}");
+        }
+    }
     println!("Hertz a/b          {:.4}", d.shape.aspect());
     if d.patch_min.is_none() {
         println!(
@@ -218,18 +266,24 @@ fn print_check(r: &Resolved) {
     // solve, 25 solves; simplified-transient ~ 3 us per element; the exact
     // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
     // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
-    // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s.
+    // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
+    // solver: 3.8 ms at 100 and 30 ms at 400 elements, ~N^1.5.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
     let contact = match s.contact.model {
         ContactModelKind::Fastsim => 25.0 * 18e-9 * n_el,
         ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
+        ContactModelKind::ExactTransient if s.contact.solver == StepSolver::GaussSeidel => {
+            3.8e-3 * (n_el / 100.0).powf(1.5)
+        }
         ContactModelKind::ExactTransient => {
             let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
                 || s.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
             if varying { 2.7e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
         }
     };
+    // With "auto", the map's own measurement of the chosen model.
+    let contact = s.contact.auto.map_or(contact, |a| a.chosen.cpu_per_step);
     let secs = p.n_steps() as f64 * (contact + p.substeps as f64 * nodes * 20e-9);
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
     if let Some(g) = &s.growth {

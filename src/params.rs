@@ -80,6 +80,9 @@ pub struct ContactParams {
     /// How the exact-transient model solves each step (Gauss-Seidel, or the
     /// Newton-Raphson reference).
     pub solver: StepSolver,
+    /// What `contact.model = "auto"` chose (None when the config names the
+    /// model).
+    pub auto: Option<crate::model_choice::AutoChoice>,
 }
 
 /// Rail-surface grid.

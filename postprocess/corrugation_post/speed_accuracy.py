@@ -124,7 +124,8 @@ def evaluate(manifest_rows):
     return out
 
 
-def chart(rows, path: Path) -> Path:
+def chart(rows, path: Path, xlabel: str = "CPU time per passage (s)") -> Path:
+    """Wear error against ``cpu_seconds`` per scene panel, Pareto front circled."""
     scenes = sorted({r["scene"] for r in rows})
     cols = min(2, len(scenes))
     nrows = math.ceil(len(scenes) / cols)
@@ -142,7 +143,7 @@ def chart(rows, path: Path) -> Path:
         front = sorted((r for r in mine if r["pareto"]), key=lambda r: r["cpu_seconds"])
         ax.plot([p["cpu_seconds"] for p in front], [p["wear_l2"] for p in front], "o", ms=11,
                 mfc="none", mec="k", label="Pareto front")
-        ax.set(title=scene, xlabel="CPU time per passage (s)", ylabel="centre-line wear error (rel. L2)")
+        ax.set(title=scene, xlabel=xlabel, ylabel="centre-line wear error (rel. L2)")
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=7)
     for ax in axes[len(scenes):]:

@@ -4,7 +4,7 @@ Input: a manifest CSV with columns ``sweep, value, file, exit_code,
 message`` (one row per run; the row with sweep ``baseline`` is the
 reference). Output: ``stability.csv`` and ``stability.md`` with, per run,
 whether it converged (exit code 0) or the program's error, the mean and
-largest Newton iterations per step, the CPU time, and the relative L2
+largest iterations per step (Newton iterations or Gauss-Seidel sweeps), the CPU time, and the relative L2
 difference of the centre-line wear against the baseline (for runs with the
 same rail grid and load).
 """
@@ -57,7 +57,7 @@ def evaluate(rows):
 
 
 def markdown(rows) -> str:
-    lines = ["| sweep | value | outcome | Newton iterations per step (mean / max) | CPU s | wear vs baseline |",
+    lines = ["| sweep | value | outcome | iterations per step (mean / max) | CPU s | wear vs baseline |",
              "|---|---|---|---|---|---|"]
     for r in rows:
         it = "" if math.isnan(r["newton_mean"]) else f"{r['newton_mean']:.1f} / {r['newton_max']:.0f}"

@@ -7,6 +7,7 @@
 //! amplitudes against the mean, the friction limit, wavelengths against the
 //! rail grid, Kalker's table range) run on the keys that were valid.
 
+mod auto;
 mod growth;
 mod overrides;
 mod reader;
@@ -17,6 +18,7 @@ use crate::creep_coefficients::creep_coefficients;
 use crate::hertz::{Elastic, HertzShape};
 use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};
 use crate::params::{ContactModelKind, ContactParams, Geometry, Material, OutputParams, RailParams, Scene};
+pub use auto::AUTO;
 use reader::{Range, Section};
 use std::fmt;
 use std::path::Path;
@@ -138,9 +140,26 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     resolved.insert("load".into(), Value::Table(s.finish()));
 
     let mut s = section(&mut root, "contact", errors);
-    let model = s.choice("model", Some("fastsim"), &ContactModelKind::ALL.map(ContactModelKind::name));
-    let nx = s.usize("elements_x", Some(20), 2, 200);
-    let ny = s.usize("elements_y", Some(20), 2, 200);
+    let names = ContactModelKind::ALL.map(ContactModelKind::name);
+    let model = s.choice("model", Some("fastsim"), &[&names[..], &[AUTO]].concat());
+    let auto = model.as_deref() == Some(AUTO);
+    // "auto" chooses the mesh and reads a tolerance; the other models take a
+    // mesh and have no tolerance.
+    let (nx, ny, tolerance) = if auto {
+        for key in ["elements_x", "elements_y"] {
+            if s.has(key) {
+                s.usize(key, None, 2, 200);
+                s.error(key, "is chosen by contact.model = \"auto\"; remove it, or name a model".into());
+            }
+        }
+        (Some(0), Some(0), s.f64("tolerance", Some(0.1), Range::OpenClosed(0.0, 1.0)))
+    } else {
+        if s.has("tolerance") {
+            s.f64("tolerance", None, Range::Finite);
+            s.error("tolerance", "applies to contact.model = \"auto\" only; remove it, or set model = \"auto\"".into());
+        }
+        (s.usize("elements_x", Some(20), 2, 200), s.usize("elements_y", Some(20), 2, 200), Some(0.0))
+    };
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
     let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
     let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
@@ -193,11 +212,11 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let loads = ImposedLoads { normal_force: normal, longitudinal_force: longitudinal, harmonics };
     check_loads(&loads, mu, dx, errors);
 
-    let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound), Some(solver)) = (model, nx, ny, eps, bound, solver)
+    let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound), Some(solver), Some(tolerance)) =
+        (model, nx, ny, eps, bound, solver, tolerance)
     else {
         return (None, resolved);
     };
-    let model = ContactModelKind::ALL.into_iter().find(|m| m.name() == model).expect("validated choice");
     let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(step_length)) =
         (k_over_h, substeps, start, end, step_length)
     else {
@@ -241,6 +260,17 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     if let Some(g) = &growth {
         check_growth(g, &loads, start, end, (x_min, x_max, dx), shape.as_ref(), errors);
     }
+    let (model, nx, ny, auto) = if model == AUTO {
+        let Some(shape) = shape.as_ref() else {
+            return (None, resolved);
+        };
+        let Some(choice) = auto::resolve(tolerance, &loads, growth.as_ref(), shape, errors) else {
+            return (None, resolved);
+        };
+        (choice.chosen.model, choice.chosen.mesh, choice.chosen.mesh, Some(choice))
+    } else {
+        (ContactModelKind::ALL.into_iter().find(|m| m.name() == model).expect("validated choice"), nx, ny, None)
+    };
     let scene = Scene {
         material,
         geometry,
@@ -255,6 +285,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             regularisation: eps,
             fastsim_bound: if bound == "elliptic" { PressureShape::Hertz } else { PressureShape::Parabolic },
             solver: if solver == "newton" { StepSolver::Newton } else { StepSolver::GaussSeidel },
+            auto,
         },
         k_over_h,
         wear_substeps: substeps,

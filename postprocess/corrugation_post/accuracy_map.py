@@ -1,0 +1,89 @@
+"""The accuracy map behind ``contact.model = "auto"`` (``scripts/accuracy_map.sh``).
+
+Input: a manifest CSV with columns ``wavelength, model, mesh, file``: runs of
+one scene at several load wavelengths. Per wavelength the reference wear is the
+Richardson extrapolation of the two finest exact-transient runs (first order in
+1/n, ``w_ref = (n2 w2 - n1 w1) / (n2 - n1)``), and every run's error is the
+relative L2 difference of its centre-line wear profile on the recorded stretch
+``||w - w_ref|| / ||w_ref||``. ``lambda_over_2a`` uses the largest semi-axis
+of the passage; ``cpu_per_step`` is the passage's CPU time per contact step.
+Writes ``accuracy_map.csv`` with the columns of :data:`COLUMNS` and
+``accuracy_map.png`` (error against CPU time per step, one panel per
+wavelength, Pareto front circled).
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+
+from .io import Run, RunFileError, read_csv, write_csv
+from .speed_accuracy import _curves, _rel_l2, chart, pareto
+
+COLUMNS = ("model", "mesh", "wavelength", "lambda_over_2a", "wear_error", "cpu_per_step")
+
+
+def _a_max_and_steps(path) -> tuple[float, int]:
+    run = Run.open(path)
+    with run.contact(run.contact_passes()[0]) as ct:
+        a = ct["semi_axis_a"].values
+    return float(np.max(a)), int(len(a))
+
+
+def evaluate(manifest_rows) -> list[dict]:
+    """One map row per (wavelength, model, mesh)."""
+    by_wavelength = defaultdict(list)
+    for r in manifest_rows:
+        by_wavelength[float(r["wavelength"])].append((r["model"], int(r["mesh"]), r["file"]))
+    out = []
+    for wavelength, runs in sorted(by_wavelength.items()):
+        exact = sorted((m, f) for model, m, f in runs if model == "exact-transient")
+        if len(exact) < 2:
+            raise RunFileError(f"wavelength {wavelength}: the reference needs two exact-transient runs")
+        (n1, f1), (n2, f2) = exact[-2], exact[-1]
+        x, w1, _, _ = _curves(f1)
+        x2, w2, _, _ = _curves(f2)
+        w_ref = (n2 * np.interp(x, x2, w2) - n1 * w1) / (n2 - n1)
+        for model, mesh, f in sorted(runs):
+            xr, w, _, cpu = _curves(f)
+            a_max, steps = _a_max_and_steps(f)
+            out.append({
+                "model": model, "mesh": mesh, "wavelength": wavelength,
+                "lambda_over_2a": wavelength / (2.0 * a_max),
+                "wear_error": _rel_l2(np.interp(x, xr, w), w_ref), "cpu_per_step": cpu / steps,
+            })
+    return out
+
+
+def chart_rows(rows) -> list[dict]:
+    """The map in the shape of :func:`speed_accuracy.chart` (ms per step)."""
+    out = []
+    for wavelength in sorted({r["wavelength"] for r in rows}):
+        mine = [r for r in rows if r["wavelength"] == wavelength and r["wear_error"] > 0]
+        scene = f"lambda = {1e3 * wavelength:.0f} mm, lambda / 2a_max = {mine[0]['lambda_over_2a']:.2f}"
+        pts = [{"scene": scene, "model": r["model"], "mesh": r["mesh"], "cpu_seconds": 1e3 * r["cpu_per_step"],
+                "wear_l2": r["wear_error"], "pareto": 0} for r in mine]
+        for i in pareto([(p["cpu_seconds"], p["wear_l2"]) for p in pts]):
+            pts[i]["pareto"] = 1
+        out.extend(pts)
+    return out
+
+
+def run(manifest: Path, out_dir: Path):
+    """Evaluates the manifest, writes the map CSV and chart; returns (rows, paths)."""
+    rows = evaluate(read_csv(manifest))
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    table = write_csv(out_dir / "accuracy_map.csv", COLUMNS, rows)
+    figure = chart(chart_rows(rows), out_dir / "accuracy_map.png", xlabel="CPU time per step (ms)")
+    return rows, [table, figure]
+
+
+def format_table(rows) -> str:
+    lines = [f"{'model':22} {'mesh':>4} {'lambda':>7} {'l/2a':>6} {'wear err':>9} {'ms/step':>8}"]
+    for r in rows:
+        lines.append(f"{r['model']:22} {r['mesh']:>4} {1e3 * r['wavelength']:>5.0f}mm {r['lambda_over_2a']:>6.2f} "
+                     f"{r['wear_error']:>9.4f} {1e3 * r['cpu_per_step']:>8.2f}")
+    return "\n".join(lines)
