@@ -4,7 +4,7 @@
 use corrugation::config::load_str;
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::transient::elastic::ExactElastic;
-use corrugation::contact::transient::{ElasticModel, Transient};
+use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use corrugation::creep_coefficients::creep_coefficients;
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
@@ -60,13 +60,16 @@ fn transient_step(c: &mut Criterion) {
     let mut g = c.benchmark_group("exact_transient_step");
     g.sample_size(20);
     for n in [10, 20, 30] {
-        let mesh = EllipseMesh::new(n, n);
-        let e = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
-        let mut solver = Transient::new(mesh, ElasticModel::Exact(Box::new(e)), PressureShape::Hertz, 1e-5);
-        for _ in 0..60 {
-            solver.step(&input).unwrap();
+        for (name, kind) in [("gauss_seidel", StepSolver::GaussSeidel), ("newton", StepSolver::Newton)] {
+            let mesh = EllipseMesh::new(n, n);
+            let e = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
+            let mut solver =
+                Transient::new(mesh, ElasticModel::Exact(Box::new(e)), PressureShape::Hertz, 1e-5).with_solver(kind);
+            for _ in 0..60 {
+                solver.step(&input).unwrap();
+            }
+            g.bench_function(format!("{n}x{n}_steady_{name}"), |b| b.iter(|| solver.step(black_box(&input)).unwrap()));
         }
-        g.bench_function(format!("{n}x{n}_steady"), |b| b.iter(|| solver.step(black_box(&input)).unwrap()));
     }
     g.finish();
 }
@@ -77,6 +80,21 @@ fn passage(c: &mut Criterion) {
     let mut g = c.benchmark_group("passage");
     g.sample_size(10);
     g.bench_function("paper_normal_30mm_fastsim", |b| {
+        b.iter(|| {
+            let mut solver = build_solver(&r.scene, &d.shape);
+            let dep = WearDeposit::new(solver.mesh());
+            run_passage(&d.passage, &d.shape, solver.as_mut(), &dep, &d.grid, true, &mut |_, _| {}).unwrap()
+        })
+    });
+    // The target scene for the exact model: a varying load, a new
+    // patch every step (Gauss-Seidel, the default solver).
+    let r = load_str(
+        include_str!("../configs/paper_normal_30mm.toml"),
+        "paper_normal_30mm",
+        &["contact.model=exact-transient".into()],
+    )
+    .unwrap();
+    g.bench_function("paper_normal_30mm_exact_20x20", |b| {
         b.iter(|| {
             let mut solver = build_solver(&r.scene, &d.shape);
             let dep = WearDeposit::new(solver.mesh());

@@ -47,6 +47,9 @@ use std::f64::consts::PI;
 /// Anderson depth (previous iterates kept).
 pub const DEPTH: usize = 6;
 
+/// Elements from which a sweep runs in two parallel halves.
+const PARALLEL_MIN: usize = 64;
+
 /// Sweeps between fresh products `u = C p` (in between, u is mixed with p).
 const REFRESH: usize = 16;
 
@@ -161,21 +164,45 @@ fn matvec(st: &GsStep, p: &[f64], u: &mut [f64]) {
 /// residual (m/s) after it, `|s_k - V w_k - (u_k - u_o,k)/dt|`.
 fn sweep(st: &GsStep, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) -> f64 {
     let n = p.len() / 2;
+    if n < PARALLEL_MIN {
+        sweep_block(st, 0, p, s, u, xi);
+    } else {
+        // Two halves of the patch in parallel, each sweeping its elements
+        // against its own copy of u (Jacobi between the halves, Gauss-Seidel
+        // within); then u = u_a + u_b - u_0. Fixed split, fixed sum order:
+        // deterministic.
+        let m = n / 2;
+        let (pa, pb) = p.split_at_mut(2 * m);
+        let (sa, sb) = s.split_at_mut(2 * m);
+        let (mut ua, mut ub) = (u.to_vec(), u.to_vec());
+        rayon::join(|| sweep_block(st, 0, pa, sa, &mut ua, xi), || sweep_block(st, m, pb, sb, &mut ub, xi));
+        for ((u0, a), b) in u.iter_mut().zip(&ua).zip(&ub) {
+            *u0 = a + b - *u0;
+        }
+    }
+    residual(st, s, u, xi)
+}
+
+/// Gauss-Seidel over the elements `first ..` whose tractions and slips are
+/// `p` and `s`, updating the displacements `u` of the whole patch.
+fn sweep_block(st: &GsStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
     let scale = st.a / st.dt;
-    for k in 0..n {
+    for local in 0..p.len() / 2 {
+        let k = first + local;
         let (i, j) = (2 * k, 2 * k + 1);
+        let (li, lj) = (2 * local, 2 * local + 1);
         let kk = [scale * st.c1[(i, i)], scale * st.c1[(i, j)], scale * st.c1[(j, j)]];
-        let own = [kk[0] * p[i] + kk[1] * p[j], kk[1] * p[i] + kk[2] * p[j]];
+        let own = [kk[0] * p[li] + kk[1] * p[lj], kk[1] * p[li] + kk[2] * p[lj]];
         let s0 = [
             st.speed * (st.w0[i] + xi) + (u[i] - st.u_o[i]) / st.dt - own[0],
             st.speed * st.w0[j] + (u[j] - st.u_o[j]) / st.dt - own[1],
         ];
-        let (sk, pk) = local_solve(s0, kk, st.mu_p3[k], st.eps, [s[i], s[j]]);
-        s[i] = sk[0];
-        s[j] = sk[1];
-        let (dx, dy) = (pk[0] - p[i], pk[1] - p[j]);
-        p[i] = pk[0];
-        p[j] = pk[1];
+        let (sk, pk) = local_solve(s0, kk, st.mu_p3[k], st.eps, [s[li], s[lj]]);
+        s[li] = sk[0];
+        s[lj] = sk[1];
+        let (dx, dy) = (pk[0] - p[li], pk[1] - p[lj]);
+        p[li] = pk[0];
+        p[lj] = pk[1];
         if dx != 0.0 || dy != 0.0 {
             let (fx, fy) = (st.a * dx, st.a * dy);
             for ((ur, cx), cy) in u.iter_mut().zip(st.c1.col_as_slice(i)).zip(st.c1.col_as_slice(j)) {
@@ -183,7 +210,6 @@ fn sweep(st: &GsStep, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) -> f
             }
         }
     }
-    residual(st, s, u, xi)
 }
 
 /// Largest kinematic residual (m/s) of slips `s` and displacements `u`.
