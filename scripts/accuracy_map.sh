@@ -14,7 +14,7 @@
 # Writes out/accuracy_map/accuracy_map.{csv,png} and, with --install, copies
 # the CSV to src/model_choice/accuracy_map.csv (the table compiled into the
 # binary) and the chart to docs/figures/accuracy_map.png.
-# About 10 minutes on 2 cores.
+# About 5 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 install=0

@@ -5,8 +5,8 @@
 # and per step (median of REPEATS runs, release build), iterations per step
 # (Gauss-Seidel sweeps or Newton iterations), and the fitted exponent of the
 # time per step in N between successive meshes.
-# Writes out/solver_scaling/scaling.csv and prints the table. About 10
-# minutes on 2 cores (Newton at 20 x 20 is 1.5 minutes a run).
+# Writes out/solver_scaling/scaling.csv and prints the table. About 7
+# minutes on 2 cores (Newton at 20 x 20 is about a minute a run).
 #   REPEATS=1 bash scripts/solver_scaling.sh    # one run per point
 set -euo pipefail
 cd "$(dirname "$0")/.."

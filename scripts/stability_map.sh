@@ -9,7 +9,7 @@
 # Each run's outcome (converged, or the program's error), iterations (Newton or sweeps)
 # per step, CPU time, and the centre-line wear difference against the
 # baseline (eps 1e-5, 0.2 mm) go to out/stability_map/{newton,gauss-seidel}/stability.{csv,md}.
-# About 5 minutes on 2 cores.
+# About 1 minute on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
