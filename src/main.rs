@@ -267,14 +267,19 @@ fn print_check(r: &Resolved) {
     // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
     // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
     // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
-    // solver: 3.8 ms at 100 and 30 ms at 400 elements, ~N^1.5.
+    // solver (scripts/solver_scaling.sh, wall): 3.1 ms at 100 and 17.6 ms at
+    // 400 elements (~N^1.25 while C fits in cache), ~N^2.3 beyond.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
     let contact = match s.contact.model {
         ContactModelKind::Fastsim => 25.0 * 18e-9 * n_el,
         ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
         ContactModelKind::ExactTransient if s.contact.solver == StepSolver::GaussSeidel => {
-            3.8e-3 * (n_el / 100.0).powf(1.5)
+            if n_el <= 400.0 {
+                3.1e-3 * (n_el / 100.0).powf(1.25)
+            } else {
+                17.6e-3 * (n_el / 400.0).powf(2.3)
+            }
         }
         ContactModelKind::ExactTransient => {
             let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
