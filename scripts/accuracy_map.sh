@@ -4,7 +4,7 @@
 #
 # Scenes: paper_normal_30mm (N = 100 kN + 45 kN sin, F_x = 20 kN, V = 100
 # km/h, eps = 1e-5 m/s, V dt = 0.2 mm) with the load wavelength set to
-# 10, 15, 20, 30, 45, 60 mm (lambda / 2a_max = 0.65 ... 3.9); a run-in of one
+# 10, 15, 20, 30, 45, 60 mm (lambda / 2a_max = 0.74 ... 4.45); a run-in of one
 # wavelength (at least 20 mm), one recorded wavelength.
 # Models: exact-transient (Gauss-Seidel) at 6, 8, 10, 14, 20, 28; simplified-
 # transient and FASTSIM at 10, 20, 40. Reference per wavelength: Richardson

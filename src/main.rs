@@ -11,7 +11,7 @@ use corrugation::contact::transient::StepSolver;
 use corrugation::dynamics::TrackDynamics;
 use corrugation::growth::traffic::TrafficScaling;
 use corrugation::loads::LoadQuantity;
-use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, departures};
+use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, SAFETY, departures};
 use corrugation::params::{ContactModelKind, DynamicsKind};
 use corrugation::run::{ResumeError, RunSummary, derive, periodic_grid, run_scene, track_dynamics};
 use std::path::{Path, PathBuf};
@@ -196,7 +196,7 @@ fn print_auto(a: &AutoChoice) {
         .candidates(a.lambda_over_2a)
         .iter()
         .map(|c| {
-            let mark = if c.wear_error <= a.tolerance { "ok" } else { "no" };
+            let mark = if c.wear_error <= SAFETY * a.tolerance { "ok" } else { "no" };
             format!("{} {}: {:.3} in {:.2} ms {mark}", c.model.name(), c.mesh, c.wear_error, ms(c))
         })
         .collect();

@@ -2,7 +2,7 @@
 //! the map predicts within the tolerance, never slower than the exact model
 //! at the mesh it would otherwise need, and the chosen model's wear meets the
 //! tolerance against the converged exact reference (tests/data, Richardson
-//! extrapolation of exact 20 x 20 and 28 x 28).
+//! extrapolation of exact 14, 20 and 28 with the observed order).
 use corrugation::config::load_str;
 use corrugation::model_choice::{AccuracyMap, SAFETY};
 use corrugation::params::{ContactModelKind, Scene};
@@ -52,7 +52,7 @@ fn wear_error(scene: &Scene, reference: &[f64]) -> f64 {
 #[test]
 fn the_choice_is_the_cheapest_within_the_tolerance_and_never_slower_than_exact() {
     for (name, config, _) in SCENES {
-        for tolerance in [0.14, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5, 0.8] {
+        for tolerance in [0.17, 0.2, 0.25, 0.3, 0.4, 0.5, 0.8] {
             let scene = auto_scene(config, tolerance).unwrap_or_else(|e| panic!("{name} {tolerance}: {e}"));
             let a = scene.contact.auto.expect("auto");
             assert_eq!((scene.contact.model, scene.contact.elements_x), (a.chosen.model, a.chosen.mesh));
@@ -72,10 +72,10 @@ fn the_choice_is_the_cheapest_within_the_tolerance_and_never_slower_than_exact()
 
 #[test]
 fn the_chosen_model_meets_the_tolerance_against_the_reference() {
-    // With the built-in map these pick simplified 20, exact 20, FASTSIM 20 or
-    // simplified 10 (a cost tie, re-measurement may swap them), and
-    // simplified 20; whatever is picked must meet the tolerance.
-    let cases = [(0, 0.35), (0, 0.2), (1, 0.4), (1, 0.2)];
+    // Whatever the map picks must meet the tolerance; across these cases it
+    // picks both the exact and the simplified model (and FASTSIM where its
+    // cost beats simplified 10 by a measurement's noise).
+    let cases = [(0, 0.35), (0, 0.23), (1, 0.4), (1, 0.2)];
     let mut models = Vec::new();
     for (i, tolerance) in cases {
         let (name, config, csv) = SCENES[i];

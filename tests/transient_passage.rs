@@ -131,7 +131,9 @@ fn exact_passage(solver: StepSolver, tolerance: f64) -> PassageResult {
         .with_solver(solver)
         .with_tolerance(tolerance);
     let dep = WearDeposit::new(solver.mesh());
-    run_passage(&d.passage, &d.shape, &mut solver, &dep, &d.grid, true, &mut |_, _| {}).unwrap()
+    let res = run_passage(&d.passage, &d.shape, &mut solver, &dep, &d.grid, true, &mut |_, _| {}).unwrap();
+    assert_eq!(solver.gauss_seidel_fallbacks(), 0, "every Gauss-Seidel step converged on its own");
+    res
 }
 
 /// Largest difference of `a` and `b`, relative to the largest |b|.
@@ -153,6 +155,5 @@ fn gauss_seidel_converges_to_the_newton_solution() {
         let wear = rel_diff(gs.wear.iter(), nr.wear.iter());
         eprintln!("tolerance {tolerance:e}: creepage {creepage:.2e}, traction {traction:.2e}, wear {wear:.2e}");
         assert!(creepage < bound && traction < bound && wear < bound, "tolerance {tolerance:e}");
-        assert!(gs.history.newton_iterations.iter().all(|v| *v >= 1.0), "every step swept");
     }
 }

@@ -2,8 +2,10 @@
 
 Input: a manifest CSV with columns ``wavelength, model, mesh, file``: runs of
 one scene at several load wavelengths. Per wavelength the reference wear is the
-Richardson extrapolation of the two finest exact-transient runs (first order in
-1/n, ``w_ref = (n2 w2 - n1 w1) / (n2 - n1)``), and every run's error is the
+Richardson extrapolation of the three finest exact-transient runs n1 < n2 < n3
+with the observed order: ``w(n) = w_inf + c n^-p``, p from
+``||w3 - w2|| / ||w2 - w1|| = (n2^-p - n3^-p) / (n1^-p - n2^-p)``, then
+``w_ref = w3 + (w3 - w2) n3^-p / (n2^-p - n3^-p)``. Every run's error is the
 relative L2 difference of its centre-line wear profile on the recorded stretch
 ``||w - w_ref|| / ||w_ref||``. ``lambda_over_2a`` uses the largest semi-axis
 of the passage; ``cpu_per_step`` is the passage's CPU time per contact step.
@@ -22,7 +24,35 @@ import numpy as np
 from .io import Run, RunFileError, read_csv, write_csv
 from .speed_accuracy import _curves, _rel_l2, chart, pareto
 
-COLUMNS = ("model", "mesh", "wavelength", "lambda_over_2a", "wear_error", "cpu_per_step")
+COLUMNS = ("model", "mesh", "wavelength", "lambda_over_2a", "wear_error", "cpu_per_step", "reference_order")
+
+
+def observed_order(n, d12: float, d23: float) -> float:
+    """The order p of ``w(n) = w_inf + c n^-p`` from the differences of three
+    meshes n = (n1, n2, n3): bisection on p in [0.1, 6]."""
+    n1, n2, n3 = n
+    target = d23 / d12
+
+    def ratio(p):
+        return (n2 ** -p - n3 ** -p) / (n1 ** -p - n2 ** -p)
+
+    lo, hi = 0.1, 6.0
+    if not ratio(hi) <= target <= ratio(lo):
+        raise RunFileError(f"meshes {n}: difference ratio {target:.3f} is not that of a converging sequence")
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if ratio(mid) > target else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def reference_wear(runs):
+    """(x, w_ref, p) from exact-transient runs [(n, file), ...] (three finest)."""
+    (n1, f1), (n2, f2), (n3, f3) = sorted(runs)[-3:]
+    x, w1, _, _ = _curves(f1)
+    w2 = np.interp(x, *_curves(f2)[:2])
+    w3 = np.interp(x, *_curves(f3)[:2])
+    p = observed_order((n1, n2, n3), float(np.linalg.norm(w2 - w1)), float(np.linalg.norm(w3 - w2)))
+    return x, w3 + (w3 - w2) * n3 ** -p / (n2 ** -p - n3 ** -p), p
 
 
 def _a_max_and_steps(path) -> tuple[float, int]:
@@ -39,13 +69,10 @@ def evaluate(manifest_rows) -> list[dict]:
         by_wavelength[float(r["wavelength"])].append((r["model"], int(r["mesh"]), r["file"]))
     out = []
     for wavelength, runs in sorted(by_wavelength.items()):
-        exact = sorted((m, f) for model, m, f in runs if model == "exact-transient")
-        if len(exact) < 2:
-            raise RunFileError(f"wavelength {wavelength}: the reference needs two exact-transient runs")
-        (n1, f1), (n2, f2) = exact[-2], exact[-1]
-        x, w1, _, _ = _curves(f1)
-        x2, w2, _, _ = _curves(f2)
-        w_ref = (n2 * np.interp(x, x2, w2) - n1 * w1) / (n2 - n1)
+        exact = [(m, f) for model, m, f in runs if model == "exact-transient"]
+        if len(exact) < 3:
+            raise RunFileError(f"wavelength {wavelength}: the reference needs three exact-transient runs")
+        x, w_ref, order = reference_wear(exact)
         for model, mesh, f in sorted(runs):
             xr, w, _, cpu = _curves(f)
             a_max, steps = _a_max_and_steps(f)
@@ -53,6 +80,7 @@ def evaluate(manifest_rows) -> list[dict]:
                 "model": model, "mesh": mesh, "wavelength": wavelength,
                 "lambda_over_2a": wavelength / (2.0 * a_max),
                 "wear_error": _rel_l2(np.interp(x, xr, w), w_ref), "cpu_per_step": cpu / steps,
+                "reference_order": order,
             })
     return out
 

@@ -35,10 +35,10 @@
 //! **Acceleration.** The sweep-and-creepage map `x -> G(x)`, x the scaled
 //! tractions and creepage, is a contraction whose fixed point is the
 //! solution; Anderson mixing of depth [`DEPTH`] (Walker and Ni, SIAM J. Numer.
-//! Anal. 49 (2011) 1715-1735) accelerates it, restarted when a mixed iterate
-//! does worse than the plain sweep would have.
+//! Anal. 49 (2011) 1715-1735) accelerates it (no restarts: restarting when
+//! the residual grew made the hard steps ten times slower).
 
-use super::{STICK_SLIP_FACTOR, friction};
+use super::{FORCE_TOLERANCE, STICK_SLIP_FACTOR, friction};
 use crate::numerics::{Tolerance, brent};
 use faer::Mat;
 use nalgebra::{DMatrix, DVector};
@@ -81,6 +81,8 @@ pub(super) struct GsStep<'a> {
     pub tol: f64,
     /// Most sweeps before giving up.
     pub max_sweeps: usize,
+    /// First element of the second parallel half (a whole number of strips).
+    pub split: usize,
 }
 
 /// Converged state of one step.
@@ -123,7 +125,7 @@ pub(super) fn solve(st: &GsStep, s: &[f64], xi: f64) -> Result<GsSolution, Vec<f
         if !r_max.is_finite() || !r_force.is_finite() {
             return Err(history);
         }
-        if r_max < st.tol && r_force.abs() < 1e-10 {
+        if r_max < st.tol && r_force.abs() < FORCE_TOLERANCE {
             // The displacements were carried through the mixing (linear in
             // p); the verdict is checked on freshly computed ones.
             matvec(st, &p, &mut u);
@@ -171,7 +173,7 @@ fn sweep(st: &GsStep, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) -> f
         // against its own copy of u (Jacobi between the halves, Gauss-Seidel
         // within); then u = u_a + u_b - u_0. Fixed split, fixed sum order:
         // deterministic.
-        let m = n / 2;
+        let m = st.split.min(n);
         let (pa, pb) = p.split_at_mut(2 * m);
         let (sa, sb) = s.split_at_mut(2 * m);
         let (mut ua, mut ub) = (u.to_vec(), u.to_vec());
@@ -233,7 +235,7 @@ fn residual(st: &GsStep, s: &[f64], u: &[f64], xi: f64) -> f64 {
 /// root of `1 - Q(mu p3 f(q)) / q` on `[Q(mu p3 f(0)), |s0|]`, found by Brent
 /// in `ln q` (relative accuracy on q, down to deep stick where q << eps).
 fn local_solve(s0: [f64; 2], k: [f64; 3], mu_p3: f64, eps: f64, start: [f64; 2]) -> ([f64; 2], [f64; 2]) {
-    let norm = |v: [f64; 2]| v[0].mul_add(v[0], v[1] * v[1]).sqrt();
+    let norm = |v: [f64; 2]| (v[0] * v[0] + v[1] * v[1]).sqrt();
     let q0 = norm(s0);
     if mu_p3 <= 0.0 || q0 == 0.0 {
         return (s0, [0.0; 2]);
@@ -420,11 +422,15 @@ mod tests {
         let m = DMatrix::from_fn(5, 5, |i, j| if i == j { 0.9 - 0.1 * i as f64 } else { 0.01 * (i + 2 * j) as f64 });
         let c = DVector::from_fn(5, |i, _| 1.0 + i as f64);
         let exact = (DMatrix::identity(5, 5) - &m).lu().solve(&c).unwrap();
+        // The carried vector is a linear image of the iterate (as u = C p).
+        let image = DMatrix::from_fn(3, 5, |i, j| (1 + i + 2 * j) as f64 * 0.1);
         let mut a = Anderson::new(DEPTH);
         let mut x = DVector::zeros(5);
         for _ in 0..8 {
             let g = &m * &x + &c;
-            x = a.mix(&x, &g, DVector::zeros(1)).0;
+            let (next, carried) = a.mix(&x, &g, &image * &g);
+            assert!((&carried - &image * &next).norm() < 1e-12 * carried.norm().max(1.0), "carried = image of next");
+            x = next;
         }
         assert!((&x - &exact).norm() < 1e-10 * exact.norm(), "{x} vs {exact}");
     }

@@ -56,6 +56,12 @@ pub const STICK_SLIP_FACTOR: f64 = 10.0;
 /// about 1e-8 of their converged values.
 pub const DEFAULT_TOLERANCE: f64 = 1e-4;
 
+/// Sweeps after which a Gauss-Seidel step is handed to Newton.
+pub const GS_MAX_SWEEPS: usize = 400;
+
+/// Convergence tolerance on the force residual |sum p_x A - F_x| / (mu N).
+const FORCE_TOLERANCE: f64 = 1e-10;
+
 /// Largest growth factor of an element's slip in one Newton iteration.
 const STEP_GROWTH: f64 = 10.0;
 
@@ -114,7 +120,9 @@ struct History {
     xi: f64,
 }
 
-/// How the nonlinear system of a step is solved.
+/// How the nonlinear system of a step is solved. [`Transient::new`] starts
+/// with the reference, Newton; configs default to Gauss-Seidel
+/// (`contact.solver`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum StepSolver {
     /// Newton-Raphson on all slips with a dense LU (the reference).
@@ -122,8 +130,9 @@ pub enum StepSolver {
     Newton,
     /// Element-wise nonlinear Gauss-Seidel with Anderson acceleration
     /// ([`gauss_seidel`]); exact model only, Newton being already
-    /// element-wise for Winkler. A step it cannot converge falls back to
-    /// Newton.
+    /// element-wise for Winkler. A step it cannot converge in
+    /// [`GS_MAX_SWEEPS`] sweeps goes to Newton (counted by
+    /// [`Transient::gauss_seidel_fallbacks`]).
     GaussSeidel,
 }
 
@@ -139,8 +148,8 @@ pub struct Transient {
     solver: StepSolver,
     /// Convergence tolerance on the kinematic residual, in units of eps.
     tolerance: f64,
-    /// Gauss-Seidel sweeps of the last step (0 when Newton solved it).
-    pub last_sweeps: usize,
+    /// Steps that Gauss-Seidel handed to Newton since the last reset.
+    fallbacks: usize,
     /// Factorised Jacobian of the last Newton iteration, reused as the
     /// initial chord matrix of the next step.
     factor: Option<Factor>,
@@ -150,7 +159,7 @@ pub struct Transient {
 /// and its Jacobian D = -dp/ds = mu p3 (f I + f'(q)/q s s^T).
 fn friction(s: [f64; 2], mu_p3: f64, eps: f64) -> ([f64; 2], [f64; 3]) {
     // |s| without hypot's overflow guard (slips stay far from 1e150 m/s).
-    let q = s[0].mul_add(s[0], s[1] * s[1]).sqrt();
+    let q = (s[0] * s[0] + s[1] * s[1]).sqrt();
     let z = q / eps;
     let (f, fp_over_q) = if z < 1e-4 {
         // Series: f = 2/(pi eps) (1 - z^2/3), f'/q = -4/(3 pi eps^3).
@@ -227,7 +236,7 @@ impl Transient {
             history: None,
             solver: StepSolver::Newton,
             tolerance: DEFAULT_TOLERANCE,
-            last_sweeps: 0,
+            fallbacks: 0,
             factor: None,
         }
     }
@@ -242,6 +251,12 @@ impl Transient {
     pub fn with_solver(mut self, solver: StepSolver) -> Self {
         self.solver = solver;
         self
+    }
+
+    /// Steps that the Gauss-Seidel solver did not converge in
+    /// [`GS_MAX_SWEEPS`] sweeps and handed to Newton, since the last reset.
+    pub fn gauss_seidel_fallbacks(&self) -> usize {
+        self.fallbacks
     }
 
     /// Sets the convergence tolerance on the kinematic residual |R| (m/s) to
@@ -342,7 +357,7 @@ impl Transient {
         for _ in 0..self.max_iterations {
             let r_max = ev.r.iter().fold(0.0f64, |m, r| m.max(r.abs()));
             history.push(r_max);
-            if r_max < tol && ev.r_force.abs() < 1e-10 {
+            if r_max < tol && ev.r_force.abs() < FORCE_TOLERANCE {
                 return Ok((history.len() - 1, ev));
             }
             let fresh = factor.is_none();
@@ -466,14 +481,14 @@ impl Transient {
                 force_x: force,
                 mu_n: input.friction * patch.normal_force,
                 tol: self.tolerance * self.eps,
-                max_sweeps: 400,
+                max_sweeps: GS_MAX_SWEEPS,
+                split: (self.mesh.ny / 2) * self.mesh.nx,
             };
-            if let Ok(gs) = gauss_seidel::solve(&step, &s, xi) {
-                self.last_sweeps = gs.sweeps;
-                return Ok(self.finish(input, frame, p3, gs.p, gs.s, gs.xi, gs.sweeps));
+            match gauss_seidel::solve(&step, &s, xi) {
+                Ok(gs) => return Ok(self.finish(input, frame, p3, gs.p, gs.s, gs.xi, gs.sweeps)),
+                Err(_) => self.fallbacks += 1,
             }
         }
-        self.last_sweeps = 0;
         let pb = Problem { input, frame, p3: &p3, area: &area, u_o: &u_o };
         let mut log = Vec::new();
         let (s_start, xi_start) = (s.clone(), xi);
@@ -564,6 +579,7 @@ impl TangentialSolver for Transient {
 
     fn reset(&mut self) {
         self.history = None;
+        self.fallbacks = 0;
         self.factor = None;
         // The earlier-displacement cache too: a passage must not depend on
         // the ones before it (a resumed run starts with a fresh solver).
