@@ -17,7 +17,7 @@
 //! `E(s) = 1/2 (s - s0)^T K^-1 (s - s0) + Phi(s)`: Newton on grad E from the
 //! last sweep's slip, or, where Newton stalls (the wrong side of the
 //! stick/slip transition, where Phi ~ mu p3 |s| is a cone), a bracketed 1-D
-//! root in |s| ([`local_solve`]).
+//! root in |s| (`local_solve`).
 //! This is Kalker's element-wise Gauss-Seidel of the tangential problem
 //! (Kalker 1990, ch. 5; Vollebregt's ConvexGS) with the regularised law in
 //! place of the Coulomb cone.

@@ -38,7 +38,7 @@
 //! `u_o = 0` and the rigid shift over the step is `V xi dt`.
 
 pub mod elastic;
-mod gauss_seidel;
+pub mod gauss_seidel;
 
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use super::{ContactError, Creepage, PatchSolution, StepInput, TangentialSolver};
