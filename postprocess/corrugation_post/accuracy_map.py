@@ -115,3 +115,50 @@ def format_table(rows) -> str:
         lines.append(f"{r['model']:22} {r['mesh']:>4} {1e3 * r['wavelength']:>5.0f}mm {r['lambda_over_2a']:>6.2f} "
                      f"{r['wear_error']:>9.4f} {1e3 * r['cpu_per_step']:>8.2f}")
     return "\n".join(lines)
+
+
+GROWTH_COLUMNS = ("model", "mesh", "cpu_per_passage", "rate_error", "reference_order")
+
+
+def _rates(path, band=(0.010, 0.040)):
+    """Wavelengths in ``band`` and their growth rates in the last passage."""
+    run = Run.open(path)
+    with run.pass_table() as ps:
+        wl = ps["wavelength"].values
+        keep = (wl >= band[0]) & (wl <= band[1])
+        rates = ps["growth_rate"].values[-1, keep]
+        cpu = float(np.median(ps["cpu_seconds"].values))
+    return wl[keep], rates, cpu
+
+
+def evaluate_growth(manifest_rows) -> list[dict]:
+    """Growth-rate error of each run against the extrapolated exact rates."""
+    runs = [(r["model"], int(r["mesh"]), r["file"]) for r in manifest_rows]
+    exact = sorted((m, f) for model, m, f in runs if model == "exact-transient")[-3:]
+    if len(exact) < 3:
+        raise RunFileError("the growth reference needs three exact-transient runs")
+    (n1, f1), (n2, f2), (n3, f3) = exact
+    r1, r2, r3 = (_rates(f)[1] for f in (f1, f2, f3))
+    p = observed_order((n1, n2, n3), float(np.linalg.norm(r2 - r1)), float(np.linalg.norm(r3 - r2)))
+    ref = r3 + (r3 - r2) * n3 ** -p / (n2 ** -p - n3 ** -p)
+    out = []
+    for model, mesh, f in sorted(runs):
+        _, rates, cpu = _rates(f)
+        out.append({"model": model, "mesh": mesh, "cpu_per_passage": cpu,
+                    "rate_error": _rel_l2(rates, ref), "reference_order": p})
+    return out
+
+
+def run_growth(manifest: Path, out_dir: Path):
+    rows = evaluate_growth(read_csv(manifest))
+    out_dir = Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    return rows, [write_csv(out_dir / "growth_accuracy.csv", GROWTH_COLUMNS, rows)]
+
+
+def format_growth(rows) -> str:
+    lines = [f"{'model':22} {'mesh':>4} {'CPU s/passage':>14} {'rate error':>11}",
+             *(f"{r['model']:22} {r['mesh']:>4} {r['cpu_per_passage']:>14.2f} {r['rate_error']:>11.4f}" for r in rows)]
+    if rows:
+        lines.append(f"reference: exact 14/20/28 extrapolated with observed order {rows[0]['reference_order']:.2f}")
+    return "\n".join(lines)

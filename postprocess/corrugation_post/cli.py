@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,stability,check}``.
+"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,growth-accuracy,stability,check}``.
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -46,6 +46,10 @@ def _parser() -> argparse.ArgumentParser:
     amp = sub.add_parser("accuracy-map", help="the wear-error map of contact.model = auto (scripts/accuracy_map.sh)")
     amp.add_argument("manifest", help="CSV: wavelength, model, mesh, file")
     amp.add_argument("--out", required=True, help="output folder (created if needed)")
+
+    gra = sub.add_parser("growth-accuracy", help="growth-rate error per model and mesh (scripts/growth_accuracy.sh)")
+    gra.add_argument("manifest", help="CSV: model, mesh, file")
+    gra.add_argument("--out", required=True, help="output folder (created if needed)")
 
     stb = sub.add_parser("stability", help="outcome table of scripts/stability_map.sh")
     stb.add_argument("manifest", help="CSV: sweep, value, file, exit_code, message (one 'baseline' row)")
@@ -111,6 +115,12 @@ def _accuracy_map(args) -> int:
     return _print_table(run(args.manifest, args.out), format_table)
 
 
+def _growth_accuracy(args) -> int:
+    from .accuracy_map import format_growth, run_growth
+
+    return _print_table(run_growth(args.manifest, args.out), format_growth)
+
+
 def _stability(args) -> int:
     from .stability import markdown, run
 
@@ -134,7 +144,7 @@ def main(argv: list[str] | None = None) -> int:
     matplotlib.use("Agg")
     args = _parser().parse_args(argv)
     handler = {"figures": _figures, "compare": _compare, "growth": _growth,
-               "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "stability": _stability, "check": _check}[args.command]
+               "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "check": _check}[args.command]
     try:
         return handler(args)
     except RunFileError as err:
