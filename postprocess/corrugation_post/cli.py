@@ -13,6 +13,17 @@ import matplotlib
 
 EXIT_OK, EXIT_PARTIAL, EXIT_BAD_INPUT = 0, 1, 2
 
+# (command, help, manifest columns) of the study commands.
+MANIFEST_COMMANDS = (
+    ("speed-accuracy", "errors against a reference and CPU time per model and mesh",
+     "scene, model, mesh, file, reference (1 for the reference run)"),
+    ("accuracy-map", "the wear-error map of contact.model = auto (scripts/accuracy_map.sh)",
+     "wavelength, model, mesh, file"),
+    ("growth-accuracy", "growth-rate error per model and mesh (scripts/growth_accuracy.sh)", "model, mesh, file"),
+    ("stability", "outcome table of scripts/stability_map.sh",
+     "sweep, value, file, exit_code, message (one 'baseline' row)"),
+)
+
 
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
@@ -39,21 +50,11 @@ def _parser() -> argparse.ArgumentParser:
     grw.add_argument("--wavelength", type=float, default=None,
                      help="harmonic to follow (m; default: the one that grew most in the first run)")
 
-    spa = sub.add_parser("speed-accuracy", help="errors against a reference and CPU time per model and mesh")
-    spa.add_argument("manifest", help="CSV: scene, model, mesh, file, reference (1 for the reference run)")
-    spa.add_argument("--out", required=True, help="output folder (created if needed)")
-
-    amp = sub.add_parser("accuracy-map", help="the wear-error map of contact.model = auto (scripts/accuracy_map.sh)")
-    amp.add_argument("manifest", help="CSV: wavelength, model, mesh, file")
-    amp.add_argument("--out", required=True, help="output folder (created if needed)")
-
-    gra = sub.add_parser("growth-accuracy", help="growth-rate error per model and mesh (scripts/growth_accuracy.sh)")
-    gra.add_argument("manifest", help="CSV: model, mesh, file")
-    gra.add_argument("--out", required=True, help="output folder (created if needed)")
-
-    stb = sub.add_parser("stability", help="outcome table of scripts/stability_map.sh")
-    stb.add_argument("manifest", help="CSV: sweep, value, file, exit_code, message (one 'baseline' row)")
-    stb.add_argument("--out", required=True, help="output folder (created if needed)")
+    # The study commands: a manifest CSV from a script in, a table out.
+    for name, help_, manifest in MANIFEST_COMMANDS:
+        cmd = sub.add_parser(name, help=help_)
+        cmd.add_argument("manifest", help=f"CSV: {manifest}")
+        cmd.add_argument("--out", required=True, help="output folder (created if needed)")
 
     chk = sub.add_parser("check", help="check a run file against the layout contract")
     chk.add_argument("run", help="run file (.h5)")
