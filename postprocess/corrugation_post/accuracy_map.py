@@ -45,14 +45,21 @@ def observed_order(n, d12: float, d23: float) -> float:
     return 0.5 * (lo + hi)
 
 
+def extrapolate(n, v1, v2, v3):
+    """(v_inf, p): Richardson extrapolation of the values v1, v2, v3 on meshes
+    n = (n1, n2, n3) with their observed order p."""
+    n1, n2, n3 = n
+    p = observed_order(n, float(np.linalg.norm(v2 - v1)), float(np.linalg.norm(v3 - v2)))
+    return v3 + (v3 - v2) * n3 ** -p / (n2 ** -p - n3 ** -p), p
+
+
 def reference_wear(runs):
     """(x, w_ref, p) from exact-transient runs [(n, file), ...] (three finest)."""
     (n1, f1), (n2, f2), (n3, f3) = sorted(runs)[-3:]
     x, w1, _, _ = _curves(f1)
     w2 = np.interp(x, *_curves(f2)[:2])
     w3 = np.interp(x, *_curves(f3)[:2])
-    p = observed_order((n1, n2, n3), float(np.linalg.norm(w2 - w1)), float(np.linalg.norm(w3 - w2)))
-    return x, w3 + (w3 - w2) * n3 ** -p / (n2 ** -p - n3 ** -p), p
+    return (x, *extrapolate((n1, n2, n3), w1, w2, w3))
 
 
 def _a_max_and_steps(path) -> tuple[float, int]:
@@ -138,9 +145,7 @@ def evaluate_growth(manifest_rows) -> list[dict]:
     if len(exact) < 3:
         raise RunFileError("the growth reference needs three exact-transient runs")
     (n1, f1), (n2, f2), (n3, f3) = exact
-    r1, r2, r3 = (_rates(f)[1] for f in (f1, f2, f3))
-    p = observed_order((n1, n2, n3), float(np.linalg.norm(r2 - r1)), float(np.linalg.norm(r3 - r2)))
-    ref = r3 + (r3 - r2) * n3 ** -p / (n2 ** -p - n3 ** -p)
+    ref, p = extrapolate((n1, n2, n3), *(_rates(f)[1] for f in (f1, f2, f3)))
     out = []
     for model, mesh, f in sorted(runs):
         _, rates, cpu = _rates(f)

@@ -4,7 +4,7 @@ extrapolation recover a synthetic mesh sequence w(n) = w_inf + c n^-p."""
 import numpy as np
 import pytest
 
-from corrugation_post.accuracy_map import observed_order
+from corrugation_post.accuracy_map import extrapolate, observed_order
 from corrugation_post.io import RunFileError
 
 
@@ -15,7 +15,8 @@ def test_observed_order_recovers_the_exponent(p):
     w = [w_inf + c * k ** -p for k in n]
     got = observed_order(n, float(np.linalg.norm(w[1] - w[0])), float(np.linalg.norm(w[2] - w[1])))
     assert abs(got - p) < 1e-9
-    ref = w[2] + (w[2] - w[1]) * n[2] ** -got / (n[1] ** -got - n[2] ** -got)
+    ref, p_ref = extrapolate(n, *w)
+    assert p_ref == got
     assert np.allclose(ref, w_inf, rtol=0, atol=1e-9)
 
 

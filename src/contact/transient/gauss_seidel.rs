@@ -38,9 +38,9 @@
 //! Anal. 49 (2011) 1715-1735) accelerates it (no restarts: restarting when
 //! the residual grew made the hard steps ten times slower).
 
+use super::elastic::ExactElastic;
 use super::{FORCE_TOLERANCE, STICK_SLIP_FACTOR, friction};
 use crate::numerics::{Tolerance, brent};
-use faer::Mat;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
@@ -55,8 +55,8 @@ const REFRESH: usize = 16;
 
 /// The data of one step for the Gauss-Seidel solver.
 pub(super) struct GsStep<'a> {
-    /// Unit influence matrix C1 (C = a C1), interleaved (m/Pa per m of a).
-    pub c1: &'a Mat<f64>,
+    /// The exact elastic model: C = a C1, interleaved (m/Pa per m of a).
+    pub elastic: &'a ExactElastic,
     /// Semi-axis a (m).
     pub a: f64,
     /// Time step (s).
@@ -104,7 +104,7 @@ pub(super) fn solve(st: &GsStep, s: &[f64], xi: f64) -> Result<GsSolution, Vec<f
     let mut s = s.to_vec();
     let mut p: Vec<f64> = (0..n).flat_map(|k| friction([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps).0).collect();
     let mut u = vec![0.0; 2 * n];
-    matvec(st, &p, &mut u);
+    st.elastic.displacement(st.a, &p, &mut u);
     let kappa = creepage_stiffness(st, &s);
     // Scales: tractions by mu p0, the creepage by the traction it moves.
     let p_scale = st.mu_p3.iter().fold(0.0f64, |m, v| m.max(*v)).max(f64::MIN_POSITIVE);
@@ -128,7 +128,7 @@ pub(super) fn solve(st: &GsStep, s: &[f64], xi: f64) -> Result<GsSolution, Vec<f
         if r_max < st.tol && r_force.abs() < FORCE_TOLERANCE {
             // The displacements were carried through the mixing (linear in
             // p); the verdict is checked on freshly computed ones.
-            matvec(st, &p, &mut u);
+            st.elastic.displacement(st.a, &p, &mut u);
             if residual(st, &s, &u, xi) < st.tol {
                 return Ok(GsSolution { p, s, xi, sweeps: sweep_no + 1 });
             }
@@ -141,25 +141,12 @@ pub(super) fn solve(st: &GsStep, s: &[f64], xi: f64) -> Result<GsSolution, Vec<f
         }
         xi = mixed[2 * n] / xi_scale;
         if (sweep_no + 1) % REFRESH == 0 {
-            matvec(st, &p, &mut u);
+            st.elastic.displacement(st.a, &p, &mut u);
         } else {
             u.copy_from_slice(u_mixed.as_slice());
         }
     }
     Err(history)
-}
-
-/// `u = a C1 p`.
-fn matvec(st: &GsStep, p: &[f64], u: &mut [f64]) {
-    u.iter_mut().for_each(|v| *v = 0.0);
-    for (c, pc) in p.iter().enumerate() {
-        if *pc != 0.0 {
-            let f = st.a * pc;
-            for (ur, cr) in u.iter_mut().zip(st.c1.col_as_slice(c)) {
-                *ur += cr * f;
-            }
-        }
-    }
 }
 
 /// One Gauss-Seidel sweep at creepage `xi`; returns the largest kinematic
@@ -188,12 +175,12 @@ fn sweep(st: &GsStep, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) -> f
 /// Gauss-Seidel over the elements `first ..` whose tractions and slips are
 /// `p` and `s`, updating the displacements `u` of the whole patch.
 fn sweep_block(st: &GsStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
-    let scale = st.a / st.dt;
+    let (scale, c1) = (st.a / st.dt, st.elastic.unit_matrix());
     for local in 0..p.len() / 2 {
         let k = first + local;
         let (i, j) = (2 * k, 2 * k + 1);
         let (li, lj) = (2 * local, 2 * local + 1);
-        let kk = [scale * st.c1[(i, i)], scale * st.c1[(i, j)], scale * st.c1[(j, j)]];
+        let kk = [scale * c1[(i, i)], scale * c1[(i, j)], scale * c1[(j, j)]];
         let own = [kk[0] * p[li] + kk[1] * p[lj], kk[1] * p[li] + kk[2] * p[lj]];
         let s0 = [
             st.speed * (st.w0[i] + xi) + (u[i] - st.u_o[i]) / st.dt - own[0],
@@ -207,7 +194,7 @@ fn sweep_block(st: &GsStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut 
         p[lj] = pk[1];
         if dx != 0.0 || dy != 0.0 {
             let (fx, fy) = (st.a * dx, st.a * dy);
-            for ((ur, cx), cy) in u.iter_mut().zip(st.c1.col_as_slice(i)).zip(st.c1.col_as_slice(j)) {
+            for ((ur, cx), cy) in u.iter_mut().zip(c1.col_as_slice(i)).zip(c1.col_as_slice(j)) {
                 *ur += cx * fx + cy * fy;
             }
         }
@@ -311,12 +298,12 @@ fn local_solve(s0: [f64; 2], k: [f64; 3], mu_p3: f64, eps: f64, start: [f64; 2])
 /// answer through their own law derivative.
 fn creepage_stiffness(st: &GsStep, s: &[f64]) -> f64 {
     let n = st.mu_p3.len();
-    let scale = st.a / st.dt;
+    let (scale, c1) = (st.a / st.dt, st.elastic.unit_matrix());
     let stick: Vec<usize> =
         (0..n).filter(|&k| s[2 * k].hypot(s[2 * k + 1]) < STICK_SLIP_FACTOR * st.eps && st.mu_p3[k] > 0.0).collect();
     let mut kappa = 0.0;
     if !stick.is_empty() {
-        let rows: f64 = stick.iter().map(|&k| stick.iter().map(|&j| scale * st.c1[(2 * k, 2 * j)]).sum::<f64>()).sum();
+        let rows: f64 = stick.iter().map(|&k| stick.iter().map(|&j| scale * c1[(2 * k, 2 * j)]).sum::<f64>()).sum();
         let rho = rows / stick.len() as f64;
         let area: f64 = stick.iter().map(|&k| st.area[k]).sum();
         kappa += area / rho;
@@ -324,7 +311,7 @@ fn creepage_stiffness(st: &GsStep, s: &[f64]) -> f64 {
     for k in 0..n {
         if stick.binary_search(&k).is_err() {
             let (_, d) = friction([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps);
-            kappa += st.area[k] * d[0] / (1.0 + scale * st.c1[(2 * k, 2 * k)] * d[0]);
+            kappa += st.area[k] * d[0] / (1.0 + scale * c1[(2 * k, 2 * k)] * d[0]);
         }
     }
     -st.speed * kappa.max(1e-30)

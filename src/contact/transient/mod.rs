@@ -469,7 +469,7 @@ impl Transient {
             let w0: Vec<f64> = (0..n).flat_map(|k| self.rigid(k, frame, cr0)).collect();
             let mu_p3: Vec<f64> = p3.iter().map(|v| input.friction * v).collect();
             let step = gauss_seidel::GsStep {
-                c1: e.unit_matrix(),
+                elastic: e,
                 a: frame.a,
                 dt: input.dt,
                 speed: input.speed,
