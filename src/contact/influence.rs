@@ -143,6 +143,61 @@ pub fn strip_displacement(strip: &Strip, (px, py): (&[f64], &[f64]), (x, y): (f6
     [s * ux, s * uy]
 }
 
+/// The y-differenced corner primitives `corner(X, Yb) - corner(X, Ya)` of
+/// [`corner_pair`] at every x-edge of `strip`, `X = x - edge`, four edges at
+/// a time: every lane does the arithmetic of [`corner_pair`] in the same
+/// order, so the values are those of the scalar form to the bit.
+fn edge_values(strip: &Strip, x: f64, (yb, ya): (f64, f64), out: &mut Vec<[f64; 4]>) {
+    let edges = &strip.edges;
+    out.clear();
+    let (ay1, ay2) = (yb.abs(), ya.abs());
+    let (sy1, sy2) = (f64x4::splat(yb.signum()), f64x4::splat(ya.signum()));
+    let (one, zero) = (f64x4::ONE, f64x4::ZERO);
+    for chunk in edges.chunks(4) {
+        let mut xs = [chunk[chunk.len() - 1]; 4];
+        xs[..chunk.len()].copy_from_slice(chunk);
+        let xv = f64x4::splat(x) - f64x4::new(xs);
+        let (vy1, vy2) = (f64x4::splat(yb), f64x4::splat(ya));
+        let r1 = (xv * xv + vy1 * vy1).sqrt();
+        let r2 = (xv * xv + vy2 * vy2).sqrt();
+        let ax = xv.abs();
+        let x_zero = ax.simd_eq(zero);
+        let over_ax = |num: f64x4| x_zero.select(one, num / ax);
+        let over_ay = |num: f64x4, ay: f64| if ay == 0.0 { one } else { num / f64x4::splat(ay) };
+        let la1 = over_ax(f64x4::splat(ay1) + r1).ln();
+        let lb1 = over_ay(ax + r1, ay1).ln();
+        let la2 = over_ax(f64x4::splat(ay2) + r2).ln();
+        let lb2 = over_ay(ax + r2, ay2).ln();
+        let sx = xv.is_sign_negative().select(-one, one);
+        let (a1, b1) = (xv * sy1 * la1, vy1 * sx * lb1);
+        let (a2, b2) = (xv * sy2 * la2, vy2 * sx * lb2);
+        let g = [(a1 + b1) - (a2 + b2), b1 - b2, a1 - a2, r2 - r1].map(|v| v.to_array());
+        out.extend((0..chunk.len()).map(|lane| [g[0][lane], g[1][lane], g[2][lane], g[3][lane]]));
+    }
+}
+
+/// Influence coefficients `(c_xx, c_xy, c_yy)` of the elements of `strip`
+/// at the point (`x`, `y`) (m), in units of `1 / (pi G)` (multiply by
+/// `1 / (pi G)` for m/Pa): the corner rule of [`influence`] with shared
+/// corners, as [`strip_displacement`], but four edges at a time and the
+/// coefficients kept, so that a caller can apply them to more than one
+/// traction field (the mirror image of a symmetric mesh, for instance).
+/// `edge_buf` is scratch space.
+pub fn strip_coefficients(
+    strip: &Strip,
+    (x, y): (f64, f64),
+    nu: f64,
+    edge_buf: &mut Vec<[f64; 4]>,
+    out: &mut [[f64; 3]],
+) {
+    edge_values(strip, x, (y - strip.y_lo, y - strip.y_hi), edge_buf);
+    for (i, c) in out.iter_mut().enumerate() {
+        let (right, left) = (edge_buf[i], edge_buf[i + 1]);
+        let d = |k: usize| left[k] - right[k];
+        *c = [(1.0 - nu) * d(0) + nu * d(1), nu * d(3), (1.0 - nu) * d(0) + nu * d(2)];
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -179,6 +234,31 @@ mod tests {
                 (fast[0] - ux).abs() < tol * scale && (fast[1] - uy).abs() < tol * scale,
                 "at ({x}, {y}): {fast:?} vs ({ux}, {uy})"
             );
+        }
+    }
+
+    #[test]
+    fn strip_coefficients_are_the_scalar_corner_rule_to_the_bit() {
+        let (g, nu) = (8.0e10, 0.28);
+        let s = 1.0 / (PI * g);
+        for n in [1, 3, 4, 7, 8] {
+            let edges: Vec<f64> = (0..=n).map(|e| 3e-3 - e as f64 * 0.8e-3).collect();
+            let strip = Strip { edges: edges.clone(), y_lo: -0.4e-3, y_hi: 0.3e-3 };
+            let px: Vec<f64> = (0..n).map(|i| 1e8 * (1.0 + 0.3 * i as f64)).collect();
+            let py: Vec<f64> = (0..n).map(|i| -2e7 * (i as f64 - 2.5)).collect();
+            // On an edge (X = 0), on a y-edge (Y = 0), inside, outside.
+            for (x, y) in [(0.0, 0.0), (edges[1], 0.3e-3), (-2.6e-3, -0.4e-3), (1.234e-3, 5e-3), (0.02, -0.005)] {
+                let mut buf = Vec::new();
+                let mut c = vec![[0.0; 3]; n];
+                strip_coefficients(&strip, (x, y), nu, &mut buf, &mut c);
+                let (mut ux, mut uy) = (0.0, 0.0);
+                for i in 0..n {
+                    ux += c[i][0] * px[i] + c[i][1] * py[i];
+                    uy += c[i][1] * px[i] + c[i][2] * py[i];
+                }
+                let reference = strip_displacement(&strip, (&px, &py), (x, y), g, nu);
+                assert_eq!([s * ux, s * uy], reference, "n {n} at ({x}, {y})");
+            }
         }
     }
 

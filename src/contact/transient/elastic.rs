@@ -17,9 +17,12 @@
 //!   outside the previous patch).
 
 use crate::contact::EllipseMesh;
-use crate::contact::influence::{Influence, Rect, Strip, influence, strip_displacement};
+use crate::contact::influence::{Influence, Rect, Strip, influence, strip_coefficients};
 use faer::Mat;
 use rayon::prelude::*;
+
+/// Rows of `u = C p` from which the product runs in two parallel blocks.
+const PARALLEL_ROWS: usize = 256;
 
 /// Geometry of a patch on the normalised mesh.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,17 +91,29 @@ impl ExactElastic {
         &self.c_unit
     }
 
-    /// `u = C p` for the patch with semi-axis `a` (interleaved vectors).
+    /// `u = C p` for the patch with semi-axis `a` (interleaved vectors). Rows
+    /// in two parallel blocks above [`PARALLEL_ROWS`]; each row's sum runs
+    /// over the columns in order, so the result does not depend on the split.
     pub fn displacement(&self, a: f64, p: &[f64], u: &mut [f64]) {
-        u.iter_mut().for_each(|v| *v = 0.0);
-        for (c, pc) in p.iter().enumerate() {
-            if *pc == 0.0 {
-                continue;
+        let rows = |first: usize, u: &mut [f64]| {
+            u.iter_mut().for_each(|v| *v = 0.0);
+            for (c, pc) in p.iter().enumerate() {
+                if *pc == 0.0 {
+                    continue;
+                }
+                let f = a * pc;
+                let col = &self.c_unit.col_as_slice(c)[first..first + u.len()];
+                for (ur, cr) in u.iter_mut().zip(col) {
+                    *ur += cr * f;
+                }
             }
-            let f = a * pc;
-            for (ur, cr) in u.iter_mut().zip(self.c_unit.col_as_slice(c)) {
-                *ur += cr * f;
-            }
+        };
+        if u.len() < PARALLEL_ROWS {
+            rows(0, u);
+        } else {
+            let half = u.len() / 2;
+            let (lo, hi) = u.split_at_mut(half);
+            rayon::join(|| rows(0, lo), || rows(half, hi));
         }
     }
 
@@ -141,7 +156,13 @@ impl ExactElastic {
 
 /// `u = B p` of [`ExactElastic::previous`] without the matrix: at each point,
 /// the strips of the patch `frame` summed with shared corners
-/// ([`crate::contact::influence::strip_displacement`]). Points in parallel.
+/// ([`crate::contact::influence::strip_coefficients`]).
+///
+/// The mesh is symmetric about y = 0 (strip `j` mirrors strip `ny - 1 - j`)
+/// and so are the points: the coefficients of the old strip `j'` at the
+/// mirror image of a point are those of strip `j` at the point, with `c_xy`
+/// of opposite sign. Each coefficient is evaluated once and serves the point
+/// and its image: half the kernel evaluations. Point pairs in parallel.
 fn previous_direct(
     mesh: &EllipseMesh,
     frame: PatchFrame,
@@ -151,30 +172,53 @@ fn previous_direct(
     nu: f64,
     u: &mut [f64],
 ) {
-    let px: Vec<f64> = p.iter().step_by(2).copied().collect();
-    let py: Vec<f64> = p.iter().skip(1).step_by(2).copied().collect();
-    let strips: Vec<Strip> = (0..mesh.ny)
+    let (nx, ny) = (mesh.nx, mesh.ny);
+    let strips: Vec<Strip> = (0..ny)
         .map(|j| {
             let c = mesh.half_chord[j];
-            let eta = mesh.eta[j * mesh.nx];
+            let eta = mesh.eta[j * nx];
             Strip {
-                edges: (0..=mesh.nx).map(|e| frame.a * (c - e as f64 * mesh.d_xi[j])).collect(),
+                edges: (0..=nx).map(|e| frame.a * (c - e as f64 * mesh.d_xi[j])).collect(),
                 y_lo: frame.b * (eta - 0.5 * mesh.d_eta),
                 y_hi: frame.b * (eta + 0.5 * mesh.d_eta),
             }
         })
         .collect();
-    u.par_chunks_mut(2).zip(points.par_iter()).for_each(|(uk, point)| {
-        let (mut ux, mut uy) = (0.0, 0.0);
-        for (j, strip) in strips.iter().enumerate() {
-            let range = j * mesh.nx..(j + 1) * mesh.nx;
-            let d = strip_displacement(strip, (&px[range.clone()], &py[range]), *point, g, nu);
-            ux += d[0];
-            uy += d[1];
+    // The points of the lower half and the middle row; k' is the image.
+    let lower: Vec<usize> = (0..ny.div_ceil(2) * nx).collect();
+    let mirror = |k: usize| (ny - 1 - k / nx) * nx + k % nx;
+    let s = 1.0 / (std::f64::consts::PI * g);
+    let sums: Vec<([f64; 2], [f64; 2])> = lower
+        .par_iter()
+        .map_init(
+            || (Vec::new(), vec![[0.0; 3]; nx]),
+            |(buf, c), &k| {
+                let (mut own, mut image) = ([0.0; 2], [0.0; 2]);
+                for (j, strip) in strips.iter().enumerate() {
+                    strip_coefficients(strip, points[k], nu, buf, c);
+                    let (jm, mut d, mut e) = (ny - 1 - j, [0.0; 2], [0.0; 2]);
+                    for (i, ci) in c.iter().enumerate() {
+                        let (px, py) = (p[2 * (j * nx + i)], p[2 * (j * nx + i) + 1]);
+                        d[0] += ci[0] * px + ci[1] * py;
+                        d[1] += ci[1] * px + ci[2] * py;
+                        let (qx, qy) = (p[2 * (jm * nx + i)], p[2 * (jm * nx + i) + 1]);
+                        e[0] += ci[0] * qx - ci[1] * qy;
+                        e[1] += -ci[1] * qx + ci[2] * qy;
+                    }
+                    own = [own[0] + s * d[0], own[1] + s * d[1]];
+                    image = [image[0] + s * e[0], image[1] + s * e[1]];
+                }
+                (own, image)
+            },
+        )
+        .collect();
+    for (&k, (own, image)) in lower.iter().zip(&sums) {
+        u[2 * k..2 * k + 2].copy_from_slice(own);
+        let km = mirror(k);
+        if km != k {
+            u[2 * km..2 * km + 2].copy_from_slice(image);
         }
-        uk[0] = ux;
-        uk[1] = uy;
-    });
+    }
 }
 
 /// Influence matrix (2P x 2N, interleaved) of the elements of `mesh` in

@@ -41,6 +41,7 @@
 use super::elastic::ExactElastic;
 use super::{FORCE_TOLERANCE, STICK_SLIP_FACTOR, friction};
 use crate::numerics::{Tolerance, brent};
+use multiversion::multiversion;
 use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
@@ -193,11 +194,19 @@ fn sweep_block(st: &GsStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut 
         p[li] = pk[0];
         p[lj] = pk[1];
         if dx != 0.0 || dy != 0.0 {
-            let (fx, fy) = (st.a * dx, st.a * dy);
-            for ((ur, cx), cy) in u.iter_mut().zip(c1.col_as_slice(i)).zip(c1.col_as_slice(j)) {
-                *ur += cx * fx + cy * fy;
-            }
+            add_columns(u, (c1.col_as_slice(i), c1.col_as_slice(j)), st.a * dx, st.a * dy);
         }
+    }
+}
+
+/// `u += fx c_x + fy c_y` for the two columns `(c_x, c_y)` of one element:
+/// the inner loop of a sweep. Compiled also for AVX2 and picked at run time
+/// (`multiversion`); no fused multiply-add is formed, so every target gives
+/// the same bits.
+#[multiversion(targets("x86_64+avx2+fma"))]
+fn add_columns(u: &mut [f64], (cx, cy): (&[f64], &[f64]), fx: f64, fy: f64) {
+    for ((ur, x), y) in u.iter_mut().zip(cx).zip(cy) {
+        *ur += x * fx + y * fy;
     }
 }
 
