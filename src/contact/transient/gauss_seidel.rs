@@ -361,11 +361,22 @@ impl Anderson {
         if self.df.is_empty() {
             return (g.clone(), aux);
         }
-        let svd = DMatrix::from_columns(&self.df).svd(true, true);
-        let cut = 1e-10 * svd.singular_values.max();
-        let Ok(gamma) = svd.solve(&f, cut) else {
+        // Least squares min |f - F gamma| by the normal equations: F^T F is
+        // depth x depth (an SVD of F costs more than the rest of the mixing),
+        // and directions below 1e-14 of its largest eigenvalue (what rounding
+        // leaves of them) are dropped.
+        let fm = DMatrix::from_columns(&self.df);
+        let eig = fm.tr_mul(&fm).symmetric_eigen();
+        let cut = 1e-14 * eig.eigenvalues.amax();
+        let proj = eig.eigenvectors.tr_mul(&fm.tr_mul(&f));
+        let kept = DVector::from_fn(proj.len(), |i, _| {
+            let l = eig.eigenvalues[i];
+            if l > cut { proj[i] / l } else { 0.0 }
+        });
+        let gamma = &eig.eigenvectors * kept;
+        if !gamma.iter().all(|v| v.is_finite()) {
             return (g.clone(), aux);
-        };
+        }
         let (mut next, mut aux_next) = (g.clone(), aux);
         for i in 0..self.df.len() {
             next.axpy(-gamma[i], &self.dg[i], 1.0);
