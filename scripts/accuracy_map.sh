@@ -8,8 +8,8 @@
 # wavelength (at least 20 mm), one recorded wavelength.
 # Models: exact-transient (Gauss-Seidel) at 6, 8, 10, 14, 20, 28; simplified-
 # transient and FASTSIM at 10, 20, 40. Reference per wavelength: Richardson
-# extrapolation of the exact 20 x 20 and 28 x 28 wear profiles (first order
-# in 1/n, as measured).
+# extrapolation of the exact 14 x 14, 20 x 20 and 28 x 28 wear profiles with
+# the observed order of convergence (corrugation_post accuracy-map).
 #
 # Writes out/accuracy_map/accuracy_map.{csv,png} and, with --install, copies
 # the CSV to src/model_choice/accuracy_map.csv (the table compiled into the

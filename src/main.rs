@@ -61,16 +61,38 @@ enum Command {
     },
 }
 
+/// A line on stderr. A closed stderr (`... 2>&1 | head`) must not stop a
+/// run: write errors are ignored.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
+/// [`say!`] without the newline.
+macro_rules! say_raw {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
-        Command::Check { config, set } => match load(&config, &set) {
-            Ok(r) => {
-                print_check(&r);
-                ExitCode::SUCCESS
+        Command::Check { config, set } => {
+            // `check` only prints: end quietly, as other Unix tools do, when
+            // the reader of stdout has gone (`corrugation check f | head`).
+            reset_sigpipe();
+            match load(&config, &set) {
+                Ok(r) => {
+                    print_check(&r);
+                    ExitCode::SUCCESS
+                }
+                Err(code) => code,
             }
-            Err(code) => code,
-        },
+        }
         Command::Run { config, output, set } => {
             let resolved = match load(&config, &set) {
                 Ok(r) => r,
@@ -83,9 +105,21 @@ fn main() -> ExitCode {
     }
 }
 
+/// Restores the default action of SIGPIPE (end the process), which Rust's
+/// runtime sets to ignore, so that printing to a closed pipe ends `check`
+/// instead of panicking.
+fn reset_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called before any other thread exists; SIG_DFL is a valid
+    // disposition for SIGPIPE.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
+}
+
 fn load(path: &Path, set: &[String]) -> Result<Resolved, ExitCode> {
     config::load_file(path, set).map_err(|e| {
-        eprint!("error: {e}");
+        say_raw!("error: {e}");
         ExitCode::from(2)
     })
 }
@@ -107,8 +141,8 @@ fn run(resolved: &Resolved, out: &Path) -> ExitCode {
             ExitCode::SUCCESS
         }
         Err(e) => {
-            eprintln!("error: {e}");
-            eprintln!("{} was not written (or holds the last checkpoint of a growth study)", out.display());
+            say!("error: {e}");
+            say!("{} was not written (or holds the last checkpoint of a growth study)", out.display());
             ExitCode::from(1)
         }
     }
@@ -125,19 +159,19 @@ fn resume(file: &Path, passes: Option<usize>, output: Option<&Path>) -> ExitCode
             ExitCode::SUCCESS
         }
         Err(ResumeError::Run(e)) => {
-            eprintln!("error: {e}");
-            eprintln!("{} holds the last checkpoint", out.display());
+            say!("error: {e}");
+            say!("{} holds the last checkpoint", out.display());
             ExitCode::from(1)
         }
         Err(e) => {
-            eprintln!("error: {e}");
+            say!("error: {e}");
             ExitCode::from(2)
         }
     }
 }
 
 fn report(s: &RunSummary, out: &Path) {
-    eprintln!(
+    say!(
         "wrote {}: {} passage(s) ({} computed now, {:.3} s CPU), traffic {:.4e}; last passage: max wear {:.4e} m, \
          removed volume {:.4e} m^3; rms corrugation {:.4e} m",
         out.display(),
@@ -156,7 +190,7 @@ fn report(s: &RunSummary, out: &Path) {
         } else {
             "harmonics can change sign between updates: growth is spurious".to_string()
         };
-        eprintln!(
+        say!(
             "warning: traffic scaling too coarse: the update of passage {pass} changed the corrugation by {q:.3} of \
              its amplitude (bound {}); {effect}. Lower growth.traffic_scale or set growth.adaptive = true.",
             s.update_bound
@@ -267,8 +301,8 @@ fn print_check(r: &Resolved) {
     // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
     // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
     // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
-    // solver (scripts/solver_scaling.sh, wall): 3.1 ms at 100 and 17.6 ms at
-    // 400 elements (~N^1.25 while C fits in cache), ~N^2.3 beyond.
+    // solver (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 12.8 ms at
+    // 400 elements (~N^1.2 while C fits in cache), ~N^2.2 beyond.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
     let contact = match s.contact.model {
@@ -276,9 +310,9 @@ fn print_check(r: &Resolved) {
         ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
         ContactModelKind::ExactTransient if s.contact.solver == StepSolver::GaussSeidel => {
             if n_el <= 400.0 {
-                3.1e-3 * (n_el / 100.0).powf(1.25)
+                2.4e-3 * (n_el / 100.0).powf(1.2)
             } else {
-                17.6e-3 * (n_el / 400.0).powf(2.3)
+                12.8e-3 * (n_el / 400.0).powf(2.2)
             }
         }
         ContactModelKind::ExactTransient => {

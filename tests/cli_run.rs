@@ -161,3 +161,31 @@ fn check_and_run_with_the_transient_models() {
     let in_contact = read_f64(&out, "contact/pass_00000", "in_contact").unwrap();
     assert!(in_contact.iter().all(|v| *v == 1.0));
 }
+
+#[test]
+fn a_closed_pipe_ends_check_quietly_and_does_not_stop_a_run() {
+    use std::process::Stdio;
+    // `corrugation check f | head -0`: the reader is gone before the first
+    // line. check ends without a panic message (by SIGPIPE, as Unix tools do).
+    let c = config("paper_normal_30mm");
+    let mut child = Command::new(BIN)
+        .args(["check", c.as_str()])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("binary runs");
+    drop(child.stdout.take());
+    let o = child.wait_with_output().expect("check ends");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!err.contains("panicked"), "check panicked on a closed pipe: {err}");
+    assert_ne!(o.status.code(), Some(101), "no panic exit code");
+    // A run whose stderr reader is gone still completes and writes its file.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run.h5");
+    let mut args = vec!["run", c.as_str(), "-o", out.to_str().unwrap()];
+    args.extend(FAST);
+    let mut child = Command::new(BIN).args(&args).stderr(Stdio::piped()).stdout(Stdio::null()).spawn().unwrap();
+    drop(child.stderr.take());
+    assert!(child.wait().unwrap().success(), "run with a closed stderr");
+    assert!(read_f64(&out, "rail", "wear").is_ok(), "the run file was written");
+}
