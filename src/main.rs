@@ -301,8 +301,8 @@ fn print_check(r: &Resolved) {
     // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
     // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
     // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
-    // solver (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 12.8 ms at
-    // 400 elements (~N^1.2 while C fits in cache), ~N^2.2 beyond.
+    // solver (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 11.8 ms at
+    // 400 elements (~N^1.15 while C fits in cache), ~N^2.2 beyond.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
     let contact = match s.contact.model {
@@ -310,9 +310,9 @@ fn print_check(r: &Resolved) {
         ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
         ContactModelKind::ExactTransient if s.contact.solver == StepSolver::GaussSeidel => {
             if n_el <= 400.0 {
-                2.4e-3 * (n_el / 100.0).powf(1.2)
+                2.4e-3 * (n_el / 100.0).powf(1.15)
             } else {
-                12.8e-3 * (n_el / 400.0).powf(2.2)
+                11.8e-3 * (n_el / 400.0).powf(2.2)
             }
         }
         ContactModelKind::ExactTransient => {

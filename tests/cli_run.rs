@@ -162,8 +162,10 @@ fn check_and_run_with_the_transient_models() {
     assert!(in_contact.iter().all(|v| *v == 1.0));
 }
 
+#[cfg(unix)]
 #[test]
 fn a_closed_pipe_ends_check_quietly_and_does_not_stop_a_run() {
+    use std::os::unix::process::ExitStatusExt;
     use std::process::Stdio;
     // `corrugation check f | head -0`: the reader is gone before the first
     // line. check ends without a panic message (by SIGPIPE, as Unix tools do).
@@ -178,7 +180,10 @@ fn a_closed_pipe_ends_check_quietly_and_does_not_stop_a_run() {
     let o = child.wait_with_output().expect("check ends");
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(!err.contains("panicked"), "check panicked on a closed pipe: {err}");
-    assert_ne!(o.status.code(), Some(101), "no panic exit code");
+    // Ended by SIGPIPE, as Unix tools are; or, should the whole report have
+    // fitted in the pipe before the reader went, successfully.
+    let by_sigpipe = o.status.signal() == Some(libc::SIGPIPE);
+    assert!(by_sigpipe || o.status.success(), "check on a closed pipe: {:?}", o.status);
     // A run whose stderr reader is gone still completes and writes its file.
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("run.h5");

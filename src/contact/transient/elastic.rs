@@ -59,8 +59,9 @@ pub struct ExactElastic {
     previous_cache: Option<([u64; 5], Mat<f64>)>,
     /// (frames, shift) of the last call: the matrix is only built when the
     /// same key comes twice in a row (constant load); a key seen once is
-    /// evaluated directly, strip by strip, which costs about half the kernel
-    /// evaluations of the matrix and no storage.
+    /// evaluated directly, strip by strip and a point with its mirror image,
+    /// which costs about a quarter of the kernel evaluations of the matrix
+    /// and no storage.
     last_key: Option<[u64; 5]>,
 }
 
@@ -158,11 +159,14 @@ impl ExactElastic {
 /// the strips of the patch `frame` summed with shared corners
 /// ([`crate::contact::influence::strip_coefficients`]).
 ///
-/// The mesh is symmetric about y = 0 (strip `j` mirrors strip `ny - 1 - j`)
-/// and so are the points: the coefficients of the old strip `j'` at the
-/// mirror image of a point are those of strip `j` at the point, with `c_xy`
-/// of opposite sign. Each coefficient is evaluated once and serves the point
-/// and its image: half the kernel evaluations. Point pairs in parallel.
+/// The mesh is symmetric about y = 0 (strip `j` mirrors strip `ny - 1 - j`,
+/// to rounding: its eta is built as `-1 + (j + 1/2) d_eta`) and so are the
+/// points (the patch moves along x only): the coefficients of the old strip
+/// `j'` at the mirror image of a point are those of strip `j` at the point,
+/// with `c_xy` of opposite sign. Each coefficient is evaluated once and
+/// serves the point and its image: half the kernel evaluations. The lower
+/// half of the points is bit-identical to the point-by-point sum, the upper
+/// within about 3e-14 of it. Point pairs in parallel.
 fn previous_direct(
     mesh: &EllipseMesh,
     frame: PatchFrame,

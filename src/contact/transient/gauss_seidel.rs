@@ -52,10 +52,10 @@ pub const DEPTH: usize = 6;
 const PARALLEL_MIN: usize = 64;
 
 /// Sweeps between fresh products `u = C p` (in between, u is mixed with p,
-/// exactly up to rounding, about 1e-16 of u per sweep). Longer than a typical
-/// step (23-38 sweeps): the products at 16 and 32 sweeps cost 6 % of a
-/// 20 x 20 passage and changed nothing; a failed verdict also leaves a fresh
-/// product behind.
+/// exactly up to rounding amplified by the mixing coefficients). Longer than
+/// a typical step (23-38 sweeps): the products at 16 and 32 sweeps cost 6 %
+/// of a 20 x 20 passage and changed nothing; the verdict is always taken on
+/// a fresh product, and a failed verdict leaves it behind.
 const REFRESH: usize = 64;
 
 /// The data of one step for the Gauss-Seidel solver.
@@ -205,9 +205,10 @@ fn sweep_block(st: &GsStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut 
 
 /// `u += fx c_x + fy c_y` for the two columns `(c_x, c_y)` of one element:
 /// the inner loop of a sweep. Compiled also for AVX2 and picked at run time
-/// (`multiversion`); no fused multiply-add is formed, so every target gives
-/// the same bits.
-#[multiversion(targets("x86_64+avx2+fma"))]
+/// (`multiversion`); the AVX2 clone only widens the lanes (no fused
+/// multiply-add, which would round differently), so every target gives the
+/// same bits.
+#[multiversion(targets("x86_64+avx2"))]
 fn add_columns(u: &mut [f64], (cx, cy): (&[f64], &[f64]), fx: f64, fy: f64) {
     for ((ur, x), y) in u.iter_mut().zip(cx).zip(cy) {
         *ur += x * fx + y * fy;
@@ -365,19 +366,25 @@ impl Anderson {
         if self.df.is_empty() {
             return (g.clone(), aux);
         }
-        // Least squares min |f - F gamma| by the normal equations: F^T F is
-        // depth x depth (an SVD of F costs more than the rest of the mixing),
-        // and directions below 1e-14 of its largest eigenvalue (what rounding
-        // leaves of them) are dropped.
-        let fm = DMatrix::from_columns(&self.df);
+        // Least squares min |f - F gamma| by the normal equations of the
+        // column-normalised history F D (D = diag 1/|f_i|): (F D)^T F D is
+        // depth x depth (an SVD of F costs more than the rest of the mixing).
+        // Its directions below 1e-12 of the largest eigenvalue, singular
+        // values of F D below 1e-6 of the largest (nearly dependent
+        // differences, which rounding in the Gram matrix, ~1e-15, does not
+        // resolve), are dropped. The normalisation keeps a short but new
+        // difference from being dropped for its size alone.
+        let scale: Vec<f64> = self.df.iter().map(|c| 1.0 / c.norm().max(f64::MIN_POSITIVE)).collect();
+        let fm = DMatrix::from_fn(f.len(), self.df.len(), |r, c| self.df[c][r] * scale[c]);
         let eig = fm.tr_mul(&fm).symmetric_eigen();
-        let cut = 1e-14 * eig.eigenvalues.amax();
+        let cut = 1e-12 * eig.eigenvalues.amax();
         let proj = eig.eigenvectors.tr_mul(&fm.tr_mul(&f));
         let kept = DVector::from_fn(proj.len(), |i, _| {
             let l = eig.eigenvalues[i];
             if l > cut { proj[i] / l } else { 0.0 }
         });
-        let gamma = &eig.eigenvectors * kept;
+        let gamma =
+            DVector::from_iterator(scale.len(), (&eig.eigenvectors * kept).iter().zip(&scale).map(|(g, s)| g * s));
         if !gamma.iter().all(|v| v.is_finite()) {
             return (g.clone(), aux);
         }
