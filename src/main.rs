@@ -3,6 +3,23 @@
 //! Exit codes: 0 success, 1 the run failed (solver or output), 2 bad input
 //! (command line or config).
 
+/// A line on stderr. A closed stderr (`... 2>&1 | head`) must not stop a
+/// run: write errors are ignored. Defined before the modules that use it.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
+/// [`say!`] without the newline.
+macro_rules! say_raw {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 mod progress;
 
 use clap::{Parser, Subcommand};
@@ -59,23 +76,6 @@ enum Command {
         #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
         set: Vec<String>,
     },
-}
-
-/// A line on stderr. A closed stderr (`... 2>&1 | head`) must not stop a
-/// run: write errors are ignored.
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stderr(), $($arg)*);
-    }};
-}
-
-/// [`say!`] without the newline.
-macro_rules! say_raw {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stderr(), $($arg)*);
-    }};
 }
 
 fn main() -> ExitCode {

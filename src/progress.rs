@@ -54,7 +54,7 @@ impl Progress {
                 }
                 None if !self.growth && (done >= self.next_log || done == total) => {
                     let secs = self.start.elapsed().as_secs_f64();
-                    say(&format!("{}: {done}/{total} steps ({secs:.1} s)", self.label));
+                    say!("{}: {done}/{total} steps ({secs:.1} s)", self.label);
                     self.next_log = done + (total / 10).max(1);
                 }
                 None => {}
@@ -73,7 +73,7 @@ impl Progress {
                     None => {
                         let due = self.last_line.is_none_or(|t| t.elapsed() >= Duration::from_secs(2));
                         if due || done == total {
-                            say(&format!("{text}; {elapsed:.1} s elapsed, ETA {eta:.0} s"));
+                            say!("{text}; {elapsed:.1} s elapsed, ETA {eta:.0} s");
                             self.last_line = Some(Instant::now());
                         }
                     }
@@ -83,7 +83,7 @@ impl Progress {
                 let text = format!("checkpoint written after passage {done}");
                 match &self.bar {
                     Some(b) => b.println(text),
-                    None => say(&text),
+                    None => say!("{text}"),
                 }
             }
         }
@@ -95,11 +95,4 @@ impl Progress {
             b.finish_and_clear();
         }
     }
-}
-
-/// A line on stderr; a closed stderr must not stop the run, so write errors
-/// are ignored.
-fn say(line: &str) {
-    use std::io::Write as _;
-    let _ = writeln!(std::io::stderr(), "{line}");
 }
