@@ -302,7 +302,9 @@ fn print_check(r: &Resolved) {
     // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
     // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
     // solver (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 11.8 ms at
-    // 400 elements (~N^1.15 while C fits in cache), ~N^2.2 beyond.
+    // 400 elements (~N^1.15 while C fits in cache), ~N^2.2 beyond. Measured
+    // on the old AMD development machine; the newer Intel one (README,
+    // Performance) takes 0.45-0.6 of these times: an upper estimate.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
     let contact = match s.contact.model {
