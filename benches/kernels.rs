@@ -9,7 +9,7 @@ use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, Tang
 use corrugation::creep_coefficients::creep_coefficients;
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use corrugation::passage::run_passage;
-use corrugation::run::{build_solver, derive};
+use corrugation::run::{build_deposit, build_solver, derive};
 use corrugation::wear::{PatchWear, RailGrid, WearDeposit, archard_rates};
 use criterion::{Criterion, criterion_group, criterion_main};
 use ndarray::Array2;
@@ -82,8 +82,8 @@ fn passage(c: &mut Criterion) {
     g.bench_function("paper_normal_30mm_fastsim", |b| {
         b.iter(|| {
             let mut solver = build_solver(&r.scene, &d.shape);
-            let dep = WearDeposit::new(solver.mesh());
-            run_passage(&d.passage, &d.shape, solver.as_mut(), &dep, &d.grid, true, &mut |_, _| {}).unwrap()
+            let dep = build_deposit(&solver.elements());
+            run_passage(&d.passage, &d.shape, solver.as_mut(), dep.as_ref(), &d.grid, true, &mut |_, _| {}).unwrap()
         })
     });
     // The target scene for the exact model: a varying load, a new
@@ -97,8 +97,8 @@ fn passage(c: &mut Criterion) {
     g.bench_function("paper_normal_30mm_exact_20x20", |b| {
         b.iter(|| {
             let mut solver = build_solver(&r.scene, &d.shape);
-            let dep = WearDeposit::new(solver.mesh());
-            run_passage(&d.passage, &d.shape, solver.as_mut(), &dep, &d.grid, true, &mut |_, _| {}).unwrap()
+            let dep = build_deposit(&solver.elements());
+            run_passage(&d.passage, &d.shape, solver.as_mut(), dep.as_ref(), &d.grid, true, &mut |_, _| {}).unwrap()
         })
     });
     g.finish();

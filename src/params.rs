@@ -2,6 +2,7 @@
 //! Built from a config by [`crate::config`]; SI units throughout.
 
 use crate::contact::PressureShape;
+use crate::contact::grid::{FrictionLaw, GridScheme};
 use crate::contact::transient::StepSolver;
 use crate::hertz::{Curvatures, Elastic};
 use crate::loads::ImposedLoads;
@@ -83,6 +84,33 @@ pub struct ContactParams {
     /// What `contact.model = "auto"` chose (None when the config names the
     /// model).
     pub auto: Option<crate::model_choice::AutoChoice>,
+    /// The discretisation of the exact-transient model.
+    pub grid: ContactGrid,
+}
+
+/// How the exact-transient model discretises the contact area.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum ContactGrid {
+    /// The paper's Paul-Hashemi mesh adapted to the Hertz ellipse of every
+    /// step (`elements_x` x `elements_y`).
+    #[default]
+    Adapted,
+    /// A fixed potential-contact grid of uniform elements (CONTACT's
+    /// discretisation).
+    Fixed(FixedGridParams),
+}
+
+/// The fixed grid's parameters.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedGridParams {
+    /// Element length along x (m); also the rolled distance per step.
+    pub dx: f64,
+    /// Element width along y (m).
+    pub dy: f64,
+    /// Friction law.
+    pub friction_law: FrictionLaw,
+    /// Backward difference of the material derivative.
+    pub scheme: GridScheme,
 }
 
 /// Rail-surface grid.

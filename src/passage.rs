@@ -11,7 +11,7 @@
 use crate::contact::{ContactError, PatchSolution, StepInput, TangentialSolver};
 use crate::hertz::{HertzError, HertzShape};
 use crate::loads::ImposedLoads;
-use crate::wear::{PatchWear, RailGrid, WearDeposit, archard_rates};
+use crate::wear::{PatchWear, RailGrid, WearKernel, archard_rates};
 use ndarray::Array2;
 
 /// Kinematics, loads and discretisation of one passage (SI units).
@@ -259,14 +259,14 @@ pub fn run_passage(
     spec: &PassageSpec,
     shape: &HertzShape,
     solver: &mut dyn TangentialSolver,
-    deposit: &WearDeposit,
+    deposit: &dyn WearKernel,
     grid: &RailGrid,
     record_fields: bool,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<PassageResult, PassageError> {
     let steps = spec.n_steps();
     let dt = spec.dt();
-    let n_el = solver.mesh().len();
+    let n_el = solver.elements().len();
     let mut wear = Array2::zeros((grid.ny, grid.nx));
     let mut h = PatchHistory { fields: record_fields.then(|| PatchFields::new(steps, n_el)), ..Default::default() };
     // The previous step's patch (x_c, a, b) and wear rates.
@@ -306,7 +306,11 @@ pub fn run_passage(
         check_finite(&sol, n, x)?;
         let rates = archard_rates(spec.k_over_h, &sol);
         let (w0, w1) = spec.wear_window;
-        if let Some(p) = previous.as_ref().filter(|p| p.x_c >= w0 - 1e-12 && x <= w1 + 1e-12) {
+        // The interval from the previous step belongs to the window when its
+        // midpoint does: [w0, w1) then holds exactly (w1 - w0) / step of them
+        // whatever the steps' offset (a periodic stretch receives one whole
+        // passage).
+        if let Some(p) = previous.as_ref().filter(|p| (w0..w1).contains(&(0.5 * (p.x_c + x)))) {
             let from = PatchWear { x_c: p.x_c, a: p.a, b: p.b, rates: &p.rates };
             let to = PatchWear { x_c: x, a: patch.a, b: patch.b, rates: &rates };
             deposit.accumulate(grid, &mut wear, &from, &to, dt, spec.substeps);

@@ -7,8 +7,7 @@ use corrugation::config::load_str;
 use corrugation::model_choice::{AccuracyMap, SAFETY};
 use corrugation::params::{ContactModelKind, Scene};
 use corrugation::passage::run_passage;
-use corrugation::run::{build_solver, derive};
-use corrugation::wear::WearDeposit;
+use corrugation::run::{build_deposit, build_solver, derive};
 
 const SCENES: [(&str, &str, &str); 2] = [
     (
@@ -39,8 +38,8 @@ fn reference(csv: &str) -> Vec<f64> {
 fn wear_error(scene: &Scene, reference: &[f64]) -> f64 {
     let d = derive(scene);
     let mut solver = build_solver(scene, &d.shape);
-    let dep = WearDeposit::new(solver.mesh());
-    let res = run_passage(&d.passage, &d.shape, solver.as_mut(), &dep, &d.grid, false, &mut |_, _| {}).unwrap();
+    let dep = build_deposit(&solver.elements());
+    let res = run_passage(&d.passage, &d.shape, solver.as_mut(), dep.as_ref(), &d.grid, false, &mut |_, _| {}).unwrap();
     let centre = d.grid.ny / 2;
     assert!(d.grid.y(centre).abs() < 1e-12, "the grid has a centre line");
     let w = res.wear.row(centre);

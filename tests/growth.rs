@@ -1,8 +1,8 @@
 //! The growth loop's passage over the periodic stretch.
 mod common;
 use common::{STEEL, paper_coefficients, paper_shape, rel};
+use corrugation::contact::PressureShape;
 use corrugation::contact::fastsim::Fastsim;
-use corrugation::contact::{PressureShape, TangentialSolver};
 use corrugation::growth::growth_passage;
 use corrugation::loads::ImposedLoads;
 use corrugation::passage::PassageSpec;

@@ -5,7 +5,7 @@ use corrugation::contact::transient::elastic::ExactElastic;
 use corrugation::contact::transient::{DEFAULT_TOLERANCE, ElasticModel, StepSolver, Transient};
 use corrugation::contact::{EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use corrugation::passage::{PassageError, PassageResult, run_passage};
-use corrugation::run::{build_solver, derive};
+use corrugation::run::{build_deposit, build_solver, derive};
 use corrugation::wear::WearDeposit;
 
 const BASE: &str = include_str!("../configs/paper_normal_15mm.toml");
@@ -18,8 +18,8 @@ fn passage(model: &str, extra: &[&str]) -> (PassageResult, f64) {
     let r = load_str(BASE, "paper_normal_15mm", &set).unwrap_or_else(|e| panic!("{e}"));
     let d = derive(&r.scene);
     let mut solver = build_solver(&r.scene, &d.shape);
-    let dep = WearDeposit::new(solver.mesh());
-    let res = run_passage(&d.passage, &d.shape, solver.as_mut(), &dep, &d.grid, true, &mut |_, _| {}).unwrap();
+    let dep = build_deposit(&solver.elements());
+    let res = run_passage(&d.passage, &d.shape, solver.as_mut(), dep.as_ref(), &d.grid, true, &mut |_, _| {}).unwrap();
     (res, r.scene.material.friction)
 }
 

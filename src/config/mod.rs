@@ -8,17 +8,19 @@
 //! rail grid, Kalker's table range) run on the keys that were valid.
 
 mod auto;
+mod contact;
 mod growth;
 mod overrides;
 mod reader;
 
-use crate::contact::PressureShape;
-use crate::contact::transient::StepSolver;
 use crate::creep_coefficients::creep_coefficients;
 use crate::hertz::{Elastic, HertzShape};
 use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};
-use crate::params::{ContactModelKind, ContactParams, Geometry, Material, OutputParams, RailParams, Scene};
+use crate::params::{
+    ContactGrid, ContactModelKind, ContactParams, Geometry, Material, OutputParams, RailParams, Scene,
+};
 pub use auto::AUTO;
+pub use contact::{DEFAULT_GRID_DX, DEFAULT_GRID_DY};
 use reader::{Range, Section};
 use std::fmt;
 use std::path::Path;
@@ -139,31 +141,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let harmonics = s.array_of_tables("harmonics", read_harmonic);
     resolved.insert("load".into(), Value::Table(s.finish()));
 
-    let mut s = section(&mut root, "contact", errors);
-    let names = ContactModelKind::ALL.map(ContactModelKind::name);
-    let model = s.choice("model", Some("fastsim"), &[&names[..], &[AUTO]].concat());
-    let auto = model.as_deref() == Some(AUTO);
-    // "auto" chooses the mesh and reads a tolerance; the other models take a
-    // mesh and have no tolerance.
-    let (nx, ny, tolerance) = if auto {
-        for key in ["elements_x", "elements_y"] {
-            if s.has(key) {
-                s.usize(key, None, 2, 200);
-                s.error(key, "is chosen by contact.model = \"auto\"; remove it, or name a model".into());
-            }
-        }
-        (Some(0), Some(0), s.f64("tolerance", Some(0.1), Range::OpenClosed(0.0, 1.0)))
-    } else {
-        if s.has("tolerance") {
-            s.f64("tolerance", None, Range::Finite);
-            s.error("tolerance", "applies to contact.model = \"auto\" only; remove it, or set model = \"auto\"".into());
-        }
-        (s.usize("elements_x", Some(20), 2, 200), s.usize("elements_y", Some(20), 2, 200), Some(0.0))
-    };
-    let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
-    let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
-    let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
-    resolved.insert("contact".into(), Value::Table(s.finish()));
+    let contact = contact::read(&mut root, &mut resolved, errors);
 
     let mut s = section(&mut root, "wear", errors);
     let k_over_h = s.f64("k_over_h", None, Range::NonNegative);
@@ -173,7 +151,10 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let mut s = section(&mut root, "passage", errors);
     let start = s.f64("start", None, Range::Finite);
     let end = s.f64("end", None, Range::Finite);
-    let step_length = s.f64("step_length", None, Range::OpenClosed(0.0, 0.01));
+    // With the fixed grid the step is the element length: either key sets it.
+    let step_given = s.has("step_length");
+    let step_default = contact.fixed.as_ref().and_then(|f| f.dx);
+    let step_length = s.f64("step_length", step_default, Range::OpenClosed(0.0, 0.01));
     resolved.insert("passage".into(), Value::Table(s.finish()));
 
     let mut s = section(&mut root, "rail", errors);
@@ -212,11 +193,20 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let loads = ImposedLoads { normal_force: normal, longitudinal_force: longitudinal, harmonics };
     check_loads(&loads, mu, dx, errors);
 
+    let Some(contact_grid) = contact::reconcile_step(&contact, step_length, step_given, &mut resolved, errors) else {
+        return (None, resolved);
+    };
+    let step_length = match contact_grid {
+        ContactGrid::Fixed(f) => Some(f.dx),
+        ContactGrid::Adapted => step_length,
+    };
+    let contact::ContactKeys { model, nx, ny, tolerance, eps, bound, solver, .. } = contact;
     let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound), Some(solver), Some(tolerance)) =
         (model, nx, ny, eps, bound, solver, tolerance)
     else {
         return (None, resolved);
     };
+    contact::check_model(&model, &contact_grid, &solver, errors);
     let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(step_length)) =
         (k_over_h, substeps, start, end, step_length)
     else {
@@ -260,6 +250,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     if let Some(g) = &growth {
         check_growth(g, &loads, start, end, (x_min, x_max, dx), shape.as_ref(), errors);
     }
+    let (fastsim_bound, step_solver) = contact::bound_and_solver(&bound, &solver);
     let (model, nx, ny, auto) = if model == AUTO {
         if solver == "newton" {
             errors.push(ConfigError::new(
@@ -291,9 +282,10 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             elements_x: nx,
             elements_y: ny,
             regularisation: eps,
-            fastsim_bound: if bound == "elliptic" { PressureShape::Hertz } else { PressureShape::Parabolic },
-            solver: if solver == "newton" { StepSolver::Newton } else { StepSolver::GaussSeidel },
+            fastsim_bound,
+            solver: step_solver,
             auto,
+            grid: contact_grid,
         },
         k_over_h,
         wear_substeps: substeps,

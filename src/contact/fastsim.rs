@@ -27,7 +27,7 @@
 //! `xi = -F_x / (G a b C11)`.
 
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
-use super::{ContactError, Creepage, PatchSolution, StepInput, TangentialSolver};
+use super::{ContactError, Creepage, Elements, PatchSolution, StepInput, TangentialSolver};
 use crate::creep_coefficients::CreepCoefficients;
 use crate::hertz::HertzPatch;
 use crate::numerics::{Tolerance, brent};
@@ -54,6 +54,11 @@ pub struct Flexibilities {
 }
 
 impl Fastsim {
+    /// The mesh the fields are given on.
+    pub fn mesh(&self) -> &EllipseMesh {
+        &self.mesh
+    }
+
     /// FASTSIM on an `nx` x `ny` Paul-Hashemi mesh. `coefficients` come from
     /// Kalker's table for the patch's a/b and nu; `shear_modulus` G in Pa.
     pub fn new(
@@ -180,7 +185,7 @@ impl TangentialSolver for Fastsim {
 
     fn reset(&mut self) {}
 
-    fn mesh(&self) -> &EllipseMesh {
-        &self.mesh
+    fn elements(&self) -> Elements {
+        Elements::Adapted(self.mesh.clone())
     }
 }

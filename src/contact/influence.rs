@@ -83,6 +83,19 @@ pub fn influence(rect: &Rect, x: f64, y: f64, g: f64, nu: f64) -> Influence {
     Influence { xx: s * ((1.0 - nu) * i(0) + nu * i(1)), xy: s * nu * i(3), yy: s * ((1.0 - nu) * i(0) + nu * i(2)) }
 }
 
+/// Normal influence of uniform pressure on `rect` at point (`x`, `y`):
+/// the approach of the surfaces of two identical half-spaces (m per Pa).
+/// Boussinesq's point load displaces the surface by `(1 - nu) P / (2 pi G
+/// r)`; integrated over the rectangle (Love 1929; Johnson 1985, sec. 3.2)
+/// with the same primitive `int int 1/r` as the tangential coefficients, and
+/// doubled for the two bodies.
+pub fn normal_influence(rect: &Rect, x: f64, y: f64, g: f64, nu: f64) -> f64 {
+    let (xa_, xb) = (x - rect.x - rect.hx, x - rect.x + rect.hx);
+    let (ya, yb) = (y - rect.y - rect.hy, y - rect.y + rect.hy);
+    let i0 = corner(xb, yb)[0] - corner(xa_, yb)[0] - corner(xb, ya)[0] + corner(xa_, ya)[0];
+    (1.0 - nu) * i0 / (PI * g)
+}
+
 /// The corner primitives of [`corner`] at (x, y1) and (x, y2) from one
 /// square root and two logarithms each: `X asinh(Y/|X|) = X sign(Y)
 /// ln((|Y| + r)/|X|)` (same value to rounding; the far field loses nothing
@@ -319,6 +332,21 @@ mod tests {
         let h = 1e-3;
         let expect = (8.0 * h * (1.0f64).asinh() * (1.0 - nu) + nu * 4.0 * h * (1.0f64).asinh()) / (PI * g);
         assert!((c.xx - expect).abs() < 1e-12 * expect);
+    }
+
+    #[test]
+    fn normal_influence_at_the_centre_of_a_square() {
+        // int int 1/r over a square of side 2h at its centre: 8 h asinh(1);
+        // far away: the point load (1 - nu) P / (pi G r), P = 4 h^2.
+        let (g, nu, h) = (8.08e10, 0.3, 1e-3);
+        let sq = Rect { x: 0.0, y: 0.0, hx: h, hy: h };
+        let c = normal_influence(&sq, 0.0, 0.0, g, nu);
+        let expect = (1.0 - nu) * 8.0 * h * (1.0f64).asinh() / (PI * g);
+        assert!((c - expect).abs() < 1e-12 * expect);
+        let r = 0.5;
+        let far = normal_influence(&sq, r, 0.0, g, nu);
+        let point = (1.0 - nu) * 4.0 * h * h / (PI * g * r);
+        assert!((far - point).abs() < 1e-5 * point, "{far} vs {point}");
     }
 
     #[test]

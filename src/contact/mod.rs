@@ -10,6 +10,7 @@
 //! force on the wheel comes with a negative creepage.
 
 pub mod fastsim;
+pub mod grid;
 pub mod influence;
 pub mod mesh;
 pub mod transient;
@@ -17,6 +18,39 @@ pub mod transient;
 pub use mesh::{EllipseMesh, PressureShape};
 
 use crate::hertz::HertzPatch;
+use grid::PotentialGrid;
+
+/// The elements a solver gives its fields on.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Elements {
+    /// The patch-adapted (Paul-Hashemi) mesh, in normalised coordinates.
+    Adapted(EllipseMesh),
+    /// The fixed potential-contact grid, in metres.
+    Grid(PotentialGrid),
+}
+
+impl Elements {
+    /// Number of elements (the length of every field).
+    pub fn len(&self) -> usize {
+        match self {
+            Elements::Adapted(m) => m.len(),
+            Elements::Grid(g) => g.len(),
+        }
+    }
+
+    /// Whether there are no elements.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The adapted mesh, if that is what the fields are on.
+    pub fn mesh(&self) -> Option<&EllipseMesh> {
+        match self {
+            Elements::Adapted(m) => Some(m),
+            Elements::Grid(_) => None,
+        }
+    }
+}
 
 /// Rigid creepages.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -125,6 +159,6 @@ pub trait TangentialSolver {
     fn step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError>;
     /// Forgets the contact history.
     fn reset(&mut self);
-    /// The mesh the fields are given on.
-    fn mesh(&self) -> &EllipseMesh;
+    /// The elements the fields are given on.
+    fn elements(&self) -> Elements;
 }

@@ -21,7 +21,7 @@ use crate::dynamics::TrackDynamics;
 use crate::hertz::HertzShape;
 use crate::metrics::centre_row;
 use crate::passage::{PassageError, PassageResult, PassageSpec, PeriodicSignal, run_passage};
-use crate::wear::{RailGrid, WearDeposit};
+use crate::wear::{RailGrid, WearKernel};
 use ndarray::Array2;
 
 /// Wear on an extended grid (same node lattice) folded onto the periodic
@@ -74,7 +74,7 @@ pub fn growth_passage(
     spec: &PassageSpec,
     shape: &HertzShape,
     solver: &mut dyn TangentialSolver,
-    deposit: &WearDeposit,
+    deposit: &dyn WearKernel,
     grid: &RailGrid,
     profile: &Array2<f64>,
     dynamics: Option<&dyn TrackDynamics>,

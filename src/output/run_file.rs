@@ -11,7 +11,7 @@
 //! * group `contact/pass_NNNNN`: the patch history of a stored passage.
 
 use super::netcdf::{NcError, NcGroup, write_atomically};
-use crate::contact::EllipseMesh;
+use crate::contact::Elements;
 use crate::passage::{PatchFields, PatchHistory};
 use crate::wear::RailGrid;
 use ndarray::{Array1, Array2, Array3, ArrayView1};
@@ -87,8 +87,11 @@ pub struct RunRecord<'a> {
     pub config: &'a str,
     /// Rail grid.
     pub grid: &'a RailGrid,
-    /// Contact mesh (normalised).
-    pub mesh: &'a EllipseMesh,
+    /// The contact elements the fields are on.
+    pub elements: &'a Elements,
+    /// Hertz semi-axes (a, b) at the mean normal force (m): the scale of
+    /// the fixed grid's normalised coordinates.
+    pub mean_patch: (f64, f64),
     /// Wavelengths of the spectra (m), longest first.
     pub wavelengths: &'a [f64],
     /// The run's state.
@@ -113,7 +116,7 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         write_passes(&root.group("passes")?, &record.state.rows, record.wavelengths)?;
         let contact = root.group("contact")?;
         for (index, history) in &record.state.histories {
-            write_history(&contact.group(&format!("pass_{index:05}"))?, history, record.mesh)?;
+            write_history(&contact.group(&format!("pass_{index:05}"))?, history, record)?;
         }
         Ok(())
     })
@@ -300,24 +303,44 @@ pub(super) fn field_columns_mut(f: &mut PatchFields) -> [&mut Array2<f64>; 6] {
     [&mut f.pressure, &mut f.traction_x, &mut f.traction_y, &mut f.slip_x, &mut f.slip_y, &mut f.wear_rate]
 }
 
-fn write_history(g: &NcGroup, h: &PatchHistory, mesh: &EllipseMesh) -> Result<(), NcError> {
+fn write_history(g: &NcGroup, h: &PatchHistory, record: &RunRecord) -> Result<(), NcError> {
     let steps: Vec<i64> = (0..h.time.len() as i64).collect();
     g.coord_i64("step", &steps, "1", "contact time step", false)?;
-    let elements: Vec<i64> = (0..mesh.len() as i64).collect();
-    g.coord_i64("element", &elements, "1", "patch element (strip by strip, leading edge first)", false)?;
+    let n = record.elements.len();
+    let elements: Vec<i64> = (0..n as i64).collect();
+    let order = match record.elements {
+        Elements::Adapted(_) => "patch element (strip by strip, leading edge first)",
+        Elements::Grid(_) => "potential-contact grid element (row by row, leading edge first)",
+    };
+    g.coord_i64("element", &elements, "1", order, false)?;
     for ((name, units, long_name), v) in STEP_VARS.iter().zip(step_columns(h)) {
         g.var_f64(name, &["step"], ArrayView1::from(v.as_slice()).into_dyn(), units, long_name)?;
     }
-    let d_xi: Vec<f64> = (0..mesh.len()).map(|k| mesh.d_xi[mesh.strip(k)]).collect();
-    let d_eta = vec![mesh.d_eta; mesh.len()];
-    let per_element: [(&str, &Vec<f64>, &str); 4] = [
-        ("xi", &mesh.xi, "element centre x / a"),
-        ("eta", &mesh.eta, "element centre y / b"),
-        ("d_xi", &d_xi, "element length along x / a"),
-        ("d_eta", &d_eta, "strip width / b"),
-    ];
-    for (name, v, long_name) in per_element {
-        g.var_f64(name, &["element"], ArrayView1::from(v.as_slice()).into_dyn(), "1", long_name)?;
+    let element_var = |name: &str, v: &[f64], units: &str, long_name: &str| {
+        g.var_f64(name, &["element"], ArrayView1::from(v).into_dyn(), units, long_name)
+    };
+    match record.elements {
+        Elements::Adapted(mesh) => {
+            let d_xi: Vec<f64> = (0..n).map(|k| mesh.d_xi[mesh.strip(k)]).collect();
+            element_var("xi", &mesh.xi, "1", "element centre x / a")?;
+            element_var("eta", &mesh.eta, "1", "element centre y / b")?;
+            element_var("d_xi", &d_xi, "1", "element length along x / a")?;
+            element_var("d_eta", &vec![mesh.d_eta; n], "1", "strip width / b")?;
+        }
+        Elements::Grid(grid) => {
+            let (a, b) = record.mean_patch;
+            let (xs, ys) = grid.centres();
+            let xi: Vec<f64> = xs.iter().map(|x| x / a).collect();
+            let eta: Vec<f64> = ys.iter().map(|y| y / b).collect();
+            element_var("xi", &xi, "1", "element centre x / a at the mean normal force")?;
+            element_var("eta", &eta, "1", "element centre y / b at the mean normal force")?;
+            element_var("d_xi", &vec![grid.dx / a; n], "1", "element length along x / a at the mean normal force")?;
+            element_var("d_eta", &vec![grid.dy / b; n], "1", "element width / b at the mean normal force")?;
+            element_var("element_x", &xs, "m", "element centre x in the contact frame (rolling direction)")?;
+            element_var("element_y", &ys, "m", "element centre y in the contact frame (lateral)")?;
+            element_var("element_dx", &vec![grid.dx; n], "m", "element length along x")?;
+            element_var("element_dy", &vec![grid.dy; n], "m", "element width along y")?;
+        }
     }
     if let Some(f) = &h.fields {
         let dims = ["step", "element"];

@@ -7,15 +7,16 @@ mod study;
 pub use study::{Event, ResumeError, RunError, RunState, RunSummary, resume, run_scene};
 
 use crate::contact::fastsim::Fastsim;
+use crate::contact::grid::{Alignment, FixedGrid, solver::FixedGridSpec};
 use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use crate::contact::transient::{ElasticModel, Transient};
-use crate::contact::{EllipseMesh, PressureShape, TangentialSolver};
+use crate::contact::{Elements, EllipseMesh, PressureShape, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams, hertz_stiffness};
 use crate::hertz::{HertzPatch, HertzShape};
-use crate::params::{ContactModelKind, DynamicsKind, Scene};
+use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, Scene};
 use crate::passage::PassageSpec;
-use crate::wear::RailGrid;
+use crate::wear::{CellDeposit, RailGrid, WearDeposit, WearKernel};
 
 /// Quantities derived from a scene (what `corrugation check` prints).
 #[derive(Debug, Clone)]
@@ -39,6 +40,12 @@ pub fn derive(scene: &Scene) -> Derived {
     let shape = HertzShape::new(scene.geometry.curvatures(), scene.material.elastic).expect("validated geometry");
     let patch = |n: f64| shape.patch(n).expect("validated loads keep N > 0");
     let loads = &scene.loads;
+    // On the fixed grid the patch moves exactly one element per step: the
+    // last step is the first at or beyond passage.end.
+    let end = match scene.contact.grid {
+        ContactGrid::Fixed(f) => scene.start + ((scene.end - scene.start) / f.dx - 1e-9).ceil() * f.dx,
+        ContactGrid::Adapted => scene.end,
+    };
     let passage = PassageSpec {
         speed: scene.speed,
         friction: scene.material.friction,
@@ -46,21 +53,20 @@ pub fn derive(scene: &Scene) -> Derived {
         spin: scene.spin,
         loads: loads.clone(),
         start: scene.start,
-        end: scene.end,
+        end,
         step_length: scene.step_length,
         k_over_h: scene.k_over_h,
         substeps: scene.wear_substeps,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,
     };
-    let r = &scene.rail;
     Derived {
         shape,
         patch_mean: patch(loads.normal_force),
         patch_min: shape.patch(loads.min_normal_force()).ok(),
         patch_max: patch(loads.max_normal_force()),
         passage,
-        grid: RailGrid::new(r.x_min, r.x_max, r.dx, r.half_width, r.dy),
+        grid: derive_grid(scene),
     }
 }
 
@@ -80,8 +86,11 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
             ))
         }
         ContactModelKind::ExactTransient => {
-            let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
             let el = scene.material.elastic;
+            if let ContactGrid::Fixed(f) = c.grid {
+                return Box::new(FixedGrid::new(fixed_grid_spec(scene, shape, f)));
+            }
+            let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
             let exact = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
             Box::new(
                 Transient::new(mesh, ElasticModel::Exact(Box::new(exact)), PressureShape::Hertz, c.regularisation)
@@ -99,6 +108,52 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
             let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
             Box::new(Transient::new(mesh, ElasticModel::Winkler(winkler), c.fastsim_bound, c.regularisation))
         }
+    }
+}
+
+/// Load factor on the largest imposed normal force for which the fixed grid
+/// of a growth study with track dynamics is sized: the dynamic force of the
+/// worn profile adds to the imposed loads (a too small grid stops the run
+/// with an error naming the step).
+pub const DYNAMIC_LOAD_FACTOR: f64 = 1.3;
+
+/// The fixed grid of a scene: sized for the largest normal force (times
+/// [`DYNAMIC_LOAD_FACTOR`] with track dynamics), its element edges on the
+/// rail cells' boundaries at the first step.
+pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::FixedGridParams) -> FixedGridSpec {
+    let dynamic = scene.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
+    let n_max = scene.loads.max_normal_force() * if dynamic { DYNAMIC_LOAD_FACTOR } else { 1.0 };
+    let largest = shape.patch(n_max).expect("validated loads keep N > 0");
+    let rail = if scene.growth.is_some() { periodic_grid(scene) } else { derive_grid(scene) };
+    FixedGridSpec {
+        curvatures: scene.geometry.curvatures(),
+        elastic: scene.material.elastic,
+        dx: f.dx,
+        dy: f.dy,
+        a_max: largest.a,
+        b_max: largest.b,
+        // Rail cell boundaries x_i + dx/2 in the contact frame of the first
+        // step; y_j + dy/2 across.
+        align_x: Alignment { edge: rail.x_min + 0.5 * rail.dx - scene.start, period: rail.dx },
+        align_y: Alignment { edge: -rail.half_width + 0.5 * rail.dy, period: rail.dy },
+        law: f.friction_law,
+        eps: scene.contact.regularisation,
+        scheme: f.scheme,
+    }
+}
+
+/// The rail grid of a single passage.
+fn derive_grid(scene: &Scene) -> RailGrid {
+    let r = &scene.rail;
+    RailGrid::new(r.x_min, r.x_max, r.dx, r.half_width, r.dy)
+}
+
+/// How a solver's element rates reach the rail: the Delaunay deposit on the
+/// adapted mesh, the conservative cell deposit on the fixed grid.
+pub fn build_deposit(elements: &Elements) -> Box<dyn WearKernel> {
+    match elements {
+        Elements::Adapted(mesh) => Box::new(WearDeposit::new(mesh)),
+        Elements::Grid(grid) => Box::new(CellDeposit::new(grid.clone())),
     }
 }
 

@@ -16,9 +16,8 @@
 //! (every passage starts with a run-in from a reset solver), so a resumed
 //! run computes bit for bit what the uninterrupted run would have.
 
-use super::{build_solver, derive, periodic_grid, track_dynamics};
+use super::{build_deposit, build_solver, derive, periodic_grid, track_dynamics};
 use crate::config::{ConfigErrors, Resolved, load_str};
-use crate::contact::EllipseMesh;
 use crate::dynamics::TrackDynamics;
 use crate::growth::roughness::profile_line;
 use crate::growth::spectrum::{amplitudes, growth_rates, wavelengths};
@@ -31,7 +30,7 @@ pub use crate::output::run_file::RunState;
 use crate::output::run_file::{PassRow, RailSnapshot, RunRecord, write_run_file};
 use crate::params::Scene;
 use crate::passage::{PassageError, run_passage};
-use crate::wear::{RailGrid, WearDeposit};
+use crate::wear::RailGrid;
 use ndarray::Array2;
 use std::path::{Path, PathBuf};
 
@@ -241,8 +240,8 @@ fn continue_run(
     let scene = &resolved.scene;
     let d = derive(scene);
     let mut solver = build_solver(scene, &d.shape);
-    let mesh: EllipseMesh = solver.mesh().clone();
-    let deposit = WearDeposit::new(&mesh);
+    let elements = solver.elements();
+    let deposit = build_deposit(&elements);
     let growth = scene.growth.as_ref();
     let grid = study_grid(scene);
     let passes = growth.map_or(1, |g| g.passes);
@@ -262,7 +261,8 @@ fn continue_run(
             contact_model: scene.contact.model.name(),
             config: &resolved.toml,
             grid: &grid,
-            mesh: &mesh,
+            elements: &elements,
+            mean_patch: (d.patch_mean.a, d.patch_mean.b),
             wavelengths: &waves,
             state,
             passes_planned: passes,
@@ -289,8 +289,16 @@ fn continue_run(
             |done: usize, _: usize| progress(Event::Steps { done: (pass - first) * steps + done, total: total_steps });
         let (wear, history) = match growth {
             None => {
-                let r = run_passage(&d.passage, &d.shape, solver.as_mut(), &deposit, &grid, record_fields, &mut report)
-                    .map_err(|source| RunError::Passage { pass, source })?;
+                let r = run_passage(
+                    &d.passage,
+                    &d.shape,
+                    solver.as_mut(),
+                    deposit.as_ref(),
+                    &grid,
+                    record_fields,
+                    &mut report,
+                )
+                .map_err(|source| RunError::Passage { pass, source })?;
                 (r.wear, r.history)
             }
             Some(_) => {
@@ -298,7 +306,7 @@ fn continue_run(
                     &d.passage,
                     &d.shape,
                     solver.as_mut(),
-                    &deposit,
+                    deposit.as_ref(),
                     &grid,
                     &state.profile,
                     dynamics.as_ref().map(|t| t as &dyn TrackDynamics),

@@ -35,6 +35,46 @@ pub struct PatchWear<'a> {
     pub rates: &'a [f64],
 }
 
+/// How the wear rates of one contact solution reach the rail grid: the
+/// paper's Delaunay interpolation on the adapted mesh ([`WearDeposit`]) or
+/// the conservative cell deposit of the fixed grid
+/// ([`super::cell_deposit::CellDeposit`]).
+pub trait WearKernel: Sync {
+    /// Adds to `depth` (m) the wear of the interval between the consecutive
+    /// contact solutions `from` and `to`, `dt` (s) apart.
+    fn accumulate(
+        &self,
+        grid: &RailGrid,
+        depth: &mut Array2<f64>,
+        from: &PatchWear,
+        to: &PatchWear,
+        dt: f64,
+        substeps: usize,
+    );
+
+    /// Integral of the wear rate over the patch (m^3/s): the volume the rail
+    /// loses per second.
+    fn integral(&self, rates: &[f64], a: f64, b: f64) -> f64;
+}
+
+impl WearKernel for WearDeposit {
+    fn accumulate(
+        &self,
+        grid: &RailGrid,
+        depth: &mut Array2<f64>,
+        from: &PatchWear,
+        to: &PatchWear,
+        dt: f64,
+        substeps: usize,
+    ) {
+        WearDeposit::accumulate(self, grid, depth, from, to, dt, substeps)
+    }
+
+    fn integral(&self, rates: &[f64], a: f64, b: f64) -> f64 {
+        WearDeposit::integral(self, rates, a, b)
+    }
+}
+
 /// A triangle with its affine map to barycentric coordinates.
 #[derive(Debug, Clone, Copy)]
 struct Triangle {

@@ -2,9 +2,11 @@
 //! accumulation on the rail-surface grid ([`grid`], [`deposit`]).
 
 pub mod archard;
+pub mod cell_deposit;
 pub mod deposit;
 pub mod grid;
 
 pub use archard::archard_rates;
-pub use deposit::{PatchWear, WearDeposit};
+pub use cell_deposit::CellDeposit;
+pub use deposit::{PatchWear, WearDeposit, WearKernel};
 pub use grid::RailGrid;

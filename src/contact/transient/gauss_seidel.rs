@@ -235,7 +235,7 @@ fn residual(st: &GsStep, s: &[f64], u: &[f64], xi: f64) -> f64 {
 /// `Q(c) = |(I + c K)^-1 s0|` decreases with c and `f` with q, so `q` is the
 /// root of `1 - Q(mu p3 f(q)) / q` on `[Q(mu p3 f(0)), |s0|]`, found by Brent
 /// in `ln q` (relative accuracy on q, down to deep stick where q << eps).
-fn local_solve(s0: [f64; 2], k: [f64; 3], mu_p3: f64, eps: f64, start: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+pub(crate) fn local_solve(s0: [f64; 2], k: [f64; 3], mu_p3: f64, eps: f64, start: [f64; 2]) -> ([f64; 2], [f64; 2]) {
     let norm = |v: [f64; 2]| (v[0] * v[0] + v[1] * v[1]).sqrt();
     let q0 = norm(s0);
     if mu_p3 <= 0.0 || q0 == 0.0 {
@@ -333,7 +333,7 @@ fn creepage_stiffness(st: &GsStep, s: &[f64]) -> f64 {
 
 /// Anderson mixing (type II) of a fixed-point map, carrying along an
 /// auxiliary vector that depends linearly on the iterate (the displacements).
-struct Anderson {
+pub(crate) struct Anderson {
     depth: usize,
     /// Last residual f = G(x) - x, G(x) and the auxiliary vector of G(x).
     last: Option<(DVector<f64>, DVector<f64>, DVector<f64>)>,
@@ -344,13 +344,18 @@ struct Anderson {
 }
 
 impl Anderson {
-    fn new(depth: usize) -> Self {
+    pub(crate) fn new(depth: usize) -> Self {
         Anderson { depth, last: None, df: Vec::new(), dg: Vec::new(), daux: Vec::new() }
     }
 
     /// The next iterate from `x`, `g = G(x)` and `aux` (that of g), with its
     /// auxiliary vector.
-    fn mix(&mut self, x: &DVector<f64>, g: &DVector<f64>, aux: DVector<f64>) -> (DVector<f64>, DVector<f64>) {
+    pub(crate) fn mix(
+        &mut self,
+        x: &DVector<f64>,
+        g: &DVector<f64>,
+        aux: DVector<f64>,
+    ) -> (DVector<f64>, DVector<f64>) {
         let f = g - x;
         if let Some((f_old, g_old, aux_old)) = &self.last {
             self.df.push(&f - f_old);

@@ -41,7 +41,7 @@ pub mod elastic;
 pub mod gauss_seidel;
 
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
-use super::{ContactError, Creepage, PatchSolution, StepInput, TangentialSolver};
+use super::{ContactError, Creepage, Elements, PatchSolution, StepInput, TangentialSolver};
 use elastic::{ExactElastic, PatchFrame, WinklerElastic};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
@@ -60,7 +60,7 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-4;
 pub const GS_MAX_SWEEPS: usize = 400;
 
 /// Convergence tolerance on the force residual |sum p_x A - F_x| / (mu N).
-const FORCE_TOLERANCE: f64 = 1e-10;
+pub(crate) const FORCE_TOLERANCE: f64 = 1e-10;
 
 /// Largest growth factor of an element's slip in one Newton iteration.
 const STEP_GROWTH: f64 = 10.0;
@@ -157,7 +157,7 @@ pub struct Transient {
 
 /// The friction law p = -mu p3 f(|s|) s with f(q) = (2/pi) atan(q/eps) / q,
 /// and its Jacobian D = -dp/ds = mu p3 (f I + f'(q)/q s s^T).
-fn friction(s: [f64; 2], mu_p3: f64, eps: f64) -> ([f64; 2], [f64; 3]) {
+pub(crate) fn friction(s: [f64; 2], mu_p3: f64, eps: f64) -> ([f64; 2], [f64; 3]) {
     // |s| without hypot's overflow guard (slips stay far from 1e150 m/s).
     let q = (s[0] * s[0] + s[1] * s[1]).sqrt();
     let z = q / eps;
@@ -224,6 +224,11 @@ struct Eval {
 }
 
 impl Transient {
+    /// The mesh the fields are given on.
+    pub fn mesh(&self) -> &EllipseMesh {
+        &self.mesh
+    }
+
     /// A transient solver on an `nx` x `ny` mesh with regularisation `eps`
     /// (m/s) and the pressure shape `shape`.
     pub fn new(mesh: EllipseMesh, model: ElasticModel, shape: PressureShape, eps: f64) -> Self {
@@ -588,7 +593,7 @@ impl TangentialSolver for Transient {
         }
     }
 
-    fn mesh(&self) -> &EllipseMesh {
-        &self.mesh
+    fn elements(&self) -> Elements {
+        Elements::Adapted(self.mesh.clone())
     }
 }

@@ -1,0 +1,160 @@
+//! The `[contact]` section: the model, its discretisation (the adapted mesh
+//! or the fixed grid) and its solver settings.
+
+use super::reader::{Range, Section};
+use super::{AUTO, ConfigError};
+use crate::contact::PressureShape;
+use crate::contact::grid::{FrictionLaw, GridScheme};
+use crate::contact::transient::StepSolver;
+use crate::params::{ContactGrid, ContactModelKind, FixedGridParams};
+use toml::{Table, Value};
+
+/// Default element length of the fixed grid along x (m), and so its step.
+pub const DEFAULT_GRID_DX: f64 = 2e-4;
+/// Default element width of the fixed grid along y (m).
+pub const DEFAULT_GRID_DY: f64 = 5e-4;
+
+/// The keys of `[contact]` as read (each None when invalid).
+pub(super) struct ContactKeys {
+    pub model: Option<String>,
+    pub nx: Option<usize>,
+    pub ny: Option<usize>,
+    pub tolerance: Option<f64>,
+    pub eps: Option<f64>,
+    pub bound: Option<String>,
+    pub solver: Option<String>,
+    /// `Some` for `grid = "fixed"`.
+    pub fixed: Option<FixedKeys>,
+}
+
+/// The fixed grid's keys as read.
+pub(super) struct FixedKeys {
+    pub dx: Option<f64>,
+    /// Whether the config gave `contact.dx`.
+    pub dx_given: bool,
+    pub dy: Option<f64>,
+    pub law: Option<String>,
+    pub scheme: Option<String>,
+}
+
+/// Reads `[contact]` from `root` into `resolved`.
+pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError>) -> ContactKeys {
+    let mut s = Section::new(root, "", "contact", errors);
+    let names = ContactModelKind::ALL.map(ContactModelKind::name);
+    let model = s.choice("model", Some("fastsim"), &[&names[..], &[AUTO]].concat());
+    let auto = model.as_deref() == Some(AUTO);
+    let grid = s.choice("grid", Some("adapted"), &["adapted", "fixed"]);
+    let fixed = grid.as_deref() == Some("fixed");
+    // "auto" chooses the mesh and reads a tolerance; the other models take a
+    // mesh and have no tolerance. The fixed grid ignores the adapted mesh's
+    // keys (so that `--set contact.grid=fixed` switches a config over).
+    let (nx, ny, tolerance) = if auto {
+        for key in ["elements_x", "elements_y"] {
+            if s.has(key) {
+                s.usize(key, None, 2, 200);
+                s.error(key, "is chosen by contact.model = \"auto\"; remove it, or name a model".into());
+            }
+        }
+        (Some(0), Some(0), s.f64("tolerance", Some(0.1), Range::OpenClosed(0.0, 1.0)))
+    } else {
+        if s.has("tolerance") {
+            s.f64("tolerance", None, Range::Finite);
+            s.error("tolerance", "applies to contact.model = \"auto\" only; remove it, or set model = \"auto\"".into());
+        }
+        (s.usize("elements_x", Some(20), 2, 200), s.usize("elements_y", Some(20), 2, 200), Some(0.0))
+    };
+    let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
+    let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
+    let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
+    let fixed_keys = if fixed {
+        let given = s.has("dx");
+        let dx = s.f64("dx", Some(DEFAULT_GRID_DX), Range::OpenClosed(0.0, 0.01));
+        let dy = s.f64("dy", Some(DEFAULT_GRID_DY), Range::OpenClosed(0.0, 0.01));
+        let law = s.choice("friction_law", Some("regularised"), &["regularised", "coulomb"]);
+        let scheme = s.choice("scheme", Some("second-order"), &["second-order", "first-order"]);
+        Some(FixedKeys { dx, dx_given: given, dy, law, scheme })
+    } else {
+        for key in ["dx", "dy", "friction_law", "scheme"] {
+            if s.has(key) {
+                s.error(key, "applies to contact.grid = \"fixed\" only; remove it, or set grid = \"fixed\"".into());
+                s.discard(key);
+            }
+        }
+        None
+    };
+    resolved.insert("contact".into(), Value::Table(s.finish()));
+    ContactKeys { model, nx, ny, tolerance, eps, bound, solver, fixed: fixed_keys }
+}
+
+/// The step length of a fixed-grid passage: `passage.step_length` and
+/// `contact.dx` must be equal (the patch moves one element per step); one
+/// of them given sets the other. Patches `resolved` so that it records
+/// both. Returns the fixed-grid parameters (None when invalid).
+pub(super) fn reconcile_step(
+    keys: &ContactKeys,
+    step_length: Option<f64>,
+    step_given: bool,
+    resolved: &mut Table,
+    errors: &mut Vec<ConfigError>,
+) -> Option<ContactGrid> {
+    let Some(f) = &keys.fixed else {
+        return Some(ContactGrid::Adapted);
+    };
+    let (dx, dy, law, scheme) = (f.dx?, f.dy?, f.law.as_deref()?, f.scheme.as_deref()?);
+    let dx = match (f.dx_given, step_given, step_length) {
+        (true, true, Some(h)) if (h - dx).abs() > 1e-9 * dx => {
+            errors.push(ConfigError::new(
+                "passage.step_length",
+                format!(
+                    "= {h} m must equal contact.dx = {dx} m with contact.grid = \"fixed\" (the patch moves one element \
+                     per step); remove one of them or make them equal"
+                ),
+            ));
+            return None;
+        }
+        (false, true, Some(h)) => h,
+        _ => dx,
+    };
+    for (section, key) in [("contact", "dx"), ("passage", "step_length")] {
+        if let Some(Value::Table(t)) = resolved.get_mut(section) {
+            t.insert(key.into(), Value::Float(dx));
+        }
+    }
+    Some(ContactGrid::Fixed(FixedGridParams {
+        dx,
+        dy,
+        friction_law: if law == "coulomb" { FrictionLaw::Coulomb } else { FrictionLaw::Regularised },
+        scheme: if scheme == "first-order" { GridScheme::FirstOrder } else { GridScheme::SecondOrder },
+    }))
+}
+
+/// Checks that combine the model with its grid and solver.
+pub(super) fn check_model(model: &str, grid: &ContactGrid, solver: &str, errors: &mut Vec<ConfigError>) {
+    if let ContactGrid::Fixed(_) = grid {
+        if model != ContactModelKind::ExactTransient.name() {
+            errors.push(ConfigError::new(
+                "contact.grid",
+                format!(
+                    "= \"fixed\" is a discretisation of the exact-transient model, not of contact.model = \"{model}\"; \
+                     allowed with \"fixed\": exact-transient"
+                ),
+            ));
+        }
+        if solver == "newton" {
+            errors.push(ConfigError::new(
+                "contact.solver",
+                "= \"newton\" is the adapted mesh's reference solver; the fixed grid solves by Gauss-Seidel: allowed \
+                 with contact.grid = \"fixed\": gauss-seidel"
+                    .into(),
+            ));
+        }
+    }
+}
+
+/// The FASTSIM traction bound and the step solver named by their keys.
+pub(super) fn bound_and_solver(bound: &str, solver: &str) -> (PressureShape, StepSolver) {
+    (
+        if bound == "elliptic" { PressureShape::Hertz } else { PressureShape::Parabolic },
+        if solver == "newton" { StepSolver::Newton } else { StepSolver::GaussSeidel },
+    )
+}

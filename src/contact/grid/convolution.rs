@@ -1,0 +1,372 @@
+//! Influence coefficients on a uniform grid and their products.
+//!
+//! On a uniform grid the displacement difference at element I under uniform
+//! traction on element J depends only on the index offset `(ix_I - ix_J,
+//! iy_I - iy_J)`: the influence matrix is block-Toeplitz, `u_I = sum_J
+//! K(I - J) p_J`, and one `(2 nx - 1) x (2 ny - 1)` table of coefficients per
+//! component replaces the `N x N` matrix ([`ToeplitzKernel`]). The
+//! coefficients are the closed-form rectangle integrals of
+//! [`crate::contact::influence`] (Boussinesq for the normal, Cerruti for the
+//! tangential displacement difference of two identical half-spaces).
+//!
+//! The product over the whole grid is a linear convolution, computed as a
+//! circular one on a grid zero-padded to at least `(2 nx - 1) x (2 ny - 1)`
+//! with 2-D FFTs ([`FftConvolution`]; rustfft along rows, then along
+//! columns). The two tangential components travel in one complex transform
+//! (`z = p_x + i p_y`, split by Hermitian symmetry), so a tangential product
+//! costs two complex 2-D FFTs and a normal one two as well.
+
+use crate::contact::influence::{Rect, influence, normal_influence};
+use num_complex::Complex64;
+use rustfft::{Fft, FftPlanner};
+use std::sync::Arc;
+
+use super::PotentialGrid;
+
+/// Influence coefficients of a grid as functions of the index offset.
+#[derive(Debug, Clone)]
+pub struct ToeplitzKernel {
+    nx: usize,
+    ny: usize,
+    /// Components, each on offsets `(dix, diy)` at
+    /// `(dix + nx - 1) + (diy + ny - 1) (2 nx - 1)` (m/Pa).
+    comps: Vec<Vec<f64>>,
+}
+
+impl ToeplitzKernel {
+    /// The normal kernel `K_n`: approach of the two surfaces per unit
+    /// pressure (m/Pa).
+    pub fn normal(grid: &PotentialGrid, g: f64, nu: f64) -> Self {
+        Self::build(grid, 1, |rect, x, y| [normal_influence(rect, x, y, g, nu), 0.0, 0.0])
+    }
+
+    /// The tangential kernels `(K_xx, K_xy, K_yy)` of the displacement
+    /// difference (m/Pa).
+    pub fn tangential(grid: &PotentialGrid, g: f64, nu: f64) -> Self {
+        Self::build(grid, 3, |rect, x, y| {
+            let c = influence(rect, x, y, g, nu);
+            [c.xx, c.xy, c.yy]
+        })
+    }
+
+    fn build(grid: &PotentialGrid, n_comps: usize, f: impl Fn(&Rect, f64, f64) -> [f64; 3]) -> Self {
+        let (nx, ny) = (grid.nx, grid.ny);
+        let (wx, wy) = (2 * nx - 1, 2 * ny - 1);
+        let rect = Rect { x: 0.0, y: 0.0, hx: 0.5 * grid.dx, hy: 0.5 * grid.dy };
+        let mut comps = vec![vec![0.0; wx * wy]; n_comps];
+        for j in 0..wy {
+            let diy = j as f64 - (ny - 1) as f64;
+            for i in 0..wx {
+                let dix = i as f64 - (nx - 1) as f64;
+                // Columns run against x: x_I - x_J = -(ix_I - ix_J) dx.
+                let v = f(&rect, -dix * grid.dx, diy * grid.dy);
+                for (c, comp) in comps.iter_mut().enumerate() {
+                    comp[i + j * wx] = v[c];
+                }
+            }
+        }
+        ToeplitzKernel { nx, ny, comps }
+    }
+
+    /// Grid columns and rows.
+    pub fn shape(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+
+    /// Number of components (1 normal, 3 tangential).
+    pub fn components(&self) -> usize {
+        self.comps.len()
+    }
+
+    /// Component `c` at offset `(dix, diy)`.
+    pub fn at(&self, c: usize, dix: isize, diy: isize) -> f64 {
+        self.comps[c][self.offset_index(dix, diy)]
+    }
+
+    /// Index of offset `(dix, diy)` in a component's table; offsets along x
+    /// are contiguous.
+    pub fn offset_index(&self, dix: isize, diy: isize) -> usize {
+        (dix + self.nx as isize - 1) as usize + (diy + self.ny as isize - 1) as usize * (2 * self.nx - 1)
+    }
+
+    /// The table of component `c`.
+    pub fn table(&self, c: usize) -> &[f64] {
+        &self.comps[c]
+    }
+
+    /// Normal product by direct summation: `u_I = sum_J K(I - J) p_J` at
+    /// every element (m), `p` on the grid (Pa).
+    pub fn normal_direct(&self, p: &[f64], u: &mut [f64]) {
+        let (nx, ny) = (self.nx as isize, self.ny as isize);
+        for (k, uk) in u.iter_mut().enumerate() {
+            let (ix, iy) = (k as isize % nx, k as isize / nx);
+            let mut sum = 0.0;
+            for (j, pj) in p.iter().enumerate() {
+                if *pj != 0.0 {
+                    sum += self.at(0, ix - j as isize % nx, iy - j as isize / nx) * pj;
+                }
+            }
+            *uk = sum;
+        }
+        let _ = ny;
+    }
+
+    /// Tangential product by direct summation (`p`, `u` with x and y
+    /// components in separate slices).
+    pub fn tangential_direct(&self, (px, py): (&[f64], &[f64]), (ux, uy): (&mut [f64], &mut [f64])) {
+        let nx = self.nx as isize;
+        for k in 0..ux.len() {
+            let (ix, iy) = (k as isize % nx, k as isize / nx);
+            let (mut sx, mut sy) = (0.0, 0.0);
+            for j in 0..px.len() {
+                if px[j] != 0.0 || py[j] != 0.0 {
+                    let o = self.offset_index(ix - j as isize % nx, iy - j as isize / nx);
+                    let (xx, xy, yy) = (self.comps[0][o], self.comps[1][o], self.comps[2][o]);
+                    sx += xx * px[j] + xy * py[j];
+                    sy += xy * px[j] + yy * py[j];
+                }
+            }
+            ux[k] = sx;
+            uy[k] = sy;
+        }
+    }
+}
+
+/// A length at least `n` whose prime factors are 2, 3 and 5 (fast for
+/// rustfft's mixed-radix algorithms).
+fn smooth_length(n: usize) -> usize {
+    (n..)
+        .find(|&m| {
+            let mut m = m;
+            for p in [2, 3, 5] {
+                while m % p == 0 {
+                    m /= p;
+                }
+            }
+            m == 1
+        })
+        .expect("smooth numbers are unbounded")
+}
+
+/// Zero-padded FFT products with the kernels of one [`ToeplitzKernel`].
+#[derive(Clone)]
+pub struct FftConvolution {
+    nx: usize,
+    ny: usize,
+    /// Padded lengths along x and y.
+    mx: usize,
+    my: usize,
+    fwd_x: Arc<dyn Fft<f64>>,
+    fwd_y: Arc<dyn Fft<f64>>,
+    inv_x: Arc<dyn Fft<f64>>,
+    inv_y: Arc<dyn Fft<f64>>,
+    /// Kernel spectra, transposed layout `kx my + ky`, including the
+    /// `1/(mx my)` of the inverse transform.
+    spectra: Vec<Vec<Complex64>>,
+}
+
+impl std::fmt::Debug for FftConvolution {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "FftConvolution {{ {} x {} padded to {} x {} }}", self.nx, self.ny, self.mx, self.my)
+    }
+}
+
+/// Work buffers of one product.
+#[derive(Debug, Clone, Default)]
+pub struct FftScratch {
+    rows: Vec<Complex64>,
+    cols: Vec<Complex64>,
+    fft: Vec<Complex64>,
+}
+
+impl FftConvolution {
+    /// Plans the transforms and the kernel spectra of `kernel`.
+    pub fn new(kernel: &ToeplitzKernel) -> Self {
+        let (nx, ny) = kernel.shape();
+        let (mx, my) = (smooth_length(2 * nx - 1), smooth_length(2 * ny - 1));
+        let mut planner = FftPlanner::new();
+        let mut conv = FftConvolution {
+            nx,
+            ny,
+            mx,
+            my,
+            fwd_x: planner.plan_fft_forward(mx),
+            fwd_y: planner.plan_fft_forward(my),
+            inv_x: planner.plan_fft_inverse(mx),
+            inv_y: planner.plan_fft_inverse(my),
+            spectra: Vec::new(),
+        };
+        let scale = 1.0 / (mx * my) as f64;
+        let mut scratch = FftScratch::default();
+        for c in 0..kernel.components() {
+            let rows = &mut scratch.rows;
+            rows.clear();
+            rows.resize(mx * my, Complex64::default());
+            for j in 0..2 * ny - 1 {
+                let diy = j as isize - (ny as isize - 1);
+                let r = diy.rem_euclid(my as isize) as usize;
+                for i in 0..2 * nx - 1 {
+                    let dix = i as isize - (nx as isize - 1);
+                    let col = dix.rem_euclid(mx as isize) as usize;
+                    rows[r * mx + col] = Complex64::new(kernel.at(c, dix, diy) * scale, 0.0);
+                }
+            }
+            conv.forward(&mut scratch, my);
+            conv.spectra.push(scratch.cols.clone());
+        }
+        conv
+    }
+
+    /// Padded transform size (mx, my).
+    pub fn padded(&self) -> (usize, usize) {
+        (self.mx, self.my)
+    }
+
+    /// 2-D forward transform of `s.rows` (row-major, `my` rows of `mx`, only
+    /// the first `rows_nonzero` rows non-zero) into `s.cols` (transposed).
+    fn forward(&self, s: &mut FftScratch, rows_nonzero: usize) {
+        let (mx, my) = (self.mx, self.my);
+        let scratch_len = self.fwd_x.get_inplace_scratch_len().max(self.fwd_y.get_inplace_scratch_len());
+        s.fft.resize(scratch_len, Complex64::default());
+        self.fwd_x.process_with_scratch(&mut s.rows[..rows_nonzero * mx], &mut s.fft);
+        s.cols.clear();
+        s.cols.resize(mx * my, Complex64::default());
+        for r in 0..rows_nonzero {
+            for (c, v) in s.rows[r * mx..(r + 1) * mx].iter().enumerate() {
+                s.cols[c * my + r] = *v;
+            }
+        }
+        self.fwd_y.process_with_scratch(&mut s.cols, &mut s.fft);
+    }
+
+    /// 2-D inverse transform of `s.cols` (transposed) into the first
+    /// `rows_needed` rows of `s.rows`.
+    fn inverse(&self, s: &mut FftScratch, rows_needed: usize) {
+        let (mx, my) = (self.mx, self.my);
+        let scratch_len = self.inv_x.get_inplace_scratch_len().max(self.inv_y.get_inplace_scratch_len());
+        s.fft.resize(scratch_len, Complex64::default());
+        self.inv_y.process_with_scratch(&mut s.cols, &mut s.fft);
+        s.rows.resize(mx * my, Complex64::default());
+        for c in 0..mx {
+            for r in 0..rows_needed {
+                s.rows[r * mx + c] = s.cols[c * my + r];
+            }
+        }
+        self.inv_x.process_with_scratch(&mut s.rows[..rows_needed * mx], &mut s.fft);
+    }
+
+    /// Loads a field given on the grid into the padded rows (`im` may be
+    /// absent).
+    fn load(&self, s: &mut FftScratch, re: &[f64], im: Option<&[f64]>) {
+        let (nx, mx) = (self.nx, self.mx);
+        s.rows.clear();
+        s.rows.resize(mx * self.my, Complex64::default());
+        for r in 0..self.ny {
+            for c in 0..nx {
+                let k = r * nx + c;
+                s.rows[r * mx + c] = Complex64::new(re[k], im.map_or(0.0, |v| v[k]));
+            }
+        }
+    }
+
+    /// Normal product `u = K_n p` on the whole grid.
+    pub fn normal(&self, s: &mut FftScratch, p: &[f64], u: &mut [f64]) {
+        self.load(s, p, None);
+        self.forward(s, self.ny);
+        for (z, k) in s.cols.iter_mut().zip(&self.spectra[0]) {
+            *z *= k;
+        }
+        self.inverse(s, self.ny);
+        for r in 0..self.ny {
+            for c in 0..self.nx {
+                u[r * self.nx + c] = s.rows[r * self.mx + c].re;
+            }
+        }
+    }
+
+    /// Tangential product `(u_x, u_y) = K (p_x, p_y)` on the whole grid.
+    pub fn tangential(&self, s: &mut FftScratch, (px, py): (&[f64], &[f64]), (ux, uy): (&mut [f64], &mut [f64])) {
+        let (mx, my) = (self.mx, self.my);
+        self.load(s, px, Some(py));
+        self.forward(s, self.ny);
+        // Z = P_x + i P_y; P_x(k) = (Z(k) + conj Z(-k)) / 2,
+        // P_y(k) = (Z(k) - conj Z(-k)) / 2i. W = U_x + i U_y.
+        let z = std::mem::take(&mut s.cols);
+        let mut w = vec![Complex64::default(); mx * my];
+        let (kxx, kxy, kyy) = (&self.spectra[0], &self.spectra[1], &self.spectra[2]);
+        let half = Complex64::new(0.5, 0.0);
+        let minus_half_i = Complex64::new(0.0, -0.5);
+        for cx in 0..mx {
+            let mcx = (mx - cx) % mx;
+            for cy in 0..my {
+                let mcy = (my - cy) % my;
+                let (zk, zm) = (z[cx * my + cy], z[mcx * my + mcy].conj());
+                let pxk = (zk + zm) * half;
+                let pyk = (zk - zm) * minus_half_i;
+                let i = cx * my + cy;
+                let uxk = kxx[i] * pxk + kxy[i] * pyk;
+                let uyk = kxy[i] * pxk + kyy[i] * pyk;
+                w[i] = uxk + Complex64::i() * uyk;
+            }
+        }
+        s.cols = w;
+        self.inverse(s, self.ny);
+        for r in 0..self.ny {
+            for c in 0..self.nx {
+                let v = s.rows[r * mx + c];
+                ux[r * self.nx + c] = v.re;
+                uy[r * self.nx + c] = v.im;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn field(n: usize, seed: f64) -> Vec<f64> {
+        (0..n).map(|k| ((k as f64 * 0.731 + seed).sin() * 1e8).max(0.0)).collect()
+    }
+
+    #[test]
+    fn fft_products_equal_direct_summation() {
+        // Odd and even sizes, a non-square element.
+        for (nx, ny) in [(7, 5), (12, 9), (1, 4)] {
+            let grid = PotentialGrid { nx, ny, dx: 2e-4, dy: 5e-4, x_front: 0.0, y_low: 0.0 };
+            let (g, nu) = (8.08e10, 0.3);
+            let n = grid.len();
+            let kn = ToeplitzKernel::normal(&grid, g, nu);
+            let fn_ = FftConvolution::new(&kn);
+            let p = field(n, 0.3);
+            let (mut direct, mut fast) = (vec![0.0; n], vec![0.0; n]);
+            kn.normal_direct(&p, &mut direct);
+            let mut s = FftScratch::default();
+            fn_.normal(&mut s, &p, &mut fast);
+            let scale = direct.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (d, f) in direct.iter().zip(&fast) {
+                assert!((d - f).abs() < 1e-12 * scale, "normal {nx}x{ny}: {d} vs {f}");
+            }
+            let kt = ToeplitzKernel::tangential(&grid, g, nu);
+            let ft = FftConvolution::new(&kt);
+            let (px, py) = (field(n, 0.1), field(n, 1.7).iter().map(|v| v - 3e7).collect::<Vec<_>>());
+            let (mut dx_, mut dy_) = (vec![0.0; n], vec![0.0; n]);
+            kt.tangential_direct((&px, &py), (&mut dx_, &mut dy_));
+            let (mut fx, mut fy) = (vec![0.0; n], vec![0.0; n]);
+            ft.tangential(&mut s, (&px, &py), (&mut fx, &mut fy));
+            let scale = dx_.iter().chain(&dy_).fold(0.0f64, |m, v| m.max(v.abs()));
+            for k in 0..n {
+                assert!((dx_[k] - fx[k]).abs() < 1e-12 * scale, "ux {nx}x{ny} at {k}");
+                assert!((dy_[k] - fy[k]).abs() < 1e-12 * scale, "uy {nx}x{ny} at {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn smooth_lengths() {
+        assert_eq!(smooth_length(1), 1);
+        assert_eq!(smooth_length(7), 8);
+        assert_eq!(smooth_length(97), 100);
+        assert_eq!(smooth_length(121), 125);
+    }
+}

@@ -1,0 +1,187 @@
+//! Kalker's discrete normal contact problem on the grid, with the normal
+//! force prescribed:
+//!
+//! ```text
+//! g_I = h_I + sum_J K_n(I - J) p_J - delta,   p_I >= 0,  g_I >= 0,  p_I g_I = 0,
+//! A sum_I p_I = N,
+//! ```
+//!
+//! `h` the undeformed gap at the element centres (an input: the quadratic gap
+//! `A x^2 + B y^2` of the curvatures, or any profile), `K_n` the normal
+//! influence coefficients ([`super::convolution`]), `delta` the approach and
+//! `A` the element area. Solved by the conjugate-gradient method of Polonsky
+//! and Keer (*A numerical method for solving rough contact problems based on
+//! the multi-level multi-summation and conjugate gradient techniques*, Wear
+//! 231 (1999) 206-219), the basis of Vollebregt's NormCG in CONTACT:
+//! conjugate gradients on the elements in contact with the load kept by the
+//! mean gap (the approach is its Lagrange multiplier), pressures clipped at
+//! zero, and elements that penetrate re-admitted with a restart of the
+//! conjugate directions. Every product with `K_n` is an FFT convolution.
+
+use super::convolution::{FftConvolution, FftScratch};
+
+/// Relative change of the pressure (sum |dp| / sum p) at which the normal
+/// solve stops; the approach is then accurate to about the same relative
+/// size.
+pub const NORMAL_TOLERANCE: f64 = 1e-12;
+
+/// Iterations after which the normal solve gives up.
+const MAX_ITERATIONS: usize = 2000;
+
+/// The solution of one normal problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NormalSolution {
+    /// Pressure on every grid element (Pa).
+    pub pressure: Vec<f64>,
+    /// Approach of distant points (m).
+    pub approach: f64,
+    /// Conjugate-gradient iterations.
+    pub iterations: usize,
+}
+
+/// Why a normal solve failed.
+#[derive(Debug, thiserror::Error, PartialEq)]
+pub enum NormalError {
+    /// The iteration did not reach the tolerance.
+    #[error(
+        "normal problem (N = {force:.6e} N) not converged in {iterations} iterations: relative pressure change {change:.3e} > {tolerance:.1e}"
+    )]
+    NoConvergence {
+        /// Normal force (N).
+        force: f64,
+        /// Iterations done.
+        iterations: usize,
+        /// Last relative pressure change.
+        change: f64,
+        /// The tolerance.
+        tolerance: f64,
+    },
+    /// No element has a negative gap relative to the others: nothing to load.
+    #[error("normal problem (N = {0:.6e} N): the force must be positive and finite")]
+    BadForce(f64),
+}
+
+/// Solves the normal problem for the gap `h` (m, on every element), element
+/// area `area` (m^2) and force `force` (N), from the pressure `start` (any
+/// non-negative field; scaled to the force) or, without one, from a uniform
+/// pressure where `h` is below its mean.
+pub fn solve(
+    conv: &FftConvolution,
+    scratch: &mut FftScratch,
+    h: &[f64],
+    area: f64,
+    force: f64,
+    start: Option<&[f64]>,
+) -> Result<NormalSolution, NormalError> {
+    if !(force > 0.0 && force.is_finite()) {
+        return Err(NormalError::BadForce(force));
+    }
+    let n = h.len();
+    let mut p: Vec<f64> = match start {
+        Some(s) if s.iter().any(|v| *v > 0.0) => s.iter().map(|v| v.max(0.0)).collect(),
+        _ => {
+            let mean = h.iter().sum::<f64>() / n as f64;
+            h.iter().map(|v| if *v <= mean { 1.0 } else { 0.0 }).collect()
+        }
+    };
+    let rescale = |p: &mut [f64]| {
+        let total = area * p.iter().sum::<f64>();
+        p.iter_mut().for_each(|v| *v *= force / total);
+    };
+    rescale(&mut p);
+    let (mut u, mut r, mut t) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let mut g = vec![0.0; n];
+    let (mut conjugate, mut g_old) = (false, 1.0);
+    let mut change = f64::INFINITY;
+    for it in 0..MAX_ITERATIONS {
+        conv.normal(scratch, &p, &mut u);
+        let (mut sum, mut count) = (0.0, 0usize);
+        for k in 0..n {
+            g[k] = u[k] + h[k];
+            if p[k] > 0.0 {
+                sum += g[k];
+                count += 1;
+            }
+        }
+        let g_mean = sum / count.max(1) as f64;
+        if change < NORMAL_TOLERANCE {
+            return Ok(NormalSolution { pressure: p, approach: g_mean, iterations: it });
+        }
+        g.iter_mut().for_each(|v| *v -= g_mean);
+        let big_g: f64 = (0..n).filter(|&k| p[k] > 0.0).map(|k| g[k] * g[k]).sum();
+        let beta = if conjugate { big_g / g_old } else { 0.0 };
+        for k in 0..n {
+            t[k] = if p[k] > 0.0 { g[k] + beta * t[k] } else { 0.0 };
+        }
+        g_old = big_g;
+        conv.normal(scratch, &t, &mut r);
+        let r_mean = (0..n).filter(|&k| p[k] > 0.0).map(|k| r[k]).sum::<f64>() / count.max(1) as f64;
+        let (mut gt, mut rt) = (0.0, 0.0);
+        for k in 0..n {
+            if p[k] > 0.0 {
+                gt += g[k] * t[k];
+                rt += (r[k] - r_mean) * t[k];
+            }
+        }
+        let tau = if rt > 0.0 { gt / rt } else { 0.0 };
+        let p_old = p.clone();
+        let mut readmitted = false;
+        for k in 0..n {
+            if p[k] > 0.0 {
+                p[k] = (p[k] - tau * t[k]).max(0.0);
+            }
+        }
+        for k in 0..n {
+            if p[k] == 0.0 && g[k] < 0.0 {
+                // Penetrates: back into contact, steepest descent.
+                p[k] = -tau * g[k];
+                readmitted = true;
+            }
+        }
+        conjugate = !readmitted;
+        rescale(&mut p);
+        let moved: f64 = p.iter().zip(&p_old).map(|(a, b)| (a - b).abs()).sum();
+        change = moved / p.iter().sum::<f64>();
+    }
+    Err(NormalError::NoConvergence { force, iterations: MAX_ITERATIONS, change, tolerance: NORMAL_TOLERANCE })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::PotentialGrid;
+    use super::super::convolution::ToeplitzKernel;
+    use super::*;
+    use crate::hertz::{Curvatures, Elastic, HertzShape};
+
+    #[test]
+    fn complementarity_and_force_balance() {
+        let el = Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 };
+        let curv = Curvatures { a: 1.0, b: 0.444 };
+        let shape = HertzShape::new(curv, el).unwrap();
+        let hz = shape.patch(1e5).unwrap();
+        let grid = PotentialGrid::covering(hz.a, hz.b, 5e-4, 1e-3, Default::default(), Default::default());
+        let kernel = ToeplitzKernel::normal(&grid, el.shear_modulus(), el.poisson_ratio);
+        let conv = FftConvolution::new(&kernel);
+        let (xs, ys) = grid.centres();
+        let h: Vec<f64> = xs.iter().zip(&ys).map(|(x, y)| curv.a * x * x + curv.b * y * y).collect();
+        let mut s = FftScratch::default();
+        let sol = solve(&conv, &mut s, &h, grid.area(), 1e5, None).unwrap();
+        let total: f64 = sol.pressure.iter().sum::<f64>() * grid.area();
+        assert!((total - 1e5).abs() < 1e-9 * 1e5);
+        let mut u = vec![0.0; grid.len()];
+        kernel.normal_direct(&sol.pressure, &mut u);
+        let scale = sol.approach;
+        for k in 0..grid.len() {
+            let gap = h[k] + u[k] - sol.approach;
+            assert!(sol.pressure[k] >= 0.0);
+            if sol.pressure[k] > 0.0 {
+                assert!(gap.abs() < 1e-8 * scale, "gap {gap} in contact at {k}");
+            } else {
+                assert!(gap > -1e-8 * scale, "penetration {gap} at {k}");
+            }
+        }
+        // Warm start from the solution: converged at once.
+        let again = solve(&conv, &mut s, &h, grid.area(), 1e5, Some(&sol.pressure)).unwrap();
+        assert!(again.iterations <= 2, "{}", again.iterations);
+    }
+}

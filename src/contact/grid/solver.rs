@@ -1,0 +1,371 @@
+//! The fixed-grid exact transient contact model, step by step along a
+//! passage: the normal problem on the grid ([`super::normal`]), the
+//! elements in contact, the earlier displacements by shifting the stored
+//! displacement fields by whole columns, and the tangential problem
+//! ([`super::tangential`]).
+//!
+//! **Material transport.** The patch moves by exactly one element per step
+//! (`V dt = dx`, enforced by the config): the material at column `ix` was
+//! at `ix - 1` one step earlier and at `ix - 2` two steps earlier, so
+//! `u_o(ix) = u^{n-1}(ix - 1)` and `u_oo(ix) = u^{n-2}(ix - 2)` exactly, the
+//! displacement fields being known on the whole grid (`u = K p` by FFT after
+//! every step). The material derivative of the displacement is then
+//!
+//! * [`GridScheme::FirstOrder`]: `(u - u_o) / dt`, CONTACT's transient
+//!   rolling; first order in dx (the slip sits half an element upstream of
+//!   the traction it goes with);
+//! * [`GridScheme::SecondOrder`]: `(3 u - 4 u_o + u_oo) / (2 dt)`, the
+//!   second-order backward difference along the material path (first order
+//!   on the step after a virgin start).
+//!
+//! A virgin start (a new passage, or contact regained) is Cattaneo's shift
+//! problem: `u_o = 0`, the rigid shift over the step `V xi dt`.
+
+use super::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
+use super::normal::{self, NormalError};
+use super::tangential::{self, ContactSet, GridStep, Law};
+use super::{Alignment, PotentialGrid};
+use crate::contact::transient::{DEFAULT_TOLERANCE, GS_MAX_SWEEPS, STICK_SLIP_FACTOR, friction};
+use crate::contact::{ContactError, Creepage, Elements, PatchSolution, StepInput, TangentialSolver};
+use crate::hertz::{Curvatures, Elastic};
+
+/// The friction law of the fixed-grid model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrictionLaw {
+    /// The paper's regularised Coulomb law (Eq. 6), with `contact.regularisation`.
+    #[default]
+    Regularised,
+    /// Exact Coulomb friction (CONTACT's law).
+    Coulomb,
+}
+
+/// The backward difference of the material derivative.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GridScheme {
+    /// `(u - u_o)/dt` (CONTACT).
+    FirstOrder,
+    /// `(3 u - 4 u_o + u_oo)/(2 dt)`.
+    #[default]
+    SecondOrder,
+}
+
+/// What a fixed-grid model is built from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedGridSpec {
+    /// Curvature sums A, B (1/m): the gap `h = A x^2 + B y^2`.
+    pub curvatures: Curvatures,
+    /// Elastic constants.
+    pub elastic: Elastic,
+    /// Element length along x (m), equal to `V dt`.
+    pub dx: f64,
+    /// Element width along y (m).
+    pub dy: f64,
+    /// Largest Hertz semi-axes the grid must hold (m).
+    pub a_max: f64,
+    /// Largest lateral semi-axis (m).
+    pub b_max: f64,
+    /// Where element edges must fall along x (rail cells) at the first step.
+    pub align_x: Alignment,
+    /// Where element edges must fall along y.
+    pub align_y: Alignment,
+    /// Friction law.
+    pub law: FrictionLaw,
+    /// Regularisation velocity eps (m/s): the regularised law's, and the
+    /// velocity scale of the tolerance and the stick test for both.
+    pub eps: f64,
+    /// Difference scheme.
+    pub scheme: GridScheme,
+}
+
+/// State carried from one step to the next, on the whole grid.
+#[derive(Debug, Clone)]
+struct History {
+    /// Displacement field u = K p of the last step (x, y) (m).
+    u: (Vec<f64>, Vec<f64>),
+    /// That of the step before, if any (second-order scheme).
+    older: Option<(Vec<f64>, Vec<f64>)>,
+    /// Pressure of the last step (Pa).
+    p3: Vec<f64>,
+    /// Slips of the last step, interleaved (m/s).
+    s: Vec<f64>,
+    /// Creepage.
+    xi: f64,
+}
+
+/// The fixed-grid exact transient model.
+#[derive(Debug, Clone)]
+pub struct FixedGrid {
+    spec: FixedGridSpec,
+    grid: PotentialGrid,
+    gap: Vec<f64>,
+    normal: FftConvolution,
+    kernel: ToeplitzKernel,
+    tangential: FftConvolution,
+    scratch: FftScratch,
+    history: Option<History>,
+    /// Tolerance on the kinematic residual, in units of eps.
+    tolerance: f64,
+}
+
+impl FixedGrid {
+    /// Builds the grid, its influence coefficients and transforms.
+    pub fn new(spec: FixedGridSpec) -> Self {
+        let grid = PotentialGrid::covering(spec.a_max, spec.b_max, spec.dx, spec.dy, spec.align_x, spec.align_y);
+        let (g, nu) = (spec.elastic.shear_modulus(), spec.elastic.poisson_ratio);
+        let normal_kernel = ToeplitzKernel::normal(&grid, g, nu);
+        let kernel = ToeplitzKernel::tangential(&grid, g, nu);
+        let (xs, ys) = grid.centres();
+        let c = spec.curvatures;
+        let gap = xs.iter().zip(&ys).map(|(x, y)| c.a * x * x + c.b * y * y).collect();
+        FixedGrid {
+            spec,
+            normal: FftConvolution::new(&normal_kernel),
+            tangential: FftConvolution::new(&kernel),
+            kernel,
+            grid,
+            gap,
+            scratch: FftScratch::default(),
+            history: None,
+            tolerance: DEFAULT_TOLERANCE,
+        }
+    }
+
+    /// Sets the convergence tolerance on the kinematic residual to
+    /// `relative` eps (default [`DEFAULT_TOLERANCE`]).
+    pub fn with_tolerance(mut self, relative: f64) -> Self {
+        self.tolerance = relative;
+        self
+    }
+
+    /// The potential-contact grid.
+    pub fn grid(&self) -> &PotentialGrid {
+        &self.grid
+    }
+
+    /// Padded FFT size of the products (mx, my).
+    pub fn padded(&self) -> (usize, usize) {
+        self.tangential.padded()
+    }
+
+    fn law(&self) -> Law {
+        match self.spec.law {
+            FrictionLaw::Regularised => Law::Regularised { eps: self.spec.eps },
+            FrictionLaw::Coulomb => Law::Coulomb,
+        }
+    }
+
+    fn solve_step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
+        input.check_friction_limit()?;
+        let force = input.force_x;
+        if input.dt.is_nan() || input.dt <= 0.0 {
+            return Err(ContactError::NoConvergence {
+                force,
+                reason: format!("transient models need a time step > 0, got {}", input.dt),
+            });
+        }
+        let shift_ok = ((input.speed * input.dt - self.grid.dx) / self.grid.dx).abs() < 1e-6;
+        if !shift_ok {
+            return Err(ContactError::NoConvergence {
+                force,
+                reason: format!(
+                    "the fixed grid needs V dt = dx = {:.6e} m, got {:.6e} m",
+                    self.grid.dx,
+                    input.speed * input.dt
+                ),
+            });
+        }
+        let n_force = input.patch.normal_force;
+        let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
+        let area = self.grid.area();
+        let start: Option<Vec<f64>> = self.history.as_ref().map(|h| h.p3.clone());
+        let normal = normal::solve(&self.normal, &mut self.scratch, &self.gap, area, n_force, start.as_deref())
+            .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
+        let p3 = normal.pressure;
+        let set = ContactSet::new(nx, n, |k| p3[k] > 0.0);
+        if let Some(&k) = set.element.iter().find(|&&k| {
+            let (ix, iy) = (k % nx, k / nx);
+            ix < 2 || ix + 1 >= nx || iy == 0 || iy + 1 >= ny
+        }) {
+            return Err(ContactError::NoConvergence {
+                force,
+                reason: format!(
+                    "the contact area reaches the edge of the potential-contact grid at element ({}, {}) of {nx} x {ny}: the patch is larger than the grid was sized for",
+                    k % nx,
+                    k / nx
+                ),
+            });
+        }
+        let nc = set.len();
+        let mu = input.friction;
+        let mu_p3: Vec<f64> = set.element.iter().map(|&k| mu * p3[k]).collect();
+        let w0: Vec<f64> = set
+            .element
+            .iter()
+            .flat_map(|&k| {
+                let (x, y) = (self.grid.x(k % nx), self.grid.y(k / nx));
+                [-input.spin * y, input.creepage_y + input.spin * x]
+            })
+            .collect();
+        // Earlier displacements, shifted by whole columns.
+        let mut u_prev = vec![0.0; 2 * nc];
+        let mut beta = 1.0;
+        let (mut s0, mut xi0) = (vec![0.0; 2 * nc], 0.0);
+        if let Some(h) = &self.history {
+            let at = |f: &(Vec<f64>, Vec<f64>), k: usize, back: usize| {
+                let (ix, iy) = (k % nx, k / nx);
+                (f.0[iy * nx + ix - back], f.1[iy * nx + ix - back])
+            };
+            let second = self.spec.scheme == GridScheme::SecondOrder && h.older.is_some();
+            for (c, &k) in set.element.iter().enumerate() {
+                let (ox, oy) = at(&h.u, k, 1);
+                if second {
+                    let (qx, qy) = at(h.older.as_ref().expect("checked"), k, 2);
+                    u_prev[2 * c] = 2.0 * ox - 0.5 * qx;
+                    u_prev[2 * c + 1] = 2.0 * oy - 0.5 * qy;
+                } else {
+                    u_prev[2 * c] = ox;
+                    u_prev[2 * c + 1] = oy;
+                }
+                s0[2 * c] = h.s[2 * k];
+                s0[2 * c + 1] = h.s[2 * k + 1];
+            }
+            if second {
+                beta = 1.5;
+            }
+            xi0 = h.xi;
+        }
+        let law = self.law();
+        let kappa = self.creepage_stiffness(&set, &mu_p3, &s0, beta, input);
+        let step = GridStep {
+            kernel: &self.kernel,
+            set: &set,
+            dt: input.dt,
+            speed: input.speed,
+            beta,
+            law,
+            mu_p3: &mu_p3,
+            area,
+            w0: &w0,
+            u_prev: &u_prev,
+            force_x: force,
+            mu_n: mu * n_force,
+            kappa,
+            tol: self.tolerance * self.spec.eps,
+            max_sweeps: GS_MAX_SWEEPS,
+        };
+        // Exact products on the whole grid; the last one (the verdict's) is
+        // the field the next step shifts.
+        let (mut gx, mut gy) = (vec![0.0; n], vec![0.0; n]);
+        let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
+        let (conv, scratch) = (&self.tangential, &mut self.scratch);
+        let mut fresh = |p: &[f64], u: &mut [f64]| {
+            gx.iter_mut().for_each(|v| *v = 0.0);
+            gy.iter_mut().for_each(|v| *v = 0.0);
+            for (c, &k) in set.element.iter().enumerate() {
+                gx[k] = p[2 * c];
+                gy[k] = p[2 * c + 1];
+            }
+            conv.tangential(scratch, (&gx, &gy), (&mut ux, &mut uy));
+            for (c, &k) in set.element.iter().enumerate() {
+                u[c] = ux[k];
+                u[nc + c] = uy[k];
+            }
+        };
+        let sol = tangential::solve(&step, &s0, xi0, &mut fresh).map_err(|history| {
+            let last = history.last().copied().unwrap_or(f64::NAN);
+            ContactError::NoConvergence {
+                force,
+                reason: format!(
+                    "Gauss-Seidel on the fixed grid ({nc} elements in contact) did not converge in {} sweeps: max |R| {:.3e} -> {:.3e} m/s (tolerance {:.1e})",
+                    history.len(),
+                    history.first().copied().unwrap_or(f64::NAN),
+                    last,
+                    step.tol
+                ),
+            }
+        })?;
+        let mut out = PatchSolution {
+            creepage: Creepage { x: sol.xi, y: input.creepage_y, spin: input.spin },
+            pressure: p3.clone(),
+            traction_x: vec![0.0; n],
+            traction_y: vec![0.0; n],
+            slip_x: vec![0.0; n],
+            slip_y: vec![0.0; n],
+            stick: vec![false; n],
+            iterations: sol.sweeps,
+            ..Default::default()
+        };
+        let mut s_grid = vec![0.0; 2 * n];
+        for (c, &k) in set.element.iter().enumerate() {
+            let (sx, sy) = (sol.s[2 * c], sol.s[2 * c + 1]);
+            out.traction_x[k] = sol.p[2 * c];
+            out.traction_y[k] = sol.p[2 * c + 1];
+            out.slip_x[k] = sx;
+            out.slip_y[k] = sy;
+            out.stick[k] = match law {
+                Law::Regularised { eps } => sx.hypot(sy) < STICK_SLIP_FACTOR * eps,
+                Law::Coulomb => sx == 0.0 && sy == 0.0,
+            };
+            s_grid[2 * k] = sx;
+            s_grid[2 * k + 1] = sy;
+        }
+        out.force_x = out.traction_x.iter().sum::<f64>() * area;
+        out.force_y = out.traction_y.iter().sum::<f64>() * area;
+        let older = self.history.take().map(|h| h.u);
+        self.history = Some(History { u: (ux, uy), older, p3, s: s_grid, xi: sol.xi });
+        Ok(out)
+    }
+
+    /// dF_x/dxi_x estimate (N), as the adapted solver's: the stick area
+    /// (|s| < 10 eps at the warm start) answers a uniform slip change with
+    /// the uniform traction change that cancels it through its mean row sum
+    /// of `(beta/dt) K_xx` (one FFT product); slip elements answer through
+    /// their own law's derivative.
+    fn creepage_stiffness(&mut self, set: &ContactSet, mu_p3: &[f64], s: &[f64], beta: f64, input: &StepInput) -> f64 {
+        let n = self.grid.len();
+        let eps = self.spec.eps;
+        let scale = beta / input.dt;
+        let stick: Vec<bool> = (0..set.len()).map(|c| s[2 * c].hypot(s[2 * c + 1]) < STICK_SLIP_FACTOR * eps).collect();
+        let (mut gx, gy) = (vec![0.0; n], vec![0.0; n]);
+        for (c, &k) in set.element.iter().enumerate() {
+            if stick[c] {
+                gx[k] = 1.0;
+            }
+        }
+        let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
+        self.tangential.tangential(&mut self.scratch, (&gx, &gy), (&mut ux, &mut uy));
+        let count = stick.iter().filter(|s| **s).count();
+        let mut kappa = 0.0;
+        let area = self.grid.area();
+        if count > 0 {
+            let rows: f64 = set.element.iter().zip(&stick).filter(|(_, s)| **s).map(|(&k, _)| scale * ux[k]).sum();
+            kappa += count as f64 * area / (rows / count as f64);
+        }
+        let k0 = scale * self.kernel.at(0, 0, 0);
+        for c in 0..set.len() {
+            if !stick[c] {
+                let (_, d) = friction([s[2 * c], s[2 * c + 1]], mu_p3[c], eps);
+                kappa += area * d[0] / (1.0 + k0 * d[0]);
+            }
+        }
+        -input.speed * kappa.max(1e-30)
+    }
+}
+
+fn normal_reason(e: NormalError) -> String {
+    format!("normal problem on the fixed grid: {e}")
+}
+
+impl TangentialSolver for FixedGrid {
+    fn step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
+        self.solve_step(input)
+    }
+
+    fn reset(&mut self) {
+        self.history = None;
+    }
+
+    fn elements(&self) -> Elements {
+        Elements::Grid(self.grid.clone())
+    }
+}

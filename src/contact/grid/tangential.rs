@@ -1,0 +1,389 @@
+//! The transient tangential problem of one step on the elements in contact
+//! of the fixed grid, with the longitudinal force prescribed (Kalker 1990,
+//! ch. 5; Baeza et al. 2008, Eqs. 3-7 on CONTACT's grid):
+//!
+//! ```text
+//! s_I = V w_I(xi) + (beta u_I - u~_I) / dt,    u = K p,
+//! ```
+//!
+//! `w_I = (xi - phi y_I, eta + phi x_I)` the rigid slip per unit speed, `K`
+//! the tangential influence coefficients ([`super::convolution`]) and
+//! `(beta, u~)` the backward difference of the material derivative: first
+//! order `(1, u_o)` or second order `(3/2, 2 u_o - u_oo / 2)` with `u_o`,
+//! `u_oo` the displacements the material had one and two steps earlier
+//! ([`super::solver`]). The friction law is one of [`Law`]:
+//!
+//! * the paper's regularised Coulomb law `p = -(2/pi) atan(|s|/eps) mu p3
+//!   s/|s|` (Eq. 6);
+//! * exact Coulomb friction, CONTACT's law: `|p| <= mu p3`, `s = 0` where
+//!   `|p| < mu p3` (stick), `p = -mu p3 s/|s|` where `s != 0` (slip).
+//!
+//! **Solver.** Element-wise nonlinear Gauss-Seidel (Kalker 1990, ch. 5;
+//! Vollebregt's ConvexGS), as the adapted model's solver
+//! ([`crate::contact::transient::gauss_seidel`]): each element's 2 x 2
+//! problem `s = s0 + (beta/dt) K_0 p(s)` solved exactly for its law, rows
+//! from the leading edge, the creepage updated after each sweep from the
+//! force residual, Anderson acceleration of the whole. On the grid the
+//! displacement update of an element is a contiguous run of the
+//! coefficient table per row of the contact area (the table, three
+//! components of `(2 nx - 1)(2 ny - 1)`, stays in cache where the
+//! adapted mesh's 2N x 2N matrix does not).
+//!
+//! Both laws' element problems minimise a strictly convex energy, so each is
+//! solved to rounding: the regularised one by the adapted model's
+//! `local_solve`, the Coulomb one by the stick test and, in slip, a
+//! bracketed root for the slip speed ([`coulomb_local`]).
+
+use super::convolution::ToeplitzKernel;
+use crate::contact::transient::gauss_seidel::{Anderson, DEPTH, local_solve};
+use crate::contact::transient::{FORCE_TOLERANCE, friction};
+use crate::numerics::{Tolerance, brent};
+use nalgebra::DVector;
+
+/// The friction law of the tangential problem.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Law {
+    /// The regularised Coulomb law with velocity `eps` (m/s).
+    Regularised {
+        /// Regularisation velocity (m/s).
+        eps: f64,
+    },
+    /// Exact Coulomb friction.
+    Coulomb,
+}
+
+/// A contiguous run of elements in contact in one grid row.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Run {
+    /// Grid row.
+    pub iy: usize,
+    /// First grid column.
+    pub ix0: usize,
+    /// Number of elements.
+    pub len: usize,
+    /// Index of its first element in the contact order.
+    pub c0: usize,
+}
+
+/// The elements in contact, in sweep order (rows, each from the leading
+/// edge), and their runs.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ContactSet {
+    /// Grid index of each element in contact.
+    pub element: Vec<usize>,
+    /// Column of each.
+    pub ix: Vec<usize>,
+    /// Row of each.
+    pub iy: Vec<usize>,
+    /// The runs.
+    pub runs: Vec<Run>,
+}
+
+impl ContactSet {
+    /// The elements of an `nx`-column grid where `inside` holds.
+    pub fn new(nx: usize, n: usize, inside: impl Fn(usize) -> bool) -> Self {
+        let mut set = ContactSet::default();
+        for k in 0..n {
+            if inside(k) {
+                let (ix, iy) = (k % nx, k / nx);
+                let c = set.element.len();
+                match set.runs.last_mut() {
+                    Some(r) if r.iy == iy && r.ix0 + r.len == ix => r.len += 1,
+                    _ => set.runs.push(Run { iy, ix0: ix, len: 1, c0: c }),
+                }
+                set.element.push(k);
+                set.ix.push(ix);
+                set.iy.push(iy);
+            }
+        }
+        set
+    }
+
+    /// Number of elements in contact.
+    pub fn len(&self) -> usize {
+        self.element.len()
+    }
+
+    /// Whether no element is in contact.
+    pub fn is_empty(&self) -> bool {
+        self.element.is_empty()
+    }
+}
+
+/// The data of one step, on the elements in contact (contact order).
+pub struct GridStep<'a> {
+    /// Tangential influence coefficients.
+    pub kernel: &'a ToeplitzKernel,
+    /// The elements in contact.
+    pub set: &'a ContactSet,
+    /// Time step (s).
+    pub dt: f64,
+    /// Rolling speed V (m/s).
+    pub speed: f64,
+    /// Weight of the current displacement in the difference (1 or 3/2).
+    pub beta: f64,
+    /// The friction law.
+    pub law: Law,
+    /// mu p3 per element (Pa).
+    pub mu_p3: &'a [f64],
+    /// Element area (m^2).
+    pub area: f64,
+    /// Rigid slip per unit speed with xi_x = 0, interleaved (1).
+    pub w0: &'a [f64],
+    /// Earlier displacement term u~ (m), interleaved.
+    pub u_prev: &'a [f64],
+    /// Prescribed F_x (N).
+    pub force_x: f64,
+    /// mu N (N), the force scale.
+    pub mu_n: f64,
+    /// dF_x / dxi_x estimate (N), negative.
+    pub kappa: f64,
+    /// Tolerance on the kinematic residual (m/s).
+    pub tol: f64,
+    /// Most sweeps before giving up.
+    pub max_sweeps: usize,
+}
+
+/// Converged state of one step, on the elements in contact.
+#[derive(Debug, Clone)]
+pub struct GridSolution {
+    /// Tractions (Pa), interleaved.
+    pub p: Vec<f64>,
+    /// Slips (m/s), interleaved.
+    pub s: Vec<f64>,
+    /// Creepage xi_x.
+    pub xi: f64,
+    /// Displacements `K p` at the elements (m), x then y blocks.
+    pub u: Vec<f64>,
+    /// Sweeps done.
+    pub sweeps: usize,
+}
+
+/// Solves the step from the warm start (slips `s`, creepage `xi`).
+/// `fresh(p, u)` computes `u = K p` at the elements in contact exactly
+/// (x block then y block); the verdict is always taken on it. Err holds the
+/// largest kinematic residual (m/s) of every sweep.
+pub fn solve(
+    st: &GridStep,
+    s: &[f64],
+    xi: f64,
+    fresh: &mut dyn FnMut(&[f64], &mut [f64]),
+) -> Result<GridSolution, Vec<f64>> {
+    let n = st.set.len();
+    let mut s = s.to_vec();
+    let mut p: Vec<f64> = (0..n).flat_map(|c| law_traction(st.law, [s[2 * c], s[2 * c + 1]], st.mu_p3[c])).collect();
+    let mut u = vec![0.0; 2 * n];
+    fresh(&p, &mut u);
+    let p_scale = st.mu_p3.iter().fold(0.0f64, |m, v| m.max(*v)).max(f64::MIN_POSITIVE);
+    let xi_scale = (st.kappa.abs() / (n as f64 * st.area * p_scale)).max(f64::MIN_POSITIVE);
+    let pack = |p: &[f64], xi: f64| -> DVector<f64> {
+        DVector::from_iterator(2 * n + 1, p.iter().map(|v| v / p_scale).chain(std::iter::once(xi * xi_scale)))
+    };
+    let mut xi = xi;
+    let mut anderson = Anderson::new(DEPTH);
+    let mut history = Vec::new();
+    for sweep_no in 0..st.max_sweeps {
+        let x = pack(&p, xi);
+        sweep(st, &mut p, &mut s, &mut u, xi);
+        let r_max = residual(st, &s, &u, xi);
+        let force: f64 = (0..n).map(|c| p[2 * c]).sum::<f64>() * st.area;
+        let r_force = (force - st.force_x) / st.mu_n;
+        history.push(r_max);
+        if !r_max.is_finite() || !r_force.is_finite() {
+            return Err(history);
+        }
+        if r_max < st.tol && r_force.abs() < FORCE_TOLERANCE {
+            fresh(&p, &mut u);
+            if residual(st, &s, &u, xi) < st.tol {
+                return Ok(GridSolution { p, s, xi, u, sweeps: sweep_no + 1 });
+            }
+        }
+        let xi_next = xi - (force - st.force_x) / st.kappa;
+        let g = pack(&p, xi_next);
+        let (mixed, u_mixed) = anderson.mix(&x, &g, DVector::from_column_slice(&u));
+        for (pk, m) in p.iter_mut().zip(mixed.iter()) {
+            *pk = m * p_scale;
+        }
+        xi = mixed[2 * n] / xi_scale;
+        if (sweep_no + 1) % REFRESH == 0 {
+            fresh(&p, &mut u);
+        } else {
+            u.copy_from_slice(u_mixed.as_slice());
+        }
+    }
+    Err(history)
+}
+
+/// Sweeps between fresh products (as the adapted model's solver).
+const REFRESH: usize = 64;
+
+/// The traction of slip `s` under the law (Coulomb: the slip direction's
+/// bound, zero for zero slip).
+fn law_traction(law: Law, s: [f64; 2], mu_p3: f64) -> [f64; 2] {
+    match law {
+        Law::Regularised { eps } => friction(s, mu_p3, eps).0,
+        Law::Coulomb => {
+            let q = s[0].hypot(s[1]);
+            if q == 0.0 { [0.0; 2] } else { [-mu_p3 * s[0] / q, -mu_p3 * s[1] / q] }
+        }
+    }
+}
+
+/// One Gauss-Seidel sweep over the elements in contact at creepage `xi`.
+fn sweep(st: &GridStep, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
+    let n = st.set.len();
+    let k = st.kernel;
+    let o0 = k.offset_index(0, 0);
+    let scale = st.beta / st.dt;
+    let kk = [scale * k.table(0)[o0], scale * k.table(1)[o0], scale * k.table(2)[o0]];
+    let (kxx, kxy, kyy) = (k.table(0), k.table(1), k.table(2));
+    for c in 0..n {
+        let (i, j) = (2 * c, 2 * c + 1);
+        let own = [kk[0] * p[i] + kk[1] * p[j], kk[1] * p[i] + kk[2] * p[j]];
+        let s0 = [
+            st.speed * (st.w0[i] + xi) + (st.beta * u[c] - st.u_prev[i]) / st.dt - own[0],
+            st.speed * st.w0[j] + (st.beta * u[n + c] - st.u_prev[j]) / st.dt - own[1],
+        ];
+        let (sk, pk) = match st.law {
+            Law::Regularised { eps } => local_solve(s0, kk, st.mu_p3[c], eps, [s[i], s[j]]),
+            Law::Coulomb => coulomb_local(s0, kk, st.mu_p3[c]),
+        };
+        s[i] = sk[0];
+        s[j] = sk[1];
+        let (dx, dy) = (pk[0] - p[i], pk[1] - p[j]);
+        p[i] = pk[0];
+        p[j] = pk[1];
+        if dx == 0.0 && dy == 0.0 {
+            continue;
+        }
+        let (ixj, iyj) = (st.set.ix[c] as isize, st.set.iy[c] as isize);
+        let (ux, uy) = u.split_at_mut(n);
+        for r in &st.set.runs {
+            let o = k.offset_index(r.ix0 as isize - ixj, r.iy as isize - iyj);
+            let range = r.c0..r.c0 + r.len;
+            add_run(
+                (&mut ux[range.clone()], &mut uy[range]),
+                (&kxx[o..o + r.len], &kxy[o..o + r.len], &kyy[o..o + r.len]),
+                dx,
+                dy,
+            );
+        }
+    }
+}
+
+/// `u_x += K_xx dx + K_xy dy`, `u_y += K_xy dx + K_yy dy` along one run.
+#[inline]
+fn add_run((ux, uy): (&mut [f64], &mut [f64]), (kxx, kxy, kyy): (&[f64], &[f64], &[f64]), dx: f64, dy: f64) {
+    for t in 0..ux.len() {
+        ux[t] += kxx[t] * dx + kxy[t] * dy;
+        uy[t] += kxy[t] * dx + kyy[t] * dy;
+    }
+}
+
+/// Largest kinematic residual (m/s) of slips `s` and displacements `u`.
+pub fn residual(st: &GridStep, s: &[f64], u: &[f64], xi: f64) -> f64 {
+    let n = st.set.len();
+    (0..n)
+        .map(|c| {
+            let (i, j) = (2 * c, 2 * c + 1);
+            let rx = s[i] - st.speed * (st.w0[i] + xi) - (st.beta * u[c] - st.u_prev[i]) / st.dt;
+            let ry = s[j] - st.speed * st.w0[j] - (st.beta * u[n + c] - st.u_prev[j]) / st.dt;
+            rx.abs().max(ry.abs())
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Solves the element problem `s = s0 + K p` under exact Coulomb friction
+/// for the 2 x 2 symmetric positive definite `K = [k0 k1; k1 k2]` and the
+/// bound `mu p3`. Stick (`s = 0`) when the traction that cancels `s0`,
+/// `-K^-1 s0`, lies within the bound; otherwise slip with `p = -mu p3
+/// s/|s|`, so `s = (I + c K)^-1 s0` with `c = mu p3 / q`, `q = |s|`, and `q`
+/// the root of `q - |(I + (mu p3/q) K)^-1 s0|`, which is negative near 0
+/// (the stick traction exceeds the bound) and positive at `|s0|`.
+pub fn coulomb_local(s0: [f64; 2], k: [f64; 3], mu_p3: f64) -> ([f64; 2], [f64; 2]) {
+    let det = k[0] * k[2] - k[1] * k[1];
+    let p_stick = [-(k[2] * s0[0] - k[1] * s0[1]) / det, -(k[0] * s0[1] - k[1] * s0[0]) / det];
+    if p_stick[0].hypot(p_stick[1]) <= mu_p3 {
+        return ([0.0; 2], p_stick);
+    }
+    let shrink = |q: f64| {
+        let c = mu_p3 / q;
+        let m = [1.0 + c * k[0], c * k[1], 1.0 + c * k[2]];
+        let mdet = m[0] * m[2] - m[1] * m[1];
+        [(m[2] * s0[0] - m[1] * s0[1]) / mdet, (m[0] * s0[1] - m[1] * s0[0]) / mdet]
+    };
+    let q0 = s0[0].hypot(s0[1]);
+    // Isotropic K: q = |s0| - mu p3 k exactly.
+    if k[1] == 0.0 && k[0] == k[2] {
+        let q = q0 - mu_p3 * k[0];
+        let s = [s0[0] * q / q0, s0[1] * q / q0];
+        return (s, [-mu_p3 * s0[0] / q0, -mu_p3 * s0[1] / q0]);
+    }
+    let r = |t: f64| {
+        let q = t.exp();
+        let v = shrink(q);
+        1.0 - v[0].hypot(v[1]) / q
+    };
+    let tol = Tolerance { residual: 1e-16, x_rel: 1e-15, x_abs: 1e-15, max_iter: 200 };
+    // The root lies in (0, |s0|): bracket from below by halving.
+    let (mut lo, hi) = ((q0 * 1e-3).ln(), q0.ln());
+    while r(lo) > 0.0 && lo > hi - 200.0 {
+        lo -= 7.0;
+    }
+    let t = brent(lo, hi, r, tol).unwrap_or(hi);
+    let s = shrink(t.exp());
+    let q = s[0].hypot(s[1]);
+    (s, [-mu_p3 * s[0] / q, -mu_p3 * s[1] / q])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The Coulomb element problem: s = s0 + K p with |p| <= mu p3, s = 0
+        /// or p = -mu p3 s/|s|, solved to rounding.
+        #[test]
+        fn coulomb_local_satisfies_the_element_problem(
+            log_s0 in -6.0f64..1.0,
+            angle in 0.0f64..std::f64::consts::TAU,
+            log_k in -11.0f64..-8.0,
+            anisotropy in 0.6f64..1.6,
+            coupling in -0.2f64..0.2,
+            log_mu_p3 in 5.0f64..9.0,
+        ) {
+            let mu_p3 = 10f64.powf(log_mu_p3);
+            let m = 10f64.powf(log_s0);
+            let s0 = [m * angle.cos(), m * angle.sin()];
+            let k0 = 10f64.powf(log_k);
+            let k = [k0, coupling * k0, anisotropy * k0];
+            let (s, p) = coulomb_local(s0, k, mu_p3);
+            let r = [s[0] - s0[0] - (k[0] * p[0] + k[1] * p[1]), s[1] - s0[1] - (k[1] * p[0] + k[2] * p[1])];
+            prop_assert!(r[0].hypot(r[1]) <= 1e-12 * m, "residual {r:?}");
+            let (q, pn) = (s[0].hypot(s[1]), p[0].hypot(p[1]));
+            prop_assert!(pn <= mu_p3 * (1.0 + 1e-12));
+            if q > 0.0 {
+                prop_assert!((pn - mu_p3).abs() <= 1e-12 * mu_p3);
+                // Traction against the slip.
+                prop_assert!((p[0] * s[1] - p[1] * s[0]).abs() <= 1e-9 * pn * q);
+                prop_assert!(p[0] * s[0] + p[1] * s[1] < 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn contact_set_runs() {
+        // 4 columns; elements 1, 2, 5, 7 (row 1: 5 and 7 are separate runs).
+        let set = ContactSet::new(4, 8, |k| [1, 2, 5, 7].contains(&k));
+        assert_eq!(set.element, vec![1, 2, 5, 7]);
+        assert_eq!(
+            set.runs,
+            vec![
+                Run { iy: 0, ix0: 1, len: 2, c0: 0 },
+                Run { iy: 1, ix0: 1, len: 1, c0: 2 },
+                Run { iy: 1, ix0: 3, len: 1, c0: 3 }
+            ]
+        );
+    }
+}
