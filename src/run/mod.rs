@@ -121,9 +121,7 @@ pub const DYNAMIC_LOAD_FACTOR: f64 = 1.3;
 /// [`DYNAMIC_LOAD_FACTOR`] with track dynamics), its element edges on the
 /// rail cells' boundaries at the first step.
 pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::FixedGridParams) -> FixedGridSpec {
-    let dynamic = scene.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
-    let n_max = scene.loads.max_normal_force() * if dynamic { DYNAMIC_LOAD_FACTOR } else { 1.0 };
-    let largest = shape.patch(n_max).expect("validated loads keep N > 0");
+    let largest = shape.patch(fixed_grid_load(scene)).expect("validated loads keep N > 0");
     let rail = if scene.growth.is_some() { periodic_grid(scene) } else { derive_grid(scene) };
     FixedGridSpec {
         curvatures: scene.geometry.curvatures(),
@@ -133,13 +131,21 @@ pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::Fixe
         a_max: largest.a,
         b_max: largest.b,
         // Rail cell boundaries x_i + dx/2 in the contact frame of the first
-        // step; y_j + dy/2 across.
+        // step. Across, the grid stays symmetric about the centre line (a
+        // symmetric problem keeps a symmetric answer); the deposit spreads
+        // an element over the rail cells it overlaps.
         align_x: Alignment { edge: rail.x_min + 0.5 * rail.dx - scene.start, period: rail.dx },
-        align_y: Alignment { edge: -rail.half_width + 0.5 * rail.dy, period: rail.dy },
+        align_y: Alignment::default(),
         law: f.friction_law,
         eps: scene.contact.regularisation,
         scheme: f.scheme,
     }
+}
+
+/// The normal force (N) whose Hertz patch the fixed grid is sized for.
+pub fn fixed_grid_load(scene: &Scene) -> f64 {
+    let dynamic = scene.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
+    scene.loads.max_normal_force() * if dynamic { DYNAMIC_LOAD_FACTOR } else { 1.0 }
 }
 
 /// The rail grid of a single passage.

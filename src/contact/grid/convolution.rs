@@ -132,6 +132,11 @@ impl ToeplitzKernel {
     }
 }
 
+/// The padded transform length for `n` elements along an axis.
+pub fn smooth_padding(n: usize) -> usize {
+    smooth_length(2 * n - 1)
+}
+
 /// A length at least `n` whose prime factors are 2, 3 and 5 (fast for
 /// rustfft's mixed-radix algorithms).
 fn smooth_length(n: usize) -> usize {
@@ -183,7 +188,7 @@ impl FftConvolution {
     /// Plans the transforms and the kernel spectra of `kernel`.
     pub fn new(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();
-        let (mx, my) = (smooth_length(2 * nx - 1), smooth_length(2 * ny - 1));
+        let (mx, my) = (smooth_padding(nx), smooth_padding(ny));
         let mut planner = FftPlanner::new();
         let mut conv = FftConvolution {
             nx,

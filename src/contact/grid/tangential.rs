@@ -35,9 +35,10 @@
 //! bracketed root for the slip speed ([`coulomb_local`]).
 
 use super::convolution::ToeplitzKernel;
+use crate::contact::transient::friction;
 use crate::contact::transient::gauss_seidel::{Anderson, DEPTH, local_solve};
-use crate::contact::transient::{FORCE_TOLERANCE, friction};
 use crate::numerics::{Tolerance, brent};
+use multiversion::multiversion;
 use nalgebra::DVector;
 
 /// The friction law of the tangential problem.
@@ -140,6 +141,8 @@ pub struct GridStep<'a> {
     pub kappa: f64,
     /// Tolerance on the kinematic residual (m/s).
     pub tol: f64,
+    /// Tolerance on the force residual |F - F_x| / (mu N).
+    pub force_tol: f64,
     /// Most sweeps before giving up.
     pub max_sweeps: usize,
 }
@@ -192,7 +195,7 @@ pub fn solve(
         if !r_max.is_finite() || !r_force.is_finite() {
             return Err(history);
         }
-        if r_max < st.tol && r_force.abs() < FORCE_TOLERANCE {
+        if r_max < st.tol && r_force.abs() < st.force_tol {
             fresh(&p, &mut u);
             if residual(st, &s, &u, xi) < st.tol {
                 return Ok(GridSolution { p, s, xi, u, sweeps: sweep_no + 1 });
@@ -229,41 +232,73 @@ fn law_traction(law: Law, s: [f64; 2], mu_p3: f64) -> [f64; 2] {
     }
 }
 
+/// Elements in contact from which a sweep runs in two parallel halves.
+const PARALLEL_MIN: usize = 128;
+
 /// One Gauss-Seidel sweep over the elements in contact at creepage `xi`.
+/// From [`PARALLEL_MIN`] elements the two halves of the rows sweep in
+/// parallel, each against its own copy of the displacements (Jacobi between
+/// the halves, Gauss-Seidel within), then `u = u_a + u_b - u_0`: a fixed
+/// split and a fixed order of the sums, so the result does not depend on
+/// the threads.
 fn sweep(st: &GridStep, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
+    let n = st.set.len();
+    if n < PARALLEL_MIN {
+        sweep_block(st, 0, p, s, u, xi);
+        return;
+    }
+    // Split at the run boundary nearest the middle.
+    let m = st.set.runs.iter().map(|r| r.c0).min_by_key(|c| c.abs_diff(n / 2)).unwrap_or(0);
+    let (pa, pb) = p.split_at_mut(2 * m);
+    let (sa, sb) = s.split_at_mut(2 * m);
+    let (mut ua, mut ub) = (u.to_vec(), u.to_vec());
+    rayon::join(|| sweep_block(st, 0, pa, sa, &mut ua, xi), || sweep_block(st, m, pb, sb, &mut ub, xi));
+    for ((u0, a), b) in u.iter_mut().zip(&ua).zip(&ub) {
+        *u0 = a + b - *u0;
+    }
+}
+
+/// Gauss-Seidel over the elements `first ..` (contact order) whose tractions
+/// and slips are `p` and `s`, updating the displacements `u` of the whole
+/// contact area (x block, y block).
+fn sweep_block(st: &GridStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
     let n = st.set.len();
     let k = st.kernel;
     let o0 = k.offset_index(0, 0);
     let scale = st.beta / st.dt;
     let kk = [scale * k.table(0)[o0], scale * k.table(1)[o0], scale * k.table(2)[o0]];
     let (kxx, kxy, kyy) = (k.table(0), k.table(1), k.table(2));
-    for c in 0..n {
+    for local in 0..p.len() / 2 {
+        let c = first + local;
         let (i, j) = (2 * c, 2 * c + 1);
-        let own = [kk[0] * p[i] + kk[1] * p[j], kk[1] * p[i] + kk[2] * p[j]];
+        let (li, lj) = (2 * local, 2 * local + 1);
+        let own = [kk[0] * p[li] + kk[1] * p[lj], kk[1] * p[li] + kk[2] * p[lj]];
         let s0 = [
             st.speed * (st.w0[i] + xi) + (st.beta * u[c] - st.u_prev[i]) / st.dt - own[0],
             st.speed * st.w0[j] + (st.beta * u[n + c] - st.u_prev[j]) / st.dt - own[1],
         ];
         let (sk, pk) = match st.law {
-            Law::Regularised { eps } => local_solve(s0, kk, st.mu_p3[c], eps, [s[i], s[j]]),
+            Law::Regularised { eps } => local_solve(s0, kk, st.mu_p3[c], eps, [s[li], s[lj]]),
             Law::Coulomb => coulomb_local(s0, kk, st.mu_p3[c]),
         };
-        s[i] = sk[0];
-        s[j] = sk[1];
-        let (dx, dy) = (pk[0] - p[i], pk[1] - p[j]);
-        p[i] = pk[0];
-        p[j] = pk[1];
+        s[li] = sk[0];
+        s[lj] = sk[1];
+        let (dx, dy) = (pk[0] - p[li], pk[1] - p[lj]);
+        p[li] = pk[0];
+        p[lj] = pk[1];
         if dx == 0.0 && dy == 0.0 {
             continue;
         }
         let (ixj, iyj) = (st.set.ix[c] as isize, st.set.iy[c] as isize);
         let (ux, uy) = u.split_at_mut(n);
         for r in &st.set.runs {
-            let o = k.offset_index(r.ix0 as isize - ixj, r.iy as isize - iyj);
-            let range = r.c0..r.c0 + r.len;
+            let diy = r.iy as isize - iyj;
+            let len = r.len;
+            let o = k.offset_index(r.ix0 as isize - ixj, diy);
+            let range = r.c0..r.c0 + len;
             add_run(
                 (&mut ux[range.clone()], &mut uy[range]),
-                (&kxx[o..o + r.len], &kxy[o..o + r.len], &kyy[o..o + r.len]),
+                (&kxx[o..o + len], &kxy[o..o + len], &kyy[o..o + len]),
                 dx,
                 dy,
             );
@@ -271,12 +306,15 @@ fn sweep(st: &GridStep, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
     }
 }
 
-/// `u_x += K_xx dx + K_xy dy`, `u_y += K_xy dx + K_yy dy` along one run.
-#[inline]
+/// `u_x += K_xx dx + K_xy dy`, `u_y += K_xy dx + K_yy dy` along one run:
+/// the inner loop of a sweep. Compiled also for AVX2 and picked at run time
+/// (`multiversion`), without fused multiply-adds, so that every target
+/// gives the same bits.
+#[multiversion(targets("x86_64+avx2"))]
 fn add_run((ux, uy): (&mut [f64], &mut [f64]), (kxx, kxy, kyy): (&[f64], &[f64], &[f64]), dx: f64, dy: f64) {
-    for t in 0..ux.len() {
-        ux[t] += kxx[t] * dx + kxy[t] * dy;
-        uy[t] += kxy[t] * dx + kyy[t] * dy;
+    for ((((a, b), x), y), z) in ux.iter_mut().zip(uy.iter_mut()).zip(kxx).zip(kxy).zip(kyy) {
+        *a += x * dx + y * dy;
+        *b += y * dx + z * dy;
     }
 }
 

@@ -1,0 +1,204 @@
+//! `corrugation check`: the derived quantities of a validated scene (Hertz
+//! patches, mesh or grid, passage, rail grid, growth settings, resonances)
+//! and a rough cost estimate.
+
+use corrugation::config::Resolved;
+use corrugation::contact::grid::convolution::smooth_padding;
+use corrugation::contact::grid::{GRID_MARGIN, PotentialGrid};
+use corrugation::contact::transient::StepSolver;
+use corrugation::dynamics::TrackDynamics;
+use corrugation::growth::traffic::TrafficScaling;
+use corrugation::loads::LoadQuantity;
+use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, SAFETY, departures};
+use corrugation::params::{ContactGrid, ContactModelKind, DynamicsKind};
+use corrugation::run::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics};
+
+/// What contact.model = "auto" chose and why.
+fn print_auto(a: &AutoChoice) {
+    let ms = |c: &Candidate| c.cpu_per_step * 1e3;
+    println!(
+        "auto               tolerance {} (relative centre-line wear error); shortest wavelength {:.4} mm, \
+         lambda / 2a_max = {:.3}",
+        a.tolerance,
+        a.wavelength * 1e3,
+        a.lambda_over_2a
+    );
+    let c = &a.chosen;
+    println!(
+        "auto choice        {} {} x {}: predicted error {:.4}, {:.3} ms CPU per step (the cheapest within the tolerance)",
+        c.model.name(),
+        c.mesh,
+        c.mesh,
+        c.wear_error,
+        ms(c)
+    );
+    if let Some(e) = &a.exact {
+        println!(
+            "auto exact         exact-transient would need {} x {}: predicted error {:.4}, {:.3} ms CPU per step",
+            e.mesh,
+            e.mesh,
+            e.wear_error,
+            ms(e)
+        );
+    }
+    let list: Vec<String> = AccuracyMap::builtin()
+        .candidates(a.lambda_over_2a)
+        .iter()
+        .map(|c| {
+            let mark = if c.wear_error <= SAFETY * a.tolerance { "ok" } else { "no" };
+            format!("{} {}: {:.3} in {:.2} ms {mark}", c.model.name(), c.mesh, c.wear_error, ms(c))
+        })
+        .collect();
+    println!("auto candidates    (cheapest first) {}", list.join("; "));
+}
+
+/// Prints what `check` reports.
+pub fn print_check(r: &Resolved) {
+    let s = &r.scene;
+    let d = derive(s);
+    let mm = |v: f64| v * 1e3;
+    println!("config OK");
+    let by = if s.contact.auto.is_some() { " (chosen by contact.model = \"auto\")" } else { "" };
+    println!("contact model      {}{by}", s.contact.model.name());
+    if let Some(a) = &s.contact.auto {
+        print_auto(a);
+        for note in departures(s) {
+            println!("note               outside the map's conditions: {note}");
+        }
+    }
+    println!("Hertz a/b          {:.4}", d.shape.aspect());
+    if d.patch_min.is_none() {
+        println!(
+            "contact loss       N <= 0 on part of the stretch (min N = {:.4e} N): no patch there",
+            s.loads.min_normal_force()
+        );
+    }
+    for (label, p) in [("mean", Some(d.patch_mean)), ("min", d.patch_min), ("max", Some(d.patch_max))] {
+        let Some(p) = p else { continue };
+        println!(
+            "Hertz at {label:<4} N   N = {:.4e} N: a = {:.4} mm, b = {:.4} mm, p0 = {:.1} MPa, approach = {:.4} mm",
+            p.normal_force,
+            mm(p.a),
+            mm(p.b),
+            p.p0 / 1e6,
+            mm(p.approach)
+        );
+    }
+    let fixed = match s.contact.grid {
+        ContactGrid::Fixed(f) => Some((f, fixed_grid_spec(s, &d.shape, f))),
+        ContactGrid::Adapted => None,
+    };
+    if let Some((f, spec)) = &fixed {
+        let g = PotentialGrid::covering(spec.a_max, spec.b_max, f.dx, f.dy, spec.align_x, spec.align_y);
+        let in_contact = |a: f64, b: f64| std::f64::consts::PI * a * b / (f.dx * f.dy);
+        println!(
+            "grid               fixed, {} x {} = {} elements of {:.4} x {:.4} mm over x in [{:.4}, {:.4}] mm, y in \
+             [{:.4}, {:.4}] mm (the patch at {:.4e} N with {:.0} % margin and one element; FFT {} x {})",
+            g.nx,
+            g.ny,
+            g.len(),
+            mm(f.dx),
+            mm(f.dy),
+            mm(g.x_front - g.nx as f64 * g.dx),
+            mm(g.x_front),
+            mm(g.y_low),
+            mm(g.y_low + g.ny as f64 * g.dy),
+            fixed_grid_load(s),
+            GRID_MARGIN * 100.0,
+            smooth_padding(g.nx),
+            smooth_padding(g.ny)
+        );
+        println!(
+            "grid contact       about {:.0} elements in contact at mean N ({:.1} x {:.1} elements across the patch), \
+             {:.0} at max N; friction law {:?}, {:?} difference",
+            in_contact(d.patch_mean.a, d.patch_mean.b),
+            2.0 * d.patch_mean.a / f.dx,
+            2.0 * d.patch_mean.b / f.dy,
+            in_contact(d.patch_max.a, d.patch_max.b),
+            f.friction_law,
+            f.scheme
+        );
+    } else {
+        let el = 2.0 * d.patch_mean.a / s.contact.elements_x as f64;
+        println!(
+            "mesh               {} x {} = {} elements; element length {:.4} mm at mean N",
+            s.contact.elements_x,
+            s.contact.elements_y,
+            s.contact.elements_x * s.contact.elements_y,
+            mm(el)
+        );
+    }
+    let p = &d.passage;
+    println!(
+        "passage            X from {:.4} to {:.4} mm, {} steps of {:.4} mm (dt = {:.4e} s), {} wear sub-steps",
+        mm(p.start),
+        mm(p.end),
+        p.n_steps(),
+        mm(p.dt() * p.speed),
+        p.dt(),
+        p.substeps
+    );
+    let g = if s.growth.is_some() { periodic_grid(s) } else { d.grid.clone() };
+    let periodic = if s.growth.is_some() { " (periodic)" } else { "" };
+    println!(
+        "rail grid          {} x {} nodes{periodic}, dx = {:.4} mm, dy = {:.4} mm",
+        g.nx,
+        g.ny,
+        mm(g.dx),
+        mm(g.dy)
+    );
+    // Cost model from measurements on 2 cores (README, Performance), per
+    // step: wear ~ 20 ns per node visit; FASTSIM ~ 18 ns per element and
+    // solve, 25 solves; simplified-transient ~ 3 us per element; the exact
+    // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
+    // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
+    // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
+    // solver (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 11.8 ms at
+    // 400 elements (~N^1.15 while C fits in cache), ~N^2.2 beyond. Measured
+    // on the old AMD development machine; the newer Intel one (README,
+    // Performance) takes 0.45-0.6 of these times: an upper estimate.
+    let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
+    let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
+    let contact = match s.contact.model {
+        ContactModelKind::Fastsim => 25.0 * 18e-9 * n_el,
+        ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
+        ContactModelKind::ExactTransient if s.contact.solver == StepSolver::GaussSeidel => {
+            if n_el <= 400.0 {
+                2.4e-3 * (n_el / 100.0).powf(1.15)
+            } else {
+                11.8e-3 * (n_el / 400.0).powf(2.2)
+            }
+        }
+        ContactModelKind::ExactTransient => {
+            let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
+                || s.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
+            if varying { 2.7e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
+        }
+    };
+    // With "auto", the map's own measurement of the chosen model.
+    let contact = s.contact.auto.map_or(contact, |a| a.chosen.cpu_per_step);
+    let secs = p.n_steps() as f64 * (contact + p.substeps as f64 * nodes * 20e-9);
+    let passes = s.growth.as_ref().map_or(1, |g| g.passes);
+    if let Some(g) = &s.growth {
+        match g.traffic {
+            TrafficScaling::Fixed { scale, .. } => println!(
+                "growth             {} passages x traffic scale {scale} = {:.4e} real passages; dynamics {:?}",
+                g.passes,
+                g.passes as f64 * scale,
+                g.dynamics
+            ),
+            TrafficScaling::Adaptive { initial, max, max_update_ratio } => println!(
+                "growth             {} passages, adaptive traffic scale from {initial} up to {max} (update ratio <= \
+                 {max_update_ratio}); dynamics {:?}",
+                g.passes, g.dynamics
+            ),
+        }
+        println!("checkpoints        every {} passages; rail stored every {}", g.checkpoint_every, g.store_every);
+        if let Some(t) = track_dynamics(s, &d) {
+            for (label, f) in t.describe_resonances() {
+                println!("resonance          {f:8.1} Hz  {label}");
+            }
+        }
+    }
+    println!("estimated cost     {:.1} s on 2 cores (rough, from the benchmarks)", secs * passes as f64);
+}
