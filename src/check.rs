@@ -93,7 +93,7 @@ pub fn print_check(r: &Resolved) {
         let in_contact = |a: f64, b: f64| std::f64::consts::PI * a * b / (f.dx * f.dy);
         println!(
             "grid               fixed, {} x {} = {} elements of {:.4} x {:.4} mm over x in [{:.4}, {:.4}] mm, y in \
-             [{:.4}, {:.4}] mm (the patch at {:.4e} N with {:.0} % margin and one element; FFT {} x {})",
+             [{:.4}, {:.4}] mm (the patch at {:.4e} N with {:.0} % margin and two elements along x, one along y; FFT {} x {})",
             g.nx,
             g.ny,
             g.len(),

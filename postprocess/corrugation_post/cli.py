@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,growth-accuracy,stability,check}``.
+"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,check}``.
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -22,6 +22,8 @@ MANIFEST_COMMANDS = (
     ("growth-accuracy", "growth-rate error per model and mesh (scripts/growth_accuracy.sh)", "model, mesh, file"),
     ("stability", "outcome table of scripts/stability_map.sh",
      "sweep, value, file, exit_code, message (one 'baseline' row)"),
+    ("grid-convergence", "convergence of both discretisations of the exact model (scripts/grid_convergence.sh)",
+     "scene, grid (fixed or adapted), size (contact.dx in m, or the adapted mesh n), file"),
 )
 
 
@@ -128,6 +130,16 @@ def _stability(args) -> int:
     return _print_table(run(args.manifest, args.out), markdown)
 
 
+def _grid_convergence(args) -> int:
+    from .grid_convergence import format_table, run
+
+    result, paths = run(args.manifest, args.out)
+    print(format_table(result))
+    for p in paths:
+        print(p)
+    return EXIT_OK
+
+
 def _check(args) -> int:
     from .schema import check_file
 
@@ -145,7 +157,8 @@ def main(argv: list[str] | None = None) -> int:
     matplotlib.use("Agg")
     args = _parser().parse_args(argv)
     handler = {"figures": _figures, "compare": _compare, "growth": _growth,
-               "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "check": _check}[args.command]
+               "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "grid-convergence": _grid_convergence,
+               "check": _check}[args.command]
     try:
         return handler(args)
     except RunFileError as err:

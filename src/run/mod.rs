@@ -163,6 +163,20 @@ pub fn build_deposit(elements: &Elements) -> Box<dyn WearKernel> {
     }
 }
 
+/// Number of contact elements the fields of a scene are stored on: the
+/// adapted mesh's `elements_x * elements_y`, or the fixed grid's (built
+/// without its influence coefficients).
+pub fn element_count(scene: &Scene) -> usize {
+    match scene.contact.grid {
+        ContactGrid::Fixed(f) if scene.contact.model == ContactModelKind::ExactTransient => {
+            let shape = derive(scene).shape;
+            let s = fixed_grid_spec(scene, &shape, f);
+            crate::contact::grid::PotentialGrid::covering(s.a_max, s.b_max, s.dx, s.dy, s.align_x, s.align_y).len()
+        }
+        _ => scene.contact.elements_x * scene.contact.elements_y,
+    }
+}
+
 /// Contact steps per passage of a scene.
 pub fn steps_per_passage(scene: &Scene) -> usize {
     derive(scene).passage.n_steps()

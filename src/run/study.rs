@@ -16,7 +16,7 @@
 //! (every passage starts with a run-in from a reset solver), so a resumed
 //! run computes bit for bit what the uninterrupted run would have.
 
-use super::{build_deposit, build_solver, derive, periodic_grid, track_dynamics};
+use super::{build_deposit, build_solver, derive, element_count, periodic_grid, track_dynamics};
 use crate::config::{ConfigErrors, Resolved, load_str};
 use crate::dynamics::TrackDynamics;
 use crate::growth::roughness::profile_line;
@@ -196,8 +196,7 @@ pub fn resume(
         return Err(ResumeError::NotGrowth { path: path.to_owned() });
     };
     let grid = study_grid(scene);
-    // The contact mesh has elements_x * elements_y elements (EllipseMesh).
-    let elements = scene.contact.elements_x * scene.contact.elements_y;
+    let elements = element_count(scene);
     let layout = StateLayout {
         grid_shape: (grid.ny, grid.nx),
         wavelengths: wavelengths(grid.nx, grid.dx).len(),

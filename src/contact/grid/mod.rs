@@ -77,20 +77,21 @@ impl Alignment {
     }
 }
 
-/// Relative margin of the grid around the largest patch, besides one whole
-/// element on every side: the discrete contact area of a quadratic gap lies
-/// within one element of the Hertz ellipse, and the leading column must stay
-/// out of contact (it supplies the earlier displacement of the first column
-/// in contact).
+/// Relative margin of the grid around the largest patch, besides two whole
+/// elements along x and one along y on every side: the discrete contact area
+/// of a quadratic gap lies within one element of the Hertz ellipse, and the
+/// two leading columns must stay out of contact (they supply the earlier
+/// displacements of the first columns in contact).
 pub const GRID_MARGIN: f64 = 0.05;
 
 impl PotentialGrid {
     /// The grid of `dx x dy` elements that holds the patch `|x| <= a`,
-    /// `|y| <= b` with [`GRID_MARGIN`] and one element more on every side,
+    /// `|y| <= b` with [`GRID_MARGIN`] and two elements more along x, one
+    /// along y, on every side,
     /// shifted by less than half a rail cell so that its element edges fall on
     /// `align_x` and `align_y`.
     pub fn covering(a: f64, b: f64, dx: f64, dy: f64, align_x: Alignment, align_y: Alignment) -> Self {
-        let half_x = a * (1.0 + GRID_MARGIN) + dx + 0.5 * align_x.period;
+        let half_x = a * (1.0 + GRID_MARGIN) + 2.0 * dx + 0.5 * align_x.period;
         let half_y = b * (1.0 + GRID_MARGIN) + dy + 0.5 * align_y.period;
         // Of two successive counts, the one whose centred grid needs the
         // smaller shift: a grid symmetric about the patch centre where the
@@ -168,8 +169,8 @@ mod tests {
             assert!(r.abs() < 1e-12, "y edge {e}");
         }
         // The patch with its margin and one element lies inside.
-        assert!(g.x_front >= a * (1.0 + GRID_MARGIN) + dx - 1e-12);
-        assert!(g.x_front - g.nx as f64 * dx <= -(a * (1.0 + GRID_MARGIN) + dx) + 1e-12);
+        assert!(g.x_front >= a * (1.0 + GRID_MARGIN) + 2.0 * dx - 1e-12);
+        assert!(g.x_front - g.nx as f64 * dx <= -(a * (1.0 + GRID_MARGIN) + 2.0 * dx) + 1e-12);
         assert!(g.y_low <= -(b * (1.0 + GRID_MARGIN) + dy) + 1e-12);
         assert!(g.y_low + g.ny as f64 * dy >= b * (1.0 + GRID_MARGIN) + dy - 1e-12);
         // No alignment asked: symmetric about the patch centre.

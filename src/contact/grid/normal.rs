@@ -132,7 +132,7 @@ pub fn solve(
             }
         }
         for k in 0..n {
-            if p[k] == 0.0 && g[k] < 0.0 {
+            if p[k] == 0.0 && g[k] < 0.0 && tau > 0.0 {
                 // Penetrates: back into contact, steepest descent.
                 p[k] = -tau * g[k];
                 readmitted = true;
