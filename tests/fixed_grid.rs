@@ -15,18 +15,21 @@ use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use corrugation::passage::run_passage;
 use corrugation::run::{build_deposit, build_solver, derive};
 
-/// A fixed grid for the paper's patch (`concave` reading) at `n_max` N.
+/// The friction law, difference scheme and regularisation of a test grid.
+type Model = (FrictionLaw, GridScheme, f64);
+
+/// A fixed grid of `cell` elements for `curvatures` and `elastic`, sized for
+/// the Hertz patch at `n_max` N.
 fn grid_solver(
     shape: &HertzShape,
     curvatures: Curvatures,
     elastic: Elastic,
     n_max: f64,
     cell: (f64, f64),
-    law: FrictionLaw,
-    scheme: GridScheme,
-    eps: f64,
+    model: Model,
 ) -> FixedGrid {
     let patch = shape.patch(n_max).unwrap();
+    let (law, scheme, eps) = model;
     FixedGrid::new(FixedGridSpec {
         curvatures,
         elastic,
@@ -145,12 +148,43 @@ fn earlier_displacement_by_shifting_is_the_field_one_element_ahead() {
     }
 }
 
-/// CONTACT scene c (shared reference, fixed grid of 0.2 mm steps, first
-/// order, Coulomb): (concave, cell of CONTACT's grid, shift at rest (m),
-/// first step, peak, its position (m), steady creepage, steps to steady).
-const SCENE_C: [(bool, (f64, f64), f64, f64, f64, f64, f64, usize); 2] = [
-    (true, (2e-4, 8e-4), -1.436e-5, -0.721e-3, 1.380e-3, 7.6e-3, -1.245e-3, 180),
-    (false, (2e-4, 4e-4), -2.057e-5, -0.959e-3, 2.016e-3, 10.0e-3, -1.748e-3, 240),
+/// CONTACT scene c (shared reference: N = 100 kN, F_x = 20 kN, 0.2 mm steps,
+/// first-order difference, Coulomb friction).
+struct SceneC {
+    concave: bool,
+    /// CONTACT's element (dx, dy) (m).
+    cell: (f64, f64),
+    /// Rigid shift at rest (m).
+    shift: f64,
+    /// Creepage at the first rolling step.
+    first: f64,
+    /// Peak |creepage| and where it occurs (m rolled).
+    peak: (f64, f64),
+    /// Steady creepage.
+    steady: f64,
+    /// Steps to the steady state.
+    steps: usize,
+}
+
+const SCENE_C: [SceneC; 2] = [
+    SceneC {
+        concave: true,
+        cell: (2e-4, 8e-4),
+        shift: -1.436e-5,
+        first: -0.721e-3,
+        peak: (1.380e-3, 7.6e-3),
+        steady: -1.245e-3,
+        steps: 180,
+    },
+    SceneC {
+        concave: false,
+        cell: (2e-4, 4e-4),
+        shift: -2.057e-5,
+        first: -0.959e-3,
+        peak: (2.016e-3, 10.0e-3),
+        steady: -1.748e-3,
+        steps: 240,
+    },
 ];
 
 fn peak(history: &[f64], step: f64) -> (f64, f64) {
@@ -166,11 +200,11 @@ fn contact_scene_c_on_contacts_own_grid() {
     // With CONTACT's discretisation (first-order difference, its grid), both
     // friction laws reproduce CONTACT's shift at rest, first step, peak and
     // steady creepage within 0.5 %, the peak at the same step.
-    for (concave, cell, shift, first, peak_value, peak_at, steady, steps) in SCENE_C {
+    for SceneC { concave, cell, shift, first, peak: (peak_value, peak_at), steady, steps } in SCENE_C {
         let shape = paper_shape(concave);
         for law in [FrictionLaw::Coulomb, FrictionLaw::Regularised] {
             let mut solver =
-                grid_solver(&shape, paper_curvatures(concave), STEEL, 1e5, cell, law, GridScheme::FirstOrder, 1e-5);
+                grid_solver(&shape, paper_curvatures(concave), STEEL, 1e5, cell, (law, GridScheme::FirstOrder, 1e-5));
             let h = roll(&mut solver, &shape, 2e4, steps + 1);
             let (pv, pa) = peak(&h, cell.0);
             eprintln!(
@@ -199,12 +233,12 @@ fn contact_scene_c_at_the_default_grid() {
     // 0.2 mm value, within 0.5 %; the peak, where the first-order bias is
     // larger (the same grid with the first-order difference gives CONTACT's
     // peak within 0.2 %, test above), within 2.5 %.
-    for (concave, _, shift, first, peak_value, peak_at, steady, steps) in SCENE_C {
+    for SceneC { concave, shift, first, peak: (peak_value, peak_at), steady, steps, .. } in SCENE_C {
         let shape = paper_shape(concave);
         for law in [FrictionLaw::Coulomb, FrictionLaw::Regularised] {
             let cell = (2e-4, 5e-4);
             let mut solver =
-                grid_solver(&shape, paper_curvatures(concave), STEEL, 1e5, cell, law, GridScheme::SecondOrder, 1e-5);
+                grid_solver(&shape, paper_curvatures(concave), STEEL, 1e5, cell, (law, GridScheme::SecondOrder, 1e-5));
             let h = roll(&mut solver, &shape, 2e4, steps + 1);
             let (pv, pa) = peak(&h, cell.0);
             eprintln!(
@@ -237,7 +271,7 @@ fn kalker_cattaneo_to_carter_classic_on_the_grid() {
     let patch = shape.patch(n).unwrap();
     let step = 2.5e-4;
     let mut solver =
-        grid_solver(&shape, curvatures, el, n, (step, step), FrictionLaw::Coulomb, GridScheme::FirstOrder, 1e-6);
+        grid_solver(&shape, curvatures, el, n, (step, step), (FrictionLaw::Coulomb, GridScheme::FirstOrder, 1e-6));
     let input =
         StepInput { patch, speed: 1.0, dt: step, friction: mu, force_x: -0.657 * mu * n, creepage_y: 0.0, spin: 0.0 };
     let h: Vec<f64> = (0..61).map(|_| solver.step(&input).unwrap().creepage.x).collect();
@@ -255,7 +289,7 @@ fn coulomb_is_the_limit_of_the_regularised_law() {
     let shape = paper_shape(true);
     let cell = (4e-4, 1e-3);
     let run = |law, eps| {
-        let mut s = grid_solver(&shape, paper_curvatures(true), STEEL, 1e5, cell, law, GridScheme::SecondOrder, eps);
+        let mut s = grid_solver(&shape, paper_curvatures(true), STEEL, 1e5, cell, (law, GridScheme::SecondOrder, eps));
         roll(&mut s, &shape, 2e4, 40)
     };
     let coulomb = run(FrictionLaw::Coulomb, 1e-5);

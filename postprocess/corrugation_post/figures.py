@@ -163,7 +163,9 @@ def _patch_panel(ax, xi, eta, value, stick, levels, cmap):
     t = np.linspace(0, 2 * np.pi, 200)
     ax.plot(np.cos(t), np.sin(t), "k-", lw=0.6)
     ax.set_aspect("equal")
-    ax.set(xlim=(-1.05, 1.05), ylim=(-1.05, 1.05), xlabel="ξ = x/a  (leading edge →)")
+    # The adapted mesh fills the unit circle; a fixed grid reaches beyond it.
+    lim = max(1.05, float(np.max(np.abs(xi))), float(np.max(np.abs(eta))))
+    ax.set(xlim=(-lim, lim), ylim=(-lim, lim), xlabel="ξ = x/a  (leading edge →)")
     return art
 
 

@@ -45,6 +45,7 @@ UNITS = {
     "longitudinal_force": "N", "creepage_x": "1", "creepage_y": "1", "spin": "1/m",
     "semi_axis_a": "m", "semi_axis_b": "m", "max_pressure": "Pa", "stick_fraction": "1",
     "xi": "1", "eta": "1", "d_xi": "1", "d_eta": "1",
+    "element_x": "m", "element_y": "m", "element_dx": "m", "element_dy": "m",
     "pressure": "Pa", "traction_x": "Pa", "traction_y": "Pa",
     "slip_x": "m/s", "slip_y": "m/s", "wear_rate": "m/s", "stick": "1",
 }
@@ -81,10 +82,42 @@ def check_dataset(ds: xr.Dataset, group: str, required: dict[str, tuple[str, ...
     return problems
 
 
+def check_grid(ds: xr.Dataset, group: str) -> list[str]:
+    """Fixed-grid rules: uniform elements, row by row (y increasing), each row
+    leading edge (x > 0) first, xi and eta the coordinates over the mean patch."""
+    x, y = ds["element_x"].values, ds["element_y"].values
+    dx, dy = ds["element_dx"].values, ds["element_dy"].values
+    problems = []
+    if np.any(dx <= 0) or np.any(dy <= 0) or np.ptp(dx) > 1e-12 * dx.max() or np.ptp(dy) > 1e-12 * dy.max():
+        problems.append(f"{group}: fixed-grid elements not uniform and positive")
+        return problems
+    rows = np.unique(y.round(12))
+    nx = x.size // max(rows.size, 1)
+    if rows.size * nx != x.size:
+        problems.append(f"{group}: {x.size} elements are not {rows.size} rows of equal length")
+        return problems
+    if np.any(np.diff(y.reshape(rows.size, nx)[:, 0]) <= 0):
+        problems.append(f"{group}: grid rows not ordered by increasing y")
+    if np.any(np.diff(x.reshape(rows.size, nx), axis=1) >= 0):
+        problems.append(f"{group}: grid rows not ordered leading edge (x>0) first")
+    xi = ds["xi"].values
+    k = int(np.argmax(np.abs(x)))
+    a = x[k] / xi[k] if xi[k] != 0 else np.nan
+    if not (a > 0 and np.allclose(xi * a, x, rtol=1e-9, atol=1e-15)):
+        problems.append(f"{group}: xi is not element_x over one semi-axis")
+    return problems
+
+
 def check_mesh(ds: xr.Dataset, group: str) -> list[str]:
-    """Contact mesh rules: unit-circle elements, strips of equal length, leading edge first."""
+    """Contact mesh rules: unit-circle elements, strips of equal length, leading edge first
+    (on the adapted mesh), or the fixed grid's rules."""
     if not all(v in ds.variables for v in _ELEMENT):
         return []
+    if "element_x" in ds.variables:
+        problems = check_grid(ds, group)
+        if "stick" in ds.variables and not np.isin(np.unique(ds["stick"].values), (0, 1)).all():
+            problems.append(f"{group}/stick: values other than 0 and 1")
+        return problems
     xi, eta = ds["xi"].values, ds["eta"].values
     problems = []
     if np.any(xi**2 + eta**2 > 1.0 + 1e-9):
