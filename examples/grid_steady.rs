@@ -4,7 +4,8 @@
 //! step, for the grid-convergence study of the README.
 //!
 //! `cargo run --release --example grid_steady -- DX DY [N F_X ROLLED LAW SCHEME TOLERANCE]`
-//! (m, m, N, N, m, regularised|coulomb, first-order|second-order, units of eps)
+//! (m, m, N, N, m, regularised|coulomb, first-order|second-order, units of eps);
+//! with `HISTORY=1` in the environment, every step's creepage and sweeps on stderr.
 
 use corrugation::contact::grid::solver::FixedGridSpec;
 use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme};
@@ -52,8 +53,11 @@ fn main() {
     let clock = Instant::now();
     let mut sweeps = 0;
     let mut last = None;
-    for _ in 0..=steps {
+    for n in 0..=steps {
         let sol = solver.step(&input).unwrap_or_else(|e| panic!("{e}"));
+        if std::env::var("HISTORY").is_ok() {
+            eprintln!("{:.2} mm {:.6e} sweeps {}", n as f64 * dx * 1e3, -sol.creepage.x, sol.iterations);
+        }
         sweeps += sol.iterations;
         last = Some(sol);
     }

@@ -27,6 +27,7 @@
 //! mesh's strips.
 
 pub mod convolution;
+pub mod coupling;
 pub mod normal;
 pub mod solver;
 pub mod tangential;

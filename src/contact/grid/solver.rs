@@ -22,6 +22,7 @@
 //! problem: `u_o = 0`, the rigid shift over the step `V xi dt`.
 
 use super::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
+use super::coupling::{Coupling, FoldedKernel};
 use super::normal::{self, NormalError};
 use super::tangential::{self, ContactSet, GridStep, Law};
 use super::{Alignment, PotentialGrid};
@@ -114,6 +115,8 @@ pub struct FixedGrid {
     history: Option<History>,
     /// Tolerance on the kinematic residual, in units of eps.
     tolerance: f64,
+    /// The folded coupling of a grid symmetric about y = 0.
+    folded: Option<FoldedKernel>,
 }
 
 impl FixedGrid {
@@ -136,7 +139,19 @@ impl FixedGrid {
             scratch: FftScratch::default(),
             history: None,
             tolerance: GRID_TOLERANCE,
+            folded: None,
         }
+        .fold_if_symmetric()
+    }
+
+    /// Folds the coupling when the grid is symmetric about y = 0 (it is used
+    /// on the steps whose loads are: no lateral creepage, no spin).
+    fn fold_if_symmetric(mut self) -> Self {
+        let g = &self.grid;
+        if (g.y_low + 0.5 * g.ny as f64 * g.dy).abs() <= 1e-9 * g.dy {
+            self.folded = Some(FoldedKernel::new(&self.kernel));
+        }
+        self
     }
 
     /// Sets the convergence tolerance on the kinematic residual to
@@ -189,9 +204,23 @@ impl FixedGrid {
         let start: Option<Vec<f64>> = self.history.as_ref().map(|h| h.p3.clone());
         let normal = normal::solve(&self.normal, &mut self.scratch, &self.gap, area, n_force, start.as_deref())
             .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
-        let p3 = normal.pressure;
-        let set = ContactSet::new(nx, n, |k| p3[k] > 0.0);
-        if let Some(&k) = set.element.iter().find(|&&k| {
+        let mut p3 = normal.pressure;
+        // A problem symmetric about y = 0 is solved on the lower half of the
+        // grid (coupling): the normal solution, symmetric to rounding, made
+        // exactly so.
+        let folded = self.folded.as_ref().filter(|_| input.creepage_y == 0.0 && input.spin == 0.0);
+        let mirror = |k: usize| (ny - 1 - k / nx) * nx + k % nx;
+        if folded.is_some() {
+            for k in 0..n {
+                let m = mirror(k);
+                if m > k {
+                    let v = 0.5 * (p3[k] + p3[m]);
+                    (p3[k], p3[m]) = (v, v);
+                }
+            }
+        }
+        let whole = ContactSet::new(nx, n, |k| p3[k] > 0.0);
+        if let Some(&k) = whole.element.iter().find(|&&k| {
             let (ix, iy) = (k % nx, k / nx);
             ix < 2 || ix + 1 >= nx || iy == 0 || iy + 1 >= ny
         }) {
@@ -204,6 +233,12 @@ impl FixedGrid {
                 ),
             });
         }
+        let set = match folded {
+            Some(f) => ContactSet::new(nx, f.half_rows() * nx, |k| p3[k] > 0.0),
+            None => whole,
+        };
+        let weight: Vec<f64> =
+            set.element.iter().map(|&k| if folded.is_some() && mirror(k) != k { 2.0 } else { 1.0 }).collect();
         let nc = set.len();
         let mu = input.friction;
         let mu_p3: Vec<f64> = set.element.iter().map(|&k| mu * p3[k]).collect();
@@ -244,9 +279,15 @@ impl FixedGrid {
             xi0 = h.xi;
         }
         let law = self.law();
-        let kappa = self.creepage_stiffness(&set, &mu_p3, &s0, beta, input);
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let kappa = self.creepage_stiffness(&mut scratch, &set, &weight, &mu_p3, &s0, beta, input);
+        let coupling = match folded {
+            Some(f) => Coupling::Folded(f),
+            None => Coupling::Full(&self.kernel),
+        };
         let step = GridStep {
-            kernel: &self.kernel,
+            coupling,
+            weight: &weight,
             set: &set,
             dt: input.dt,
             speed: input.speed,
@@ -267,21 +308,27 @@ impl FixedGrid {
         // the field the next step shifts.
         let (mut gx, mut gy) = (vec![0.0; n], vec![0.0; n]);
         let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
-        let (conv, scratch) = (&self.tangential, &mut self.scratch);
+        let conv = &self.tangential;
         let mut fresh = |p: &[f64], u: &mut [f64]| {
             gx.iter_mut().for_each(|v| *v = 0.0);
             gy.iter_mut().for_each(|v| *v = 0.0);
             for (c, &k) in set.element.iter().enumerate() {
                 gx[k] = p[2 * c];
                 gy[k] = p[2 * c + 1];
+                if weight[c] == 2.0 {
+                    gx[mirror(k)] = p[2 * c];
+                    gy[mirror(k)] = -p[2 * c + 1];
+                }
             }
-            conv.tangential(scratch, (&gx, &gy), (&mut ux, &mut uy));
+            conv.tangential(&mut scratch, (&gx, &gy), (&mut ux, &mut uy));
             for (c, &k) in set.element.iter().enumerate() {
                 u[c] = ux[k];
                 u[nc + c] = uy[k];
             }
         };
-        let sol = tangential::solve(&step, &s0, xi0, &mut fresh).map_err(|history| {
+        let solved = tangential::solve(&step, &s0, xi0, &mut fresh);
+        self.scratch = scratch;
+        let sol = solved.map_err(|history| {
             let last = history.last().copied().unwrap_or(f64::NAN);
             ContactError::NoConvergence {
                 force,
@@ -308,16 +355,21 @@ impl FixedGrid {
         let mut s_grid = vec![0.0; 2 * n];
         for (c, &k) in set.element.iter().enumerate() {
             let (sx, sy) = (sol.s[2 * c], sol.s[2 * c + 1]);
-            out.traction_x[k] = sol.p[2 * c];
-            out.traction_y[k] = sol.p[2 * c + 1];
-            out.slip_x[k] = sx;
-            out.slip_y[k] = sy;
-            out.stick[k] = match law {
+            let stick = match law {
                 Law::Regularised { eps } => sx.hypot(sy) < STICK_SLIP_FACTOR * eps,
                 Law::Coulomb => sx == 0.0 && sy == 0.0,
             };
-            s_grid[2 * k] = sx;
-            s_grid[2 * k + 1] = sy;
+            // The element, and its mirror image (y components negated).
+            let images = if weight[c] == 2.0 { [(k, 1.0), (mirror(k), -1.0)].to_vec() } else { vec![(k, 1.0)] };
+            for (e, sign) in images {
+                out.traction_x[e] = sol.p[2 * c];
+                out.traction_y[e] = sign * sol.p[2 * c + 1];
+                out.slip_x[e] = sx;
+                out.slip_y[e] = sign * sy;
+                out.stick[e] = stick;
+                s_grid[2 * e] = sx;
+                s_grid[2 * e + 1] = sign * sy;
+            }
         }
         out.force_x = out.traction_x.iter().sum::<f64>() * area;
         out.force_y = out.traction_y.iter().sum::<f64>() * area;
@@ -331,8 +383,18 @@ impl FixedGrid {
     /// the uniform traction change that cancels it through its mean row sum
     /// of `(beta/dt) K_xx` (one FFT product); slip elements answer through
     /// their own law's derivative.
-    fn creepage_stiffness(&mut self, set: &ContactSet, mu_p3: &[f64], s: &[f64], beta: f64, input: &StepInput) -> f64 {
-        let n = self.grid.len();
+    #[allow(clippy::too_many_arguments)]
+    fn creepage_stiffness(
+        &self,
+        scratch: &mut FftScratch,
+        set: &ContactSet,
+        weight: &[f64],
+        mu_p3: &[f64],
+        s: &[f64],
+        beta: f64,
+        input: &StepInput,
+    ) -> f64 {
+        let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
         let eps = self.spec.eps;
         let scale = beta / input.dt;
         let stick: Vec<bool> = (0..set.len()).map(|c| s[2 * c].hypot(s[2 * c + 1]) < STICK_SLIP_FACTOR * eps).collect();
@@ -340,22 +402,25 @@ impl FixedGrid {
         for (c, &k) in set.element.iter().enumerate() {
             if stick[c] {
                 gx[k] = 1.0;
+                if weight[c] == 2.0 {
+                    gx[(ny - 1 - k / nx) * nx + k % nx] = 1.0;
+                }
             }
         }
         let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
-        self.tangential.tangential(&mut self.scratch, (&gx, &gy), (&mut ux, &mut uy));
-        let count = stick.iter().filter(|s| **s).count();
+        self.tangential.tangential(scratch, (&gx, &gy), (&mut ux, &mut uy));
+        let count: f64 = (0..set.len()).filter(|&c| stick[c]).map(|c| weight[c]).sum();
         let mut kappa = 0.0;
         let area = self.grid.area();
-        if count > 0 {
-            let rows: f64 = set.element.iter().zip(&stick).filter(|(_, s)| **s).map(|(&k, _)| scale * ux[k]).sum();
-            kappa += count as f64 * area / (rows / count as f64);
+        if count > 0.0 {
+            let rows: f64 = (0..set.len()).filter(|&c| stick[c]).map(|c| weight[c] * scale * ux[set.element[c]]).sum();
+            kappa += count * area / (rows / count);
         }
         let k0 = scale * self.kernel.at(0, 0, 0);
         for c in 0..set.len() {
             if !stick[c] {
                 let (_, d) = friction([s[2 * c], s[2 * c + 1]], mu_p3[c], eps);
-                kappa += area * d[0] / (1.0 + k0 * d[0]);
+                kappa += weight[c] * area * d[0] / (1.0 + k0 * d[0]);
             }
         }
         -input.speed * kappa.max(1e-30)

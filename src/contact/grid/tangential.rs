@@ -34,7 +34,7 @@
 //! `local_solve`, the Coulomb one by the stick test and, in slip, a
 //! bracketed root for the slip speed ([`coulomb_local`]).
 
-use super::convolution::ToeplitzKernel;
+use super::coupling::Coupling;
 use crate::contact::transient::friction;
 use crate::contact::transient::gauss_seidel::{Anderson, DEPTH, local_solve};
 use crate::numerics::{Tolerance, brent};
@@ -113,8 +113,12 @@ impl ContactSet {
 
 /// The data of one step, on the elements in contact (contact order).
 pub struct GridStep<'a> {
-    /// Tangential influence coefficients.
-    pub kernel: &'a ToeplitzKernel,
+    /// How a traction change reaches the displacements (the whole contact
+    /// area, or the folded lower half of a symmetric problem).
+    pub coupling: Coupling<'a>,
+    /// How many grid elements each element in contact stands for (1, or 2
+    /// for a folded element and its mirror).
+    pub weight: &'a [f64],
     /// The elements in contact.
     pub set: &'a ContactSet,
     /// Time step (s).
@@ -189,7 +193,7 @@ pub fn solve(
         let x = pack(&p, xi);
         sweep(st, &mut p, &mut s, &mut u, xi);
         let r_max = residual(st, &s, &u, xi);
-        let force: f64 = (0..n).map(|c| p[2 * c]).sum::<f64>() * st.area;
+        let force: f64 = (0..n).map(|c| st.weight[c] * p[2 * c]).sum::<f64>() * st.area;
         let r_force = (force - st.force_x) / st.mu_n;
         history.push(r_max);
         if !r_max.is_finite() || !r_force.is_finite() {
@@ -263,15 +267,15 @@ fn sweep(st: &GridStep, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
 /// contact area (x block, y block).
 fn sweep_block(st: &GridStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
     let n = st.set.len();
-    let k = st.kernel;
-    let o0 = k.offset_index(0, 0);
+    let k = st.coupling;
+    let nx = k.nx() as isize;
     let scale = st.beta / st.dt;
-    let kk = [scale * k.table(0)[o0], scale * k.table(1)[o0], scale * k.table(2)[o0]];
-    let (kxx, kxy, kyy) = (k.table(0), k.table(1), k.table(2));
     for local in 0..p.len() / 2 {
         let c = first + local;
         let (i, j) = (2 * c, 2 * c + 1);
         let (li, lj) = (2 * local, 2 * local + 1);
+        let (ixj, iyj) = (st.set.ix[c] as isize, st.set.iy[c]);
+        let kk = k.own(iyj).map(|v| scale * v);
         let own = [kk[0] * p[li] + kk[1] * p[lj], kk[1] * p[li] + kk[2] * p[lj]];
         let s0 = [
             st.speed * (st.w0[i] + xi) + (st.beta * u[c] - st.u_prev[i]) / st.dt - own[0],
@@ -289,32 +293,27 @@ fn sweep_block(st: &GridStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mu
         if dx == 0.0 && dy == 0.0 {
             continue;
         }
-        let (ixj, iyj) = (st.set.ix[c] as isize, st.set.iy[c] as isize);
         let (ux, uy) = u.split_at_mut(n);
         for r in &st.set.runs {
-            let diy = r.iy as isize - iyj;
-            let len = r.len;
-            let o = k.offset_index(r.ix0 as isize - ixj, diy);
-            let range = r.c0..r.c0 + len;
-            add_run(
-                (&mut ux[range.clone()], &mut uy[range]),
-                (&kxx[o..o + len], &kxy[o..o + len], &kyy[o..o + len]),
-                dx,
-                dy,
-            );
+            let rows = k.rows(r.iy, iyj);
+            let o = (r.ix0 as isize - ixj + nx - 1) as usize;
+            let range = r.c0..r.c0 + r.len;
+            let seg = |c: usize| &rows[c][o..o + r.len];
+            add_run((&mut ux[range.clone()], &mut uy[range]), [seg(0), seg(1), seg(2), seg(3)], dx, dy);
         }
     }
 }
 
-/// `u_x += K_xx dx + K_xy dy`, `u_y += K_xy dx + K_yy dy` along one run:
+/// `u_x += F_xx dx + F_x<-y dy`, `u_y += F_y<-x dx + F_yy dy` along one run:
 /// the inner loop of a sweep. Compiled also for AVX2 and picked at run time
 /// (`multiversion`), without fused multiply-adds, so that every target
 /// gives the same bits.
 #[multiversion(targets("x86_64+avx2"))]
-fn add_run((ux, uy): (&mut [f64], &mut [f64]), (kxx, kxy, kyy): (&[f64], &[f64], &[f64]), dx: f64, dy: f64) {
-    for ((((a, b), x), y), z) in ux.iter_mut().zip(uy.iter_mut()).zip(kxx).zip(kxy).zip(kyy) {
-        *a += x * dx + y * dy;
-        *b += y * dx + z * dy;
+fn add_run((ux, uy): (&mut [f64], &mut [f64]), [fxx, fxy, fyx, fyy]: [&[f64]; 4], dx: f64, dy: f64) {
+    let coupling = fxx.iter().zip(fxy).zip(fyx.iter().zip(fyy));
+    for ((a, b), ((xx, xy), (yx, yy))) in ux.iter_mut().zip(uy.iter_mut()).zip(coupling) {
+        *a += xx * dx + xy * dy;
+        *b += yx * dx + yy * dy;
     }
 }
 
