@@ -95,6 +95,64 @@ fn corpus_of_bad_values() {
 }
 
 #[test]
+fn fixed_grid_keys() {
+    let exact = "contact.model=exact-transient";
+    // The step follows the element (the config's step_length sets dx) ...
+    let r = load_str(BASE, "base", &[exact.into(), "contact.grid=fixed".into()]).unwrap();
+    let corrugation::params::ContactGrid::Fixed(f) = r.scene.contact.grid else { panic!("fixed grid") };
+    assert_eq!((f.dx, r.scene.step_length), (2e-4, 2e-4));
+    assert!(r.toml.contains("dx = 0.0002") && r.toml.contains("friction_law = \"regularised\""), "{}", r.toml);
+    let again = load_str(&r.toml, "resolved", &[]).unwrap();
+    assert_eq!(again.scene, r.scene, "the resolved config reproduces the scene");
+    // ... and the element the step without step_length.
+    let no_step = BASE.replace("step_length = 2e-4              # m, V dt\n", "");
+    let r =
+        load_str(&no_step, "no step", &[exact.into(), "contact.grid=fixed".into(), "contact.dx=3e-4".into()]).unwrap();
+    assert_eq!(r.scene.step_length, 3e-4);
+    // (overrides, expected fragment of the single error)
+    let corpus: &[(&[&str], &str)] = &[
+        (
+            &["contact.grid=fixed"],
+            "contact.grid: = \"fixed\" is a discretisation of the exact-transient model, not of contact.model = \"fastsim\"",
+        ),
+        (
+            &[exact, "contact.grid=fixed", "contact.dx=4e-4"],
+            "passage.step_length: = 0.0002 m must equal contact.dx = 0.0004 m",
+        ),
+        (
+            &[exact, "contact.grid=fixed", "contact.solver=newton"],
+            "contact.solver: = \"newton\" is the adapted mesh's reference solver",
+        ),
+        (&[exact, "contact.dx=4e-4"], "contact.dx: applies to contact.grid = \"fixed\" only"),
+        (
+            &[exact, "contact.grid=fixed", "contact.friction_law=sliding"],
+            "contact.friction_law: = \"sliding\" is not allowed; expected one of \"regularised\", \"coulomb\"",
+        ),
+        (
+            &[exact, "contact.grid=fixed", "contact.scheme=third-order"],
+            "contact.scheme: = \"third-order\" is not allowed",
+        ),
+        (
+            &[exact, "contact.grid=fixed", "contact.dy=0"],
+            "contact.dy: = 0 is out of range; expected a number in (0, 0.01]",
+        ),
+        (
+            &[exact, "contact.grid=fixed", "contact.dy=1e-5"],
+            "contact.dy: = 0.0002 m x 0.00001 m gives a potential-contact grid of",
+        ),
+        (
+            &[exact, "contact.grid=square"],
+            "contact.grid: = \"square\" is not allowed; expected one of \"adapted\", \"fixed\"",
+        ),
+    ];
+    for (set, expected) in corpus {
+        let e = errors(BASE, set);
+        assert_eq!(e.len(), 1, "--set {set:?}: expected one error, got {e:?}");
+        assert!(e[0].contains(expected), "--set {set:?}:\n  got      {}\n  expected {expected}", e[0]);
+    }
+}
+
+#[test]
 fn missing_keys_and_syntax() {
     let e = errors(&BASE.replace("young_modulus = 2.1e11          # Pa\n", ""), &[]);
     assert_eq!(e, vec!["material.young_modulus: missing; expected a finite number > 0".to_string()]);

@@ -158,3 +158,31 @@ pub(super) fn bound_and_solver(bound: &str, solver: &str) -> (PressureShape, Ste
         if solver == "newton" { StepSolver::Newton } else { StepSolver::GaussSeidel },
     )
 }
+
+/// Largest potential-contact grid along x and y (elements): beyond, the
+/// folded coupling table (half the rows squared, times 2 nx - 1 offsets,
+/// 4 components) passes 200 MB and one step takes minutes.
+pub const MAX_GRID: (usize, usize) = (600, 300);
+
+/// The fixed grid of a valid scene must fit [`MAX_GRID`].
+pub(super) fn check_grid_size(scene: &crate::params::Scene, errors: &mut Vec<ConfigError>) {
+    let ContactGrid::Fixed(f) = scene.contact.grid else {
+        return;
+    };
+    if scene.contact.model != ContactModelKind::ExactTransient {
+        return;
+    }
+    let shape = crate::run::derive(scene).shape;
+    let s = crate::run::fixed_grid_spec(scene, &shape, f);
+    let g = crate::contact::grid::PotentialGrid::covering(s.a_max, s.b_max, s.dx, s.dy, s.align_x, s.align_y);
+    if g.nx > MAX_GRID.0 || g.ny > MAX_GRID.1 {
+        errors.push(ConfigError::new(
+            if g.nx > MAX_GRID.0 { "contact.dx" } else { "contact.dy" },
+            format!(
+                "= {} m x {} m gives a potential-contact grid of {} x {} elements for the largest patch; at most {} x {} \
+                 (use larger contact.dx / contact.dy)",
+                f.dx, f.dy, g.nx, g.ny, MAX_GRID.0, MAX_GRID.1
+            ),
+        ));
+    }
+}

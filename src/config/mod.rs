@@ -296,6 +296,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         output: OutputParams { store_fields, title },
         growth,
     };
+    contact::check_grid_size(&scene, errors);
     (Some(scene), resolved)
 }
 
