@@ -49,6 +49,26 @@ pub enum FrictionLaw {
     Coulomb,
 }
 
+impl FrictionLaw {
+    /// Config name (`contact.friction_law`).
+    pub fn name(self) -> &'static str {
+        match self {
+            FrictionLaw::Regularised => "regularised",
+            FrictionLaw::Coulomb => "coulomb",
+        }
+    }
+}
+
+impl GridScheme {
+    /// Config name (`contact.scheme`).
+    pub fn name(self) -> &'static str {
+        match self {
+            GridScheme::FirstOrder => "first-order",
+            GridScheme::SecondOrder => "second-order",
+        }
+    }
+}
+
 /// The backward difference of the material derivative.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum GridScheme {
