@@ -3,6 +3,9 @@
 //! whole paper_normal_30mm FASTSIM passage. Run: `cargo bench --bench kernels`.
 use corrugation::config::load_str;
 use corrugation::contact::fastsim::Fastsim;
+use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
+use corrugation::contact::grid::solver::FixedGridSpec;
+use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme};
 use corrugation::contact::transient::elastic::ExactElastic;
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, TangentialSolver};
@@ -94,6 +97,21 @@ fn passage(c: &mut Criterion) {
         &["contact.model=exact-transient".into()],
     )
     .unwrap();
+    // The same passage on the fixed grid at its default, 0.2 x 0.5 mm.
+    let fixed = load_str(
+        include_str!("../configs/paper_normal_30mm.toml"),
+        "paper_normal_30mm",
+        &["contact.model=exact-transient".into(), "contact.grid=fixed".into()],
+    )
+    .unwrap();
+    let fd = derive(&fixed.scene);
+    g.bench_function("paper_normal_30mm_exact_fixed_0.2mm", |b| {
+        b.iter(|| {
+            let mut solver = build_solver(&fixed.scene, &fd.shape);
+            let dep = build_deposit(&solver.elements());
+            run_passage(&fd.passage, &fd.shape, solver.as_mut(), dep.as_ref(), &fd.grid, true, &mut |_, _| {}).unwrap()
+        })
+    });
     g.bench_function("paper_normal_30mm_exact_20x20", |b| {
         b.iter(|| {
             let mut solver = build_solver(&r.scene, &d.shape);
@@ -104,5 +122,57 @@ fn passage(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, fastsim, wear_step, transient_step, passage);
+/// The fixed grid: one FFT product of the tangential kernel, and one step in
+/// steady rolling (scene c, after one contact length), per element size.
+fn fixed_grid(c: &mut Criterion) {
+    let el = Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 };
+    let curvatures = Curvatures::wheel_on_rail(0.5, -0.409, 0.3);
+    let shape = HertzShape::new(curvatures, el).unwrap();
+    let patch = shape.patch(1e5).unwrap();
+    let mut g = c.benchmark_group("fixed_grid");
+    g.sample_size(20);
+    for dx in [4e-4, 2e-4, 1e-4] {
+        let spec = FixedGridSpec {
+            curvatures,
+            elastic: el,
+            dx,
+            dy: 2.5 * dx,
+            a_max: patch.a,
+            b_max: patch.b,
+            align_x: Alignment::default(),
+            align_y: Alignment::default(),
+            law: FrictionLaw::Regularised,
+            eps: 1e-5,
+            scheme: GridScheme::SecondOrder,
+        };
+        let mut solver = FixedGrid::new(spec);
+        let grid = solver.grid().clone();
+        let kernel = ToeplitzKernel::tangential(&grid, el.shear_modulus(), el.poisson_ratio);
+        let conv = FftConvolution::new(&kernel);
+        let n = grid.len();
+        let (px, py) = (vec![1e8; n], vec![1e7; n]);
+        let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
+        let mut scratch = FftScratch::default();
+        let mm = dx * 1e3;
+        g.bench_function(format!("fft_product_{mm}mm_{}x{}", grid.nx, grid.ny), |b| {
+            b.iter(|| conv.tangential(&mut scratch, (black_box(&px), &py), (&mut ux, &mut uy)))
+        });
+        let input = StepInput {
+            patch,
+            speed: 27.778,
+            dt: dx / 27.778,
+            friction: 0.4,
+            force_x: 2e4,
+            creepage_y: 0.0,
+            spin: 0.0,
+        };
+        for _ in 0..(0.012 / dx) as usize {
+            solver.step(&input).unwrap();
+        }
+        g.bench_function(format!("steady_step_{mm}mm"), |b| b.iter(|| solver.step(black_box(&input)).unwrap()));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, fastsim, wear_step, transient_step, fixed_grid, passage);
 criterion_main!(benches);
