@@ -1,20 +1,23 @@
 #!/usr/bin/env bash
 # Speed against accuracy of the contact models on the paper scenes: every
-# model over a range of meshes, CPU time per passage (median of 3 repeats for
-# FASTSIM and simplified-transient, one run of the exact model), errors
-# against the finest exact-transient run of each scene (centre-line wear
-# profile, its first harmonic's amplitude and phase, creepage history).
+# model over a range of meshes, and the exact model on the fixed grid
+# ("exact-fixed", mesh = element length in um, dy = 2.5 dx), CPU time per
+# passage (median of 3 repeats for FASTSIM and simplified-transient, one run
+# of the exact model), errors against each scene's reference run (centre-line
+# wear profile, its first harmonic's amplitude and phase, creepage history):
+# the fixed grid at 0.14 mm, within 0.1-1 % of the grid limit
+# (scripts/grid_convergence.sh).
 # Writes out/speed_accuracy/{speed_accuracy.csv,speed_accuracy.png}.
-#   bash scripts/speed_accuracy.sh           # 4 scenes, meshes 6-40, reference exact 20 x 20 (~15 min)
-#   bash scripts/speed_accuracy.sh --quick   # one scene, meshes 6 and 10, reference exact 10 x 10 (~1 min)
+#   bash scripts/speed_accuracy.sh           # 4 scenes (~30 min)
+#   bash scripts/speed_accuracy.sh --quick   # one scene, coarse meshes, reference fixed 0.2 mm (~1 min)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=out/speed_accuracy
 if [ "${1:-}" = "--quick" ]; then
-  scenes=(paper_normal_30mm); cheap=(6 10); exact=(6); ref=10; out=out/speed_accuracy_quick
+  scenes=(paper_normal_30mm); cheap=(6 10); exact=(6); fixed=(800 400); ref=200; out=out/speed_accuracy_quick
 else
   scenes=(paper_normal_30mm paper_normal_15mm paper_longitudinal_30mm paper_longitudinal_15mm)
-  cheap=(6 10 14 20 30 40); exact=(6 10 14); ref=20
+  cheap=(6 10 14 20 30 40); exact=(6 10 14 20); fixed=(400 280 200); ref=140
 fi
 bash scripts/setup.sh
 cargo build --release --quiet
@@ -24,9 +27,16 @@ failures=0
 echo "scene,model,mesh,file,reference" > "$manifest"
 run() { # scene model mesh repeat reference
   local f="$out/runs/$1_$2_$3_r$4.h5"
+  local set=(--set contact.model="$2" --set contact.elements_x="$3" --set contact.elements_y="$3")
+  if [ "$2" = exact-fixed ]; then
+    local dx
+    dx=$(python3 -c "print($3 * 1e-6)")
+    set=(--set contact.model=exact-transient --set contact.grid=fixed --set contact.dx="$dx"
+         --set contact.dy="$(python3 -c "print(2.5 * $dx)")" --set passage.step_length="$dx")
+  fi
   rm -f "$f"
-  if ./target/release/corrugation run "configs/$1.toml" -o "$f" --set contact.model="$2" \
-    --set contact.elements_x="$3" --set contact.elements_y="$3" --set output.store_fields=false 2> "$f.log"; then
+  if ./target/release/corrugation run "configs/$1.toml" -o "$f" "${set[@]}" --set output.store_fields=false \
+    2> "$f.log"; then
     echo "$1,$2,$3,$f,$5" >> "$manifest"
   else
     echo "$1 $2 $3: failed, left out:" >&2
@@ -35,7 +45,8 @@ run() { # scene model mesh repeat reference
   fi
 }
 for scene in "${scenes[@]}"; do
-  run "$scene" exact-transient "$ref" 1 1
+  run "$scene" exact-fixed "$ref" 1 1
+  for um in "${fixed[@]}"; do run "$scene" exact-fixed "$um" 1 0; done
   for n in "${exact[@]}"; do run "$scene" exact-transient "$n" 1 0; done
   for model in fastsim simplified-transient; do
     for n in "${cheap[@]}"; do for r in 1 2 3; do run "$scene" "$model" "$n" "$r" 0; done; done

@@ -14,8 +14,8 @@ errors against its scene's reference are:
   at the imposed load wavelength (the first harmonic, which drives growth);
 * ``harmonic_phase``: its phase error (rad, wrapped to (-pi, pi]);
 * ``creepage_l2``: relative L2 difference of the creepage history
-  ``creepage_x(step)`` over the steps with the patch centre on the recorded
-  stretch (after the run-in, whose first, Cattaneo step of the transient
+  ``creepage_x(x_c)`` (interpolated onto the reference's steps) over the
+  steps with the patch centre on the recorded stretch (after the run-in, whose first, Cattaneo step of the transient
   models has a creepage ~50 times the steady one);
 
 and the cost is the CPU time of the passage (``passes/cpu_seconds``; the
@@ -39,7 +39,7 @@ from .io import Run, RunFileError, parse_config, read_csv, root_attrs, write_csv
 
 CSV_COLUMNS = ("scene", "model", "mesh", "repeats", "cpu_seconds", "wear_l2", "wear_fluct_l2", "harmonic_amp",
                "harmonic_phase", "creepage_l2", "pareto")
-MARKERS = {"exact-transient": "o", "simplified-transient": "s", "fastsim": "^"}
+MARKERS = {"exact-transient": "o", "exact-fixed": "D", "simplified-transient": "s", "fastsim": "^"}
 
 
 def _wavelength(path) -> float:
@@ -65,6 +65,17 @@ def _curves(path):
     with run.pass_table() as ps:
         cpu = float(ps["cpu_seconds"].values.sum())
     return x, w, creep, cpu
+
+
+def _creepage(path):
+    """(x_c, creepage_x) of the steps with the patch centre on the recorded stretch."""
+    run = Run.open(path)
+    with run.rail() as rail:
+        x = rail["x"].values
+    with run.contact(run.contact_passes()[0]) as ct:
+        xc = ct["x_c"].values
+        on_stretch = (xc >= x[0]) & (xc <= x[-1])
+        return xc[on_stretch], ct["creepage_x"].values[on_stretch]
 
 
 def _harmonic(x, w, wavelength):
@@ -103,7 +114,8 @@ def evaluate(manifest_rows):
     for (scene, model, mesh), files in sorted(groups.items()):
         if scene not in refs:
             raise RunFileError(f"scene {scene}: no reference run in the manifest")
-        rx, rw, rc, _ = _curves(refs[scene])
+        rx, rw, _, _ = _curves(refs[scene])
+        ref_xc, rc = _creepage(refs[scene])
         wavelength = _wavelength(refs[scene])
         h_ref = _harmonic(rx, rw, wavelength)
         x, w, creep, _ = _curves(files[0])
@@ -115,7 +127,8 @@ def evaluate(manifest_rows):
             "wear_l2": _rel_l2(np.interp(rx, x, w), rw),
             "wear_fluct_l2": _rel_l2(np.interp(rx, x, w) - np.mean(np.interp(rx, x, w)), rw - np.mean(rw)),
             "harmonic_amp": float(abs(h) / abs(h_ref) - 1.0) if abs(h_ref) > 0 else math.nan,
-            "harmonic_phase": phase, "creepage_l2": _rel_l2(creep, rc), "pareto": 0,
+            "harmonic_phase": phase, "creepage_l2": _rel_l2(np.interp(ref_xc, *_creepage(files[0])), rc),
+            "pareto": 0,
         })
     for scene in {r["scene"] for r in out}:
         rows = [r for r in out if r["scene"] == scene and r["wear_l2"] > 0]
