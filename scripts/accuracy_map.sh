@@ -6,15 +6,18 @@
 # km/h, eps = 1e-5 m/s, V dt = 0.2 mm) with the load wavelength set to
 # 10, 15, 20, 30, 45, 60 mm (lambda / 2a_max = 0.74 ... 4.45); a run-in of one
 # wavelength (at least 20 mm), one recorded wavelength.
-# Models: exact-transient (Gauss-Seidel) at 6, 8, 10, 14, 20, 28; simplified-
-# transient and FASTSIM at 10, 20, 40. Reference per wavelength: Richardson
-# extrapolation of the exact 14 x 14, 20 x 20 and 28 x 28 wear profiles with
-# the observed order of convergence (corrugation_post accuracy-map).
+# Models: exact-transient (Gauss-Seidel) at 6, 8, 10, 14, 20, 28 (adapted
+# mesh, 0.2 mm steps) and on the fixed grid ("exact-fixed", mesh = element
+# length in um: 400, 280, 200, 140, dy = 2.5 dx, the step the element);
+# simplified-transient and FASTSIM at 10, 20, 40. Reference per wavelength:
+# Richardson extrapolation of the fixed grid's 0.28, 0.2 and 0.14 mm wear
+# profiles with the observed order (corrugation_post accuracy-map). The
+# cost column is CPU time per 0.2 mm rolled (a step of the adapted mesh).
 #
 # Writes out/accuracy_map/accuracy_map.{csv,png} and, with --install, copies
 # the CSV to src/model_choice/accuracy_map.csv (the table compiled into the
 # binary) and the chart to docs/figures/accuracy_map.png.
-# About 5 minutes on 2 cores.
+# About 25 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 install=0
@@ -30,14 +33,21 @@ for lambda in 0.010 0.015 0.020 0.030 0.045 0.060; do
   end=$(python3 -c "print($lambda + 0.010)")
   run() { # model mesh
     local f="$out/runs/${lambda}_$1_$2.h5"
+    local set=(--set contact.model="$1" --set contact.elements_x="$2" --set contact.elements_y="$2")
+    if [ "$1" = exact-fixed ]; then
+      local dx
+      dx=$(python3 -c "print($2 * 1e-6)")
+      set=(--set contact.model=exact-transient --set contact.grid=fixed --set contact.dx="$dx"
+           --set contact.dy="$(python3 -c "print(2.5 * $dx)")" --set passage.step_length="$dx")
+    fi
     rm -f "$f"
-    ./target/release/corrugation run configs/paper_normal_30mm.toml -o "$f" --set contact.model="$1" \
-      --set contact.elements_x="$2" --set contact.elements_y="$2" --set output.store_fields=false \
+    ./target/release/corrugation run configs/paper_normal_30mm.toml -o "$f" "${set[@]}" --set output.store_fields=false \
       --set "load.harmonics[0].wavelength=$lambda" --set passage.start="$start" --set passage.end="$end" \
       --set rail.x_max="$lambda" > "$out/runs/${lambda}_$1_$2.log" 2>&1
     echo "$lambda,$1,$2,$f" >> "$manifest"
   }
   for n in 6 8 10 14 20 28; do run exact-transient "$n"; done
+  for um in 400 280 200 140; do run exact-fixed "$um"; done
   for n in 10 20 40; do run simplified-transient "$n"; run fastsim "$n"; done
 done
 PYTHONPATH=postprocess .venv/bin/python -m corrugation_post accuracy-map "$manifest" --out "$out"

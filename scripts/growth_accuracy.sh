@@ -4,9 +4,10 @@
 # dynamics) for 3 passages at a fixed traffic scale of 2e3, every model and
 # mesh. Accuracy: the growth rates (dB per 1e5 passages) of the filtered
 # profile's harmonics of 10-40 mm in the last passage, against the
-# Richardson extrapolation of the fixed grid's 0.28, 0.2 and 0.14 mm runs
-# (dy = 2.5 dx; model "exact-fixed", mesh = element length in um) with the
-# observed order (relative L2 over the harmonics). Cost: CPU time per passage.
+# Richardson extrapolation of the fixed grid's 0.3, 0.2 and 0.15 mm runs
+# (dy = 2.5 dx; model "exact-fixed", mesh = element length in um; elements
+# that divide the 120 mm stretch) with the observed order (relative L2 over
+# the harmonics). Cost: CPU time per passage.
 # Writes out/growth_accuracy/growth_accuracy.csv and prints the table.
 # About 20 minutes on 2 cores.
 set -euo pipefail
@@ -30,7 +31,7 @@ run() { # model mesh [overrides...] (default: the model on an n x n mesh)
   echo "$model,$mesh,$f" >> "$manifest"
 }
 for n in 10 14 20 28; do run exact-transient "$n"; done
-for um in 400 280 200 140; do
+for um in 400 300 200 150; do
   dx=$(python3 -c "print($um * 1e-6)")
   run exact-fixed "$um" --set contact.model=exact-transient --set contact.grid=fixed --set contact.dx="$dx" \
     --set contact.dy="$(python3 -c "print(2.5 * $dx)")" --set passage.step_length="$dx"

@@ -25,18 +25,15 @@ fn print_auto(a: &AutoChoice) {
     );
     let c = &a.chosen;
     println!(
-        "auto choice        {} {} x {}: predicted error {:.4}, {:.3} ms CPU per step (the cheapest within the tolerance)",
-        c.model.name(),
-        c.mesh,
-        c.mesh,
+        "auto choice        {}: predicted error {:.4}, {:.3} ms CPU per 0.2 mm rolled (the cheapest within the tolerance)",
+        c.label(),
         c.wear_error,
         ms(c)
     );
     if let Some(e) = &a.exact {
         println!(
-            "auto exact         exact-transient would need {} x {}: predicted error {:.4}, {:.3} ms CPU per step",
-            e.mesh,
-            e.mesh,
+            "auto exact         exact-transient would need {}: predicted error {:.4}, {:.3} ms CPU per 0.2 mm",
+            e.label(),
             e.wear_error,
             ms(e)
         );
@@ -46,7 +43,7 @@ fn print_auto(a: &AutoChoice) {
         .iter()
         .map(|c| {
             let mark = if c.wear_error <= SAFETY * a.tolerance { "ok" } else { "no" };
-            format!("{} {}: {:.3} in {:.2} ms {mark}", c.model.name(), c.mesh, c.wear_error, ms(c))
+            format!("{}: {:.3} in {:.2} ms {mark}", c.label(), c.wear_error, ms(c))
         })
         .collect();
     println!("auto candidates    (cheapest first) {}", list.join("; "));
@@ -190,7 +187,9 @@ pub fn print_check(r: &Resolved) {
         }
     };
     // With "auto", the map's own measurement of the chosen model.
-    let contact = s.contact.auto.map_or(contact, |a| a.chosen.cpu_per_step);
+    // (per 0.2 mm rolled: per step of the fixed grid in proportion to its element).
+    let contact =
+        s.contact.auto.map_or(contact, |a| a.chosen.cpu_per_step * a.chosen.grid_dx().map_or(1.0, |dx| dx / 2e-4));
     let deposit = if fixed_step.is_some() { 0.0 } else { p.substeps as f64 * nodes * 20e-9 };
     let secs = p.n_steps() as f64 * (contact + deposit);
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);

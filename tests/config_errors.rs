@@ -153,6 +153,20 @@ fn fixed_grid_keys() {
 }
 
 #[test]
+fn fixed_grid_steps_divide_a_growth_stretch() {
+    let growth = include_str!("../configs/growth_exact.toml");
+    let set =
+        |dx: &str| ["contact.grid=fixed".to_string(), format!("contact.dx={dx}"), format!("passage.step_length={dx}")];
+    assert_eq!(errors(growth, &set("3e-4").each_ref().map(String::as_str)), Vec::<String>::new());
+    let e = errors(growth, &set("2.8e-4").each_ref().map(String::as_str));
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(
+        e[0].contains("contact.dx: = 0.00028 m must divide the periodic stretch rail.x_max - rail.x_min = 0.12 m"),
+        "{e:?}"
+    );
+}
+
+#[test]
 fn missing_keys_and_syntax() {
     let e = errors(&BASE.replace("young_modulus = 2.1e11          # Pa\n", ""), &[]);
     assert_eq!(e, vec!["material.young_modulus: missing; expected a finite number > 0".to_string()]);

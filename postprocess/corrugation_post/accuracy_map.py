@@ -26,6 +26,9 @@ from .speed_accuracy import _curves, _rel_l2, chart, pareto
 
 COLUMNS = ("model", "mesh", "wavelength", "lambda_over_2a", "wear_error", "cpu_per_step", "reference_order")
 
+# The exact model on the fixed grid; its "mesh" is the element length in um.
+FIXED = "exact-fixed"
+
 
 def observed_order(n, d12: float, d23: float) -> float:
     """The order p of ``w(n) = w_inf + c n^-p`` from the differences of three
@@ -76,17 +79,23 @@ def evaluate(manifest_rows) -> list[dict]:
         by_wavelength[float(r["wavelength"])].append((r["model"], int(r["mesh"]), r["file"]))
     out = []
     for wavelength, runs in sorted(by_wavelength.items()):
-        exact = [(m, f) for model, m, f in runs if model == "exact-transient"]
+        # The reference: the fixed grid's three finest runs when there are
+        # three (refinement 1/dx), else the adapted mesh's.
+        exact = [(1.0 / m, f) for model, m, f in runs if model == FIXED]
+        if len(exact) < 3:
+            exact = [(m, f) for model, m, f in runs if model == "exact-transient"]
         if len(exact) < 3:
             raise RunFileError(f"wavelength {wavelength}: the reference needs three exact-transient runs")
         x, w_ref, order = reference_wear(exact)
         for model, mesh, f in sorted(runs):
             xr, w, _, cpu = _curves(f)
             a_max, steps = _a_max_and_steps(f)
+            # Cost per 0.2 mm rolled: the fixed grid's step is its element.
+            per_02mm = 200.0 / mesh if model == FIXED else 1.0
             out.append({
                 "model": model, "mesh": mesh, "wavelength": wavelength,
                 "lambda_over_2a": wavelength / (2.0 * a_max),
-                "wear_error": _rel_l2(np.interp(x, xr, w), w_ref), "cpu_per_step": cpu / steps,
+                "wear_error": _rel_l2(np.interp(x, xr, w), w_ref), "cpu_per_step": cpu / steps * per_02mm,
                 "reference_order": order,
             })
     return out
@@ -143,8 +152,6 @@ def _refinement(model: str, mesh: int) -> float:
     (``exact-fixed`` runs give the element length in um as ``mesh``)."""
     return 1.0 / mesh if model == FIXED else float(mesh)
 
-
-FIXED = "exact-fixed"
 
 
 def evaluate_growth(manifest_rows) -> list[dict]:

@@ -13,11 +13,13 @@ mod growth;
 mod overrides;
 mod reader;
 
+use crate::contact::grid::{FrictionLaw, GridScheme};
 use crate::creep_coefficients::creep_coefficients;
 use crate::hertz::{Elastic, HertzShape};
 use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};
+use crate::model_choice::FIXED_ASPECT;
 use crate::params::{
-    ContactGrid, ContactModelKind, ContactParams, Geometry, Material, OutputParams, RailParams, Scene,
+    ContactGrid, ContactModelKind, ContactParams, FixedGridParams, Geometry, Material, OutputParams, RailParams, Scene,
 };
 pub use auto::AUTO;
 pub use contact::{DEFAULT_GRID_DX, DEFAULT_GRID_DY};
@@ -193,7 +195,8 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let loads = ImposedLoads { normal_force: normal, longitudinal_force: longitudinal, harmonics };
     check_loads(&loads, mu, dx, errors);
 
-    let Some(contact_grid) = contact::reconcile_step(&contact, step_length, step_given, &mut resolved, errors) else {
+    let Some(mut contact_grid) = contact::reconcile_step(&contact, step_length, step_given, &mut resolved, errors)
+    else {
         return (None, resolved);
     };
     let step_length = match contact_grid {
@@ -207,7 +210,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         return (None, resolved);
     };
     contact::check_model(&model, &contact_grid, &solver, errors);
-    let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(step_length)) =
+    let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(mut step_length)) =
         (k_over_h, substeps, start, end, step_length)
     else {
         return (None, resolved);
@@ -266,7 +269,23 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         let Some(choice) = auto::resolve(tolerance, &loads, growth.as_ref(), shape, errors) else {
             return (None, resolved);
         };
-        (choice.chosen.model, choice.chosen.mesh, choice.chosen.mesh, Some(choice))
+        // The fixed grid of the map: its element, dy = 2.5 dx, the step the
+        // element (the map measured it so); the adapted mesh n x n.
+        let chosen = choice.chosen;
+        let mesh = match chosen.grid_dx() {
+            Some(dx) => {
+                contact_grid = ContactGrid::Fixed(FixedGridParams {
+                    dx,
+                    dy: FIXED_ASPECT * dx,
+                    friction_law: FrictionLaw::Regularised,
+                    scheme: GridScheme::SecondOrder,
+                });
+                step_length = dx;
+                nx
+            }
+            None => chosen.mesh,
+        };
+        (chosen.model, mesh, mesh, Some(choice))
     } else {
         (ContactModelKind::ALL.into_iter().find(|m| m.name() == model).expect("validated choice"), nx, ny, None)
     };
@@ -297,6 +316,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         growth,
     };
     contact::check_grid_size(&scene, errors);
+    contact::check_periodic_steps(&scene, errors);
     (Some(scene), resolved)
 }
 

@@ -26,18 +26,29 @@ use std::sync::OnceLock;
 /// A candidate meets a tolerance T when its predicted error is <= SAFETY T.
 pub const SAFETY: f64 = 0.9;
 
+/// Map name of the exact-transient model on the fixed grid, whose `mesh`
+/// is the element length in um (dy = 2.5 dx, the step the element).
+pub const FIXED_GRID: &str = "exact-fixed";
+
+/// Element width over length of the fixed grids of the map.
+pub const FIXED_ASPECT: f64 = 2.5;
+
 /// One measured point of the map.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MapPoint {
     /// Contact model.
     pub model: ContactModelKind,
-    /// Elements per side (mesh n x n).
+    /// The exact model on the fixed grid (`mesh` is then its element length
+    /// in um).
+    pub fixed: bool,
+    /// Elements per side (mesh n x n), or the fixed grid's element length (um).
     pub mesh: usize,
     /// lambda / 2a_max (1).
     pub lambda_over_2a: f64,
     /// Relative L2 error of the centre-line wear profile (1).
     pub wear_error: f64,
-    /// CPU time per contact step (s), on the machine that made the map.
+    /// CPU time per 0.2 mm rolled (s; a step of the adapted mesh's
+    /// configs), on the machine that made the map.
     pub cpu_per_step: f64,
 }
 
@@ -52,12 +63,30 @@ pub struct AccuracyMap {
 pub struct Candidate {
     /// Contact model.
     pub model: ContactModelKind,
-    /// Elements per side.
+    /// The exact model on the fixed grid.
+    pub fixed: bool,
+    /// Elements per side, or the fixed grid's element length (um).
     pub mesh: usize,
     /// Predicted relative wear error (1).
     pub wear_error: f64,
-    /// Predicted CPU time per step (s).
+    /// Predicted CPU time per 0.2 mm rolled (s).
     pub cpu_per_step: f64,
+}
+
+impl Candidate {
+    /// "exact-transient 20 x 20" or "exact-transient fixed grid 0.20 mm".
+    pub fn label(&self) -> String {
+        if self.fixed {
+            format!("{} fixed grid {:.2} mm", self.model.name(), self.mesh as f64 / 1e3)
+        } else {
+            format!("{} {} x {}", self.model.name(), self.mesh, self.mesh)
+        }
+    }
+
+    /// The fixed grid's element length (m), when it is one.
+    pub fn grid_dx(&self) -> Option<f64> {
+        self.fixed.then(|| self.mesh as f64 / 1e6)
+    }
 }
 
 /// What "auto" chose, and the alternatives it weighed.
@@ -104,7 +133,7 @@ pub enum ChoiceError {
     },
     /// No model and mesh of the map is predicted to meet the tolerance.
     #[error(
-        "no model meets {tolerance}: the most accurate, {model} {mesh} x {mesh}, is predicted at {best:.4} \
+        "no model meets {tolerance}: the most accurate, {label}, is predicted at {best:.4} \
          (a tolerance must be >= the predicted error / {SAFETY})"
     )]
     Unreachable {
@@ -112,10 +141,8 @@ pub enum ChoiceError {
         tolerance: f64,
         /// The smallest predicted error.
         best: f64,
-        /// Its model.
-        model: &'static str,
-        /// Its mesh.
-        mesh: usize,
+        /// Its model and mesh ([`Candidate::label`]).
+        label: String,
     },
 }
 
@@ -142,9 +169,15 @@ impl AccuracyMap {
                 f.get(k).and_then(|v| v.parse::<f64>().ok()).filter(|v| v.is_finite() && *v >= 0.0).ok_or(bad(what))
             };
             let name = f.get(m).ok_or(bad("model"))?;
-            let model = ContactModelKind::ALL.into_iter().find(|k| k.name() == *name).ok_or(bad("model"))?;
+            let fixed = *name == FIXED_GRID;
+            let model = if fixed {
+                ContactModelKind::ExactTransient
+            } else {
+                ContactModelKind::ALL.into_iter().find(|k| k.name() == *name).ok_or(bad("model"))?
+            };
             points.push(MapPoint {
                 model,
+                fixed,
                 mesh: f.get(n).and_then(|v| v.parse().ok()).ok_or(bad("mesh"))?,
                 lambda_over_2a: number(r, "lambda_over_2a")?,
                 wear_error: number(e, "wear_error")?,
@@ -170,11 +203,13 @@ impl AccuracyMap {
 
     /// Predicted error and cost of (model, mesh) at `lambda_over_2a`, or
     /// None when the map does not hold that pair or the ratio is below it.
-    pub fn predict(&self, model: ContactModelKind, mesh: usize, lambda_over_2a: f64) -> Option<Candidate> {
-        let mut pts: Vec<&MapPoint> = self.points.iter().filter(|p| p.model == model && p.mesh == mesh).collect();
+    pub fn predict(&self, model: ContactModelKind, fixed: bool, mesh: usize, lambda_over_2a: f64) -> Option<Candidate> {
+        let mut pts: Vec<&MapPoint> =
+            self.points.iter().filter(|p| p.model == model && p.fixed == fixed && p.mesh == mesh).collect();
         pts.sort_by(|a, b| a.lambda_over_2a.total_cmp(&b.lambda_over_2a));
         let (first, last) = (pts.first()?, pts.last()?);
-        let at = |p: &MapPoint| Candidate { model, mesh, wear_error: p.wear_error, cpu_per_step: p.cpu_per_step };
+        let at =
+            |p: &MapPoint| Candidate { model, fixed, mesh, wear_error: p.wear_error, cpu_per_step: p.cpu_per_step };
         if lambda_over_2a < first.lambda_over_2a * (1.0 - 1e-9) {
             return None;
         }
@@ -187,6 +222,7 @@ impl AccuracyMap {
         let lerp = |x: f64, y: f64| x + t * (y - x);
         Some(Candidate {
             model,
+            fixed,
             mesh,
             wear_error: lerp(a.wear_error, b.wear_error),
             cpu_per_step: lerp(a.cpu_per_step, b.cpu_per_step),
@@ -196,11 +232,12 @@ impl AccuracyMap {
     /// Every (model, mesh) of the map predicted at `lambda_over_2a`,
     /// cheapest first.
     pub fn candidates(&self, lambda_over_2a: f64) -> Vec<Candidate> {
-        let mut keys: Vec<(ContactModelKind, usize)> = self.points.iter().map(|p| (p.model, p.mesh)).collect();
-        keys.sort_by_key(|(m, n)| (m.name(), *n));
+        let mut keys: Vec<(ContactModelKind, bool, usize)> =
+            self.points.iter().map(|p| (p.model, p.fixed, p.mesh)).collect();
+        keys.sort_by_key(|(m, f, n)| (m.name(), *f, *n));
         keys.dedup();
         let mut out: Vec<Candidate> =
-            keys.into_iter().filter_map(|(m, n)| self.predict(m, n, lambda_over_2a)).collect();
+            keys.into_iter().filter_map(|(m, f, n)| self.predict(m, f, n, lambda_over_2a)).collect();
         out.sort_by(|a, b| a.cpu_per_step.total_cmp(&b.cpu_per_step).then(a.wear_error.total_cmp(&b.wear_error)));
         out
     }
@@ -217,12 +254,7 @@ impl AccuracyMap {
         let meets = |c: &&Candidate| c.wear_error <= SAFETY * tolerance;
         let Some(chosen) = candidates.iter().find(meets).copied() else {
             let best = candidates.iter().min_by(|a, b| a.wear_error.total_cmp(&b.wear_error)).expect("not empty");
-            return Err(ChoiceError::Unreachable {
-                tolerance,
-                best: best.wear_error,
-                model: best.model.name(),
-                mesh: best.mesh,
-            });
+            return Err(ChoiceError::Unreachable { tolerance, best: best.wear_error, label: best.label() });
         };
         let exact = candidates.iter().filter(|c| c.model == ContactModelKind::ExactTransient).find(meets).copied();
         Ok(Choice { chosen, exact, lambda_over_2a, tolerance, candidates })
@@ -240,7 +272,8 @@ pub fn departures(scene: &crate::params::Scene) -> Vec<String> {
     if !(1e-6..=1e-4).contains(&eps) {
         notes.push(format!("contact.regularisation = {eps:e} m/s (map: 1e-5; wear moves ~10 % per decade above 1e-4)"));
     }
-    if !(1.3e-4..=3e-4).contains(&scene.step_length) {
+    let adapted = scene.contact.grid == crate::params::ContactGrid::Adapted;
+    if adapted && !(1.3e-4..=3e-4).contains(&scene.step_length) {
         notes.push(format!("passage.step_length = {:e} m (map: 2e-4; the error grows with V dt)", scene.step_length));
     }
     let l = &scene.loads;

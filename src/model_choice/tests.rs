@@ -23,13 +23,13 @@ fn map() -> AccuracyMap {
 #[test]
 fn interpolates_in_log_ratio_and_clamps_above_the_map() {
     let m = map();
-    let mid = m.predict(ExactTransient, 20, 2f64.sqrt()).unwrap();
+    let mid = m.predict(ExactTransient, false, 20, 2f64.sqrt()).unwrap();
     assert!((mid.wear_error - 0.125).abs() < 1e-12, "halfway in ln r: {}", mid.wear_error);
     assert!((mid.cpu_per_step - 0.0225).abs() < 1e-12);
-    assert_eq!(m.predict(Fastsim, 20, 50.0).unwrap().wear_error, 0.40, "above: the top of the map");
-    assert_eq!(m.predict(Fastsim, 20, f64::INFINITY).unwrap().wear_error, 0.40, "no wavelength");
-    assert!(m.predict(Fastsim, 20, 0.9).is_none(), "below the map");
-    assert!(m.predict(Fastsim, 40, 1.5).is_none(), "mesh not in the map");
+    assert_eq!(m.predict(Fastsim, false, 20, 50.0).unwrap().wear_error, 0.40, "above: the top of the map");
+    assert_eq!(m.predict(Fastsim, false, 20, f64::INFINITY).unwrap().wear_error, 0.40, "no wavelength");
+    assert!(m.predict(Fastsim, false, 20, 0.9).is_none(), "below the map");
+    assert!(m.predict(Fastsim, false, 40, 1.5).is_none(), "mesh not in the map");
 }
 
 #[test]
@@ -63,8 +63,27 @@ fn refuses_outside_the_map_and_unreachable_tolerances() {
     let m = map();
     assert_eq!(m.choose(0.5, 0.5).unwrap_err(), ChoiceError::OutsideMap { lambda_over_2a: 0.5, min: 1.0 });
     let e = m.choose(1.0, 0.05).unwrap_err();
-    assert!(matches!(e, ChoiceError::Unreachable { best, mesh: 28, .. } if best == 0.10), "{e:?}");
+    assert!(
+        matches!(&e, ChoiceError::Unreachable { best, label, .. } if *best == 0.10 && label == "exact-transient 28 x 28"),
+        "{e:?}"
+    );
     assert!(e.to_string().contains("exact-transient 28 x 28"), "{e}");
+}
+
+#[test]
+fn fixed_grid_rows_are_candidates_of_their_own() {
+    // The fixed grid at 0.2 mm (mesh in um): more accurate than exact 28 x 28
+    // and cheaper; chosen where it is the cheapest within the tolerance.
+    let text = format!("{MAP}exact-fixed,200,0.015,1.0,0.02,0.03\nexact-fixed,200,0.030,2.0,0.01,0.03\n");
+    let m = AccuracyMap::parse(&text).unwrap();
+    let c = m.choose(1.0, 0.05).unwrap();
+    assert!(c.chosen.fixed && c.chosen.mesh == 200 && c.chosen.model == ExactTransient, "{c:?}");
+    assert_eq!(c.chosen.label(), "exact-transient fixed grid 0.20 mm");
+    assert_eq!(c.chosen.grid_dx(), Some(2e-4));
+    assert_eq!(c.exact, Some(c.chosen), "the fixed grid is the exact model");
+    // An adapted mesh of the same number is another candidate.
+    assert!(!m.predict(ExactTransient, false, 20, 1.0).unwrap().fixed);
+    assert!(m.predict(ExactTransient, true, 20, 1.0).is_none());
 }
 
 #[test]

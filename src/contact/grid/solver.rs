@@ -122,6 +122,18 @@ struct History {
     xi: f64,
 }
 
+/// The earlier-displacement term of a step and its warm start.
+struct Earlier {
+    /// `u~` at the elements in contact, interleaved (m).
+    u_prev: Vec<f64>,
+    /// Weight of the current displacement (1 or 3/2).
+    beta: f64,
+    /// Warm-start slips, interleaved (m/s).
+    s0: Vec<f64>,
+    /// Warm-start creepage.
+    xi0: f64,
+}
+
 /// The fixed-grid exact transient model.
 #[derive(Debug, Clone)]
 pub struct FixedGrid {
@@ -240,19 +252,7 @@ impl FixedGrid {
             }
         }
         let whole = ContactSet::new(nx, n, |k| p3[k] > 0.0);
-        if let Some(&k) = whole.element.iter().find(|&&k| {
-            let (ix, iy) = (k % nx, k / nx);
-            ix < 2 || ix + 1 >= nx || iy == 0 || iy + 1 >= ny
-        }) {
-            return Err(ContactError::NoConvergence {
-                force,
-                reason: format!(
-                    "the contact area reaches the edge of the potential-contact grid at element ({}, {}) of {nx} x {ny}: the patch is larger than the grid was sized for",
-                    k % nx,
-                    k / nx
-                ),
-            });
-        }
+        self.check_inside(&whole).map_err(|reason| ContactError::NoConvergence { force, reason })?;
         let set = match folded {
             Some(f) => ContactSet::new(nx, f.half_rows() * nx, |k| p3[k] > 0.0),
             None => whole,
@@ -270,34 +270,7 @@ impl FixedGrid {
                 [-input.spin * y, input.creepage_y + input.spin * x]
             })
             .collect();
-        // Earlier displacements, shifted by whole columns.
-        let mut u_prev = vec![0.0; 2 * nc];
-        let mut beta = 1.0;
-        let (mut s0, mut xi0) = (vec![0.0; 2 * nc], 0.0);
-        if let Some(h) = &self.history {
-            let at = |f: &(Vec<f64>, Vec<f64>), k: usize, back: usize| {
-                let (ix, iy) = (k % nx, k / nx);
-                (f.0[iy * nx + ix - back], f.1[iy * nx + ix - back])
-            };
-            let second = self.spec.scheme == GridScheme::SecondOrder && h.older.is_some();
-            for (c, &k) in set.element.iter().enumerate() {
-                let (ox, oy) = at(&h.u, k, 1);
-                if second {
-                    let (qx, qy) = at(h.older.as_ref().expect("checked"), k, 2);
-                    u_prev[2 * c] = 2.0 * ox - 0.5 * qx;
-                    u_prev[2 * c + 1] = 2.0 * oy - 0.5 * qy;
-                } else {
-                    u_prev[2 * c] = ox;
-                    u_prev[2 * c + 1] = oy;
-                }
-                s0[2 * c] = h.s[2 * k];
-                s0[2 * c + 1] = h.s[2 * k + 1];
-            }
-            if second {
-                beta = 1.5;
-            }
-            xi0 = h.xi;
-        }
+        let Earlier { u_prev, beta, s0, xi0 } = self.earlier(&set);
         let law = self.law();
         let mut scratch = std::mem::take(&mut self.scratch);
         let kappa = self.creepage_stiffness(&mut scratch, &set, &weight, &mu_p3, &s0, beta, input);
@@ -361,9 +334,78 @@ impl FixedGrid {
                 ),
             }
         })?;
+        let (out, s_grid) = self.expand(input, &set, &weight, &p3, &sol);
+        let older = self.history.take().map(|h| h.u);
+        self.history = Some(History { u: (ux, uy), older, p3, s: s_grid, xi: sol.xi });
+        Ok(out)
+    }
+
+    /// The elements in contact must keep off the grid's edge: two columns at
+    /// the leading edge (they supply the earlier displacements), one
+    /// element elsewhere.
+    fn check_inside(&self, set: &ContactSet) -> Result<(), String> {
+        let (nx, ny) = (self.grid.nx, self.grid.ny);
+        match set.element.iter().find(|&&k| {
+            let (ix, iy) = (k % nx, k / nx);
+            ix < 2 || ix + 1 >= nx || iy == 0 || iy + 1 >= ny
+        }) {
+            Some(&k) => Err(format!(
+                "the contact area reaches the edge of the potential-contact grid at element ({}, {}) of {nx} x {ny}: \
+                 the patch is larger than the grid was sized for",
+                k % nx,
+                k / nx
+            )),
+            None => Ok(()),
+        }
+    }
+
+    /// The earlier-displacement term `u~` and weight `beta` of the
+    /// difference at the elements of `set` (the stored fields shifted by
+    /// one and two columns), and the warm start (the last step's slips at
+    /// the same elements, its creepage). A virgin start: zeros, beta = 1.
+    fn earlier(&self, set: &ContactSet) -> Earlier {
+        let (nx, nc) = (self.grid.nx, set.len());
+        let mut e = Earlier { u_prev: vec![0.0; 2 * nc], beta: 1.0, s0: vec![0.0; 2 * nc], xi0: 0.0 };
+        let Some(h) = &self.history else {
+            return e;
+        };
+        let at = |f: &(Vec<f64>, Vec<f64>), k: usize, back: usize| (f.0[k - back], f.1[k - back]);
+        let older = h.older.as_ref().filter(|_| self.spec.scheme == GridScheme::SecondOrder);
+        for (c, &k) in set.element.iter().enumerate() {
+            debug_assert!(k % nx >= 2, "kept off the leading edge by check_inside");
+            let (ox, oy) = at(&h.u, k, 1);
+            let (ux, uy) = match older {
+                Some(o) => {
+                    let (qx, qy) = at(o, k, 2);
+                    (2.0 * ox - 0.5 * qx, 2.0 * oy - 0.5 * qy)
+                }
+                None => (ox, oy),
+            };
+            e.u_prev[2 * c] = ux;
+            e.u_prev[2 * c + 1] = uy;
+            e.s0[2 * c] = h.s[2 * k];
+            e.s0[2 * c + 1] = h.s[2 * k + 1];
+        }
+        e.beta = if older.is_some() { 1.5 } else { 1.0 };
+        e.xi0 = h.xi;
+        e
+    }
+
+    /// The step's solution on the whole grid (zero outside contact; a
+    /// folded element and its mirror image, y components negated) and the
+    /// slips kept for the next warm start.
+    fn expand(
+        &self,
+        input: &StepInput,
+        set: &ContactSet,
+        weight: &[f64],
+        p3: &[f64],
+        sol: &tangential::GridSolution,
+    ) -> (PatchSolution, Vec<f64>) {
+        let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
         let mut out = PatchSolution {
             creepage: Creepage { x: sol.xi, y: input.creepage_y, spin: input.spin },
-            pressure: p3.clone(),
+            pressure: p3.to_vec(),
             traction_x: vec![0.0; n],
             traction_y: vec![0.0; n],
             slip_x: vec![0.0; n],
@@ -375,13 +417,13 @@ impl FixedGrid {
         let mut s_grid = vec![0.0; 2 * n];
         for (c, &k) in set.element.iter().enumerate() {
             let (sx, sy) = (sol.s[2 * c], sol.s[2 * c + 1]);
-            let stick = match law {
+            let stick = match self.law() {
                 Law::Regularised { eps } => sx.hypot(sy) < STICK_SLIP_FACTOR * eps,
                 Law::Coulomb => sx == 0.0 && sy == 0.0,
             };
-            // The element, and its mirror image (y components negated).
-            let images = if weight[c] == 2.0 { [(k, 1.0), (mirror(k), -1.0)].to_vec() } else { vec![(k, 1.0)] };
-            for (e, sign) in images {
+            let mirror = (ny - 1 - k / nx) * nx + k % nx;
+            let images: &[(usize, f64)] = if weight[c] == 2.0 { &[(k, 1.0), (mirror, -1.0)] } else { &[(k, 1.0)] };
+            for &(e, sign) in images {
                 out.traction_x[e] = sol.p[2 * c];
                 out.traction_y[e] = sign * sol.p[2 * c + 1];
                 out.slip_x[e] = sx;
@@ -391,11 +433,10 @@ impl FixedGrid {
                 s_grid[2 * e + 1] = sign * sy;
             }
         }
+        let area = self.grid.area();
         out.force_x = out.traction_x.iter().sum::<f64>() * area;
         out.force_y = out.traction_y.iter().sum::<f64>() * area;
-        let older = self.history.take().map(|h| h.u);
-        self.history = Some(History { u: (ux, uy), older, p3, s: s_grid, xi: sol.xi });
-        Ok(out)
+        (out, s_grid)
     }
 
     /// dF_x/dxi_x estimate (N), as the adapted solver's: the stick area
