@@ -68,9 +68,11 @@ impl PeriodicSignal {
 }
 
 impl PassageSpec {
-    /// Number of contact steps (positions), at least 2.
+    /// Number of contact steps (positions), at least 2. A stretch that is a
+    /// whole number of steps up to rounding (1e-9 of a step) has exactly that
+    /// many.
     pub fn n_steps(&self) -> usize {
-        ((self.end - self.start) / self.step_length).ceil().max(1.0) as usize + 1
+        ((self.end - self.start) / self.step_length - 1e-9).ceil().max(1.0) as usize + 1
     }
 
     /// Patch-centre position of step `n` (m).
