@@ -22,7 +22,8 @@ run() { # model mesh [overrides...] (default: the model on an n x n mesh)
   local model=$1 mesh=$2
   shift 2
   local f="$out/runs/${model}_${mesh}.h5"
-  local set=(--set contact.model="$model" --set contact.elements_x="$mesh" --set contact.elements_y="$mesh")
+  local set=(--set contact.model="$model" --set contact.grid=adapted --set passage.step_length=2e-4
+             --set contact.elements_x="$mesh" --set contact.elements_y="$mesh")
   [ $# -gt 0 ] && set=("$@")
   rm -f "$f"
   ./target/release/corrugation run configs/growth_exact.toml -o "$f" "${set[@]}" --set growth.passes=3 \

@@ -109,6 +109,10 @@ fn fixed_grid_keys() {
     let r =
         load_str(&no_step, "no step", &[exact.into(), "contact.grid=fixed".into(), "contact.dx=3e-4".into()]).unwrap();
     assert_eq!(r.scene.step_length, 3e-4);
+    // The fixed grid's keys on the adapted mesh are checked and unused (a
+    // fixed-grid config switches back with --set contact.grid=adapted).
+    let r = load_str(BASE, "base", &[exact.into(), "contact.dx=4e-4".into()]).unwrap();
+    assert_eq!((r.scene.contact.grid, r.scene.step_length), (corrugation::params::ContactGrid::Adapted, 2e-4));
     // (overrides, expected fragment of the single error)
     let corpus: &[(&[&str], &str)] = &[
         (
@@ -123,7 +127,7 @@ fn fixed_grid_keys() {
             &[exact, "contact.grid=fixed", "contact.solver=newton"],
             "contact.solver: = \"newton\" is the adapted mesh's reference solver",
         ),
-        (&[exact, "contact.dx=4e-4"], "contact.dx: applies to contact.grid = \"fixed\" only"),
+        (&[exact, "contact.dx=0"], "contact.dx: = 0 is out of range; expected a number in (0, 0.01]"),
         (
             &[exact, "contact.grid=fixed", "contact.friction_law=sliding"],
             "contact.friction_law: = \"sliding\" is not allowed; expected one of \"regularised\", \"coulomb\"",

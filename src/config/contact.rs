@@ -47,7 +47,8 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
     let fixed = grid.as_deref() == Some("fixed");
     // "auto" chooses the mesh and reads a tolerance; the other models take a
     // mesh and have no tolerance. The fixed grid ignores the adapted mesh's
-    // keys (so that `--set contact.grid=fixed` switches a config over).
+    // keys and the other way round (so that `--set contact.grid=...`
+    // switches a config over).
     let (nx, ny, tolerance) = if auto {
         for key in ["elements_x", "elements_y"] {
             if s.has(key) {
@@ -74,11 +75,19 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         let scheme = s.choice("scheme", Some("second-order"), &["second-order", "first-order"]);
         Some(FixedKeys { dx, dx_given: given, dy, law, scheme })
     } else {
-        for key in ["dx", "dy", "friction_law", "scheme"] {
+        // The fixed grid's keys on the adapted mesh: checked, kept in the
+        // resolved config, unused (so that `--set contact.grid=adapted`
+        // switches a fixed-grid config over).
+        for key in ["dx", "dy"] {
             if s.has(key) {
-                s.error(key, "applies to contact.grid = \"fixed\" only; remove it, or set grid = \"fixed\"".into());
-                s.discard(key);
+                s.f64(key, None, Range::OpenClosed(0.0, 0.01));
             }
+        }
+        if s.has("friction_law") {
+            s.choice("friction_law", None, &["regularised", "coulomb"]);
+        }
+        if s.has("scheme") {
+            s.choice("scheme", None, &["second-order", "first-order"]);
         }
         None
     };

@@ -93,12 +93,6 @@ impl<'a> Section<'a> {
         self.table.contains_key(key)
     }
 
-    /// Removes `key` without reading it (after an error about it was
-    /// recorded, so that it is not also reported as unknown).
-    pub fn discard(&mut self, key: &str) {
-        self.table.remove(key);
-    }
-
     /// Records an error on `key`.
     pub fn error(&mut self, key: &str, message: String) {
         let k = self.key(key);
