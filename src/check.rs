@@ -32,7 +32,7 @@ fn print_auto(a: &AutoChoice) {
     );
     if let Some(e) = &a.exact {
         println!(
-            "auto exact         exact-transient would need {}: predicted error {:.4}, {:.3} ms CPU per 0.2 mm",
+            "auto exact         the exact model would need {}: predicted error {:.4}, {:.3} ms CPU per 0.2 mm",
             e.label(),
             e.wear_error,
             ms(e)
