@@ -4,7 +4,7 @@
 //! invariants: the earlier displacement by shifting, force balance, the
 //! friction bound, wear volume.
 mod common;
-use common::{STEEL, paper_shape, rel};
+use common::{STEEL, paper_shape, peak, rel};
 use corrugation::config::load_str;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::solver::FixedGridSpec;
@@ -187,12 +187,15 @@ const SCENE_C: [SceneC; 2] = [
     },
 ];
 
-fn peak(history: &[f64], step: f64) -> (f64, f64) {
-    history
-        .iter()
-        .enumerate()
-        .skip(1)
-        .fold((0.0, 0.0), |(m, at), (i, c)| if c.abs() > m { (c.abs(), i as f64 * step) } else { (m, at) })
+/// Scene c rolled on a grid of `cell` with `law` and `scheme`: (shift at
+/// rest (m), first step, (peak, its position (m)), steady creepage).
+fn scene_c(case: &SceneC, cell: (f64, f64), law: FrictionLaw, scheme: GridScheme) -> (f64, f64, (f64, f64), f64) {
+    let shape = paper_shape(case.concave);
+    let mut solver = grid_solver(&shape, paper_curvatures(case.concave), STEEL, 1e5, cell, (law, scheme, 1e-5));
+    let h = roll(&mut solver, &shape, 2e4, case.steps + 1);
+    let got = (h[0] * cell.0, h[1], peak(&h, cell.0), h[case.steps]);
+    eprintln!("concave {} {law:?} {scheme:?} {cell:?}: shift, first, (peak, at), steady {got:?}", case.concave);
+    got
 }
 
 #[test]
@@ -200,24 +203,14 @@ fn contact_scene_c_on_contacts_own_grid() {
     // With CONTACT's discretisation (first-order difference, its grid), both
     // friction laws reproduce CONTACT's shift at rest, first step, peak and
     // steady creepage within 0.5 %, the peak at the same step.
-    for SceneC { concave, cell, shift, first, peak: (peak_value, peak_at), steady, steps } in SCENE_C {
-        let shape = paper_shape(concave);
+    for case in &SCENE_C {
         for law in [FrictionLaw::Coulomb, FrictionLaw::Regularised] {
-            let mut solver =
-                grid_solver(&shape, paper_curvatures(concave), STEEL, 1e5, cell, (law, GridScheme::FirstOrder, 1e-5));
-            let h = roll(&mut solver, &shape, 2e4, steps + 1);
-            let (pv, pa) = peak(&h, cell.0);
-            eprintln!(
-                "concave {concave} {law:?}: shift {:.4e} first {:.4e} peak {pv:.4e} at {pa:.2e} steady {:.4e}",
-                h[0] * cell.0,
-                h[1],
-                h[steps]
-            );
-            assert!(rel(h[0] * cell.0, shift) < 5e-3, "shift");
-            assert!(rel(h[1], first) < 5e-3, "first step {} vs {first}", h[1]);
-            assert!(rel(pv, peak_value) < 5e-3, "peak {pv} vs {peak_value}");
-            assert!((pa - peak_at).abs() <= cell.0 + 1e-9, "peak at {pa} vs {peak_at}");
-            assert!(rel(h[steps], steady) < 5e-3, "steady {} vs {steady}", h[steps]);
+            let (shift, first, (pv, pa), steady) = scene_c(case, case.cell, law, GridScheme::FirstOrder);
+            assert!(rel(shift, case.shift) < 5e-3, "shift {shift} vs {}", case.shift);
+            assert!(rel(first, case.first) < 5e-3, "first step {first} vs {}", case.first);
+            assert!(rel(pv, case.peak.0) < 5e-3, "peak {pv} vs {:?}", case.peak);
+            assert!((pa - case.peak.1).abs() <= case.cell.0 + 1e-9, "peak at {pa} vs {:?}", case.peak);
+            assert!(rel(steady, case.steady) < 5e-3, "steady {steady} vs {}", case.steady);
         }
     }
 }
@@ -233,25 +226,14 @@ fn contact_scene_c_at_the_default_grid() {
     // 0.2 mm value, within 0.5 %; the peak, where the first-order bias is
     // larger (the same grid with the first-order difference gives CONTACT's
     // peak within 0.2 %, test above), within 2.5 %.
-    for SceneC { concave, shift, first, peak: (peak_value, peak_at), steady, steps, .. } in SCENE_C {
-        let shape = paper_shape(concave);
+    for case in &SCENE_C {
         for law in [FrictionLaw::Coulomb, FrictionLaw::Regularised] {
-            let cell = (2e-4, 5e-4);
-            let mut solver =
-                grid_solver(&shape, paper_curvatures(concave), STEEL, 1e5, cell, (law, GridScheme::SecondOrder, 1e-5));
-            let h = roll(&mut solver, &shape, 2e4, steps + 1);
-            let (pv, pa) = peak(&h, cell.0);
-            eprintln!(
-                "default concave {concave} {law:?}: shift {:.4e} first {:.4e} peak {pv:.4e} at {pa:.2e} steady {:.4e}",
-                h[0] * cell.0,
-                h[1],
-                h[steps]
-            );
-            assert!(rel(h[0] * cell.0, shift) < 0.01, "shift");
-            assert!(rel(h[1], first) < 0.01, "first step {} vs {first}", h[1]);
-            assert!(rel(pv, peak_value) < 0.025, "peak {pv} vs {peak_value}");
-            assert!((pa - peak_at).abs() <= 0.6e-3, "peak at {pa} vs {peak_at}");
-            assert!(rel(h[steps], 1.0095 * steady) < 0.005, "steady {} vs {steady}", h[steps]);
+            let (shift, first, (pv, pa), steady) = scene_c(case, (2e-4, 5e-4), law, GridScheme::SecondOrder);
+            assert!(rel(shift, case.shift) < 0.01, "shift {shift} vs {}", case.shift);
+            assert!(rel(first, case.first) < 0.01, "first step {first} vs {}", case.first);
+            assert!(rel(pv, case.peak.0) < 0.025, "peak {pv} vs {:?}", case.peak);
+            assert!((pa - case.peak.1).abs() <= 0.6e-3, "peak at {pa} vs {:?}", case.peak);
+            assert!(rel(steady, 1.0095 * case.steady) < 0.005, "steady {steady} vs {}", case.steady);
         }
     }
 }

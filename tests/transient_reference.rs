@@ -2,7 +2,7 @@
 //! Kalker's linear theory, Kalker's "from Cattaneo to Carter", and CONTACT's
 //! exact-theory solutions for the paper's patch (shared reference, scene c).
 mod common;
-use common::{STEEL, paper_coefficients, paper_shape, rel};
+use common::{STEEL, paper_coefficients, paper_shape, peak, rel};
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use corrugation::contact::transient::{ElasticModel, Transient};
@@ -76,15 +76,6 @@ fn contact_scene_c_shift_at_rest() {
         eprintln!("concave {concave}: shift {shift:.4e} vs {expected:.4e}");
         assert!(rel(shift, expected) < 0.03);
     }
-}
-
-/// Peak |creepage| and where it occurs (rolled distance, m).
-fn peak(history: &[f64], step: f64) -> (f64, f64) {
-    history
-        .iter()
-        .enumerate()
-        .skip(1)
-        .fold((0.0, 0.0), |(m, at), (i, c)| if c.abs() > m { (c.abs(), i as f64 * step) } else { (m, at) })
 }
 
 #[test]

@@ -31,3 +31,13 @@ pub fn table(text: &str) -> Vec<Vec<String>> {
         .map(|l| l.split_whitespace().map(str::to_string).collect())
         .collect()
 }
+
+/// Peak |creepage| of a history after its first (Cattaneo) step, and the
+/// rolled distance where it occurs (m), for steps of `step` m.
+pub fn peak(history: &[f64], step: f64) -> (f64, f64) {
+    history
+        .iter()
+        .enumerate()
+        .skip(1)
+        .fold((0.0, 0.0), |(m, at), (i, c)| if c.abs() > m { (c.abs(), i as f64 * step) } else { (m, at) })
+}
