@@ -4,7 +4,7 @@
 //! step, for the grid-convergence study of the README.
 //!
 //! `cargo run --release --example grid_steady -- DX DY [N F_X ROLLED LAW SCHEME TOLERANCE]`
-//! (m, m, N, N, m, regularised|coulomb, first-order|second-order, units of eps);
+//! (m, m, N, N, m, regularised|coulomb, first-|second-|third-order, units of eps);
 //! with `HISTORY=1` in the environment, every step's creepage and sweeps on stderr.
 
 use corrugation::contact::grid::solver::FixedGridSpec;
@@ -23,10 +23,10 @@ fn main() {
     } else {
         FrictionLaw::Regularised
     };
-    let scheme = if args.get(6).map(String::as_str) == Some("first-order") {
-        GridScheme::FirstOrder
-    } else {
-        GridScheme::SecondOrder
+    let scheme = match args.get(6).map(String::as_str) {
+        Some("first-order") => GridScheme::FirstOrder,
+        Some("third-order") => GridScheme::ThirdOrder,
+        _ => GridScheme::SecondOrder,
     };
     let elastic = Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 };
     let curvatures = Curvatures::wheel_on_rail(0.5, -0.409, 0.3);

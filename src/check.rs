@@ -86,11 +86,18 @@ pub fn print_check(r: &Resolved) {
         ContactGrid::Adapted => None,
     };
     if let Some((f, spec)) = &fixed {
-        let g = PotentialGrid::covering(spec.a_max, spec.b_max, f.dx, f.dy, spec.align_x, spec.align_y);
+        let g = PotentialGrid::covering(
+            spec.a_max,
+            spec.b_max,
+            (f.dx, f.dy),
+            spec.lead_columns(),
+            spec.align_x,
+            spec.align_y,
+        );
         let in_contact = |a: f64, b: f64| std::f64::consts::PI * a * b / (f.dx * f.dy);
         println!(
             "grid               fixed, {} x {} = {} elements of {:.4} x {:.4} mm over x in [{:.4}, {:.4}] mm, y in \
-             [{:.4}, {:.4}] mm (the patch at {:.4e} N with {:.0} % margin and two elements along x, one along y; FFT {} x {})",
+             [{:.4}, {:.4}] mm (the patch at {:.4e} N with {:.0} % margin and {} elements along x, one along y; FFT {} x {})",
             g.nx,
             g.ny,
             g.len(),
@@ -102,6 +109,7 @@ pub fn print_check(r: &Resolved) {
             mm(g.y_low + g.ny as f64 * g.dy),
             fixed_grid_load(s),
             GRID_MARGIN * 100.0,
+            spec.lead_columns(),
             smooth_padding(g.nx),
             smooth_padding(g.ny)
         );

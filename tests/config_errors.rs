@@ -133,8 +133,8 @@ fn fixed_grid_keys() {
             "contact.friction_law: = \"sliding\" is not allowed; expected one of \"regularised\", \"coulomb\"",
         ),
         (
-            &[exact, "contact.grid=fixed", "contact.scheme=third-order"],
-            "contact.scheme: = \"third-order\" is not allowed",
+            &[exact, "contact.grid=fixed", "contact.scheme=fourth-order"],
+            "contact.scheme: = \"fourth-order\" is not allowed",
         ),
         (
             &[exact, "contact.grid=fixed", "contact.dy=0"],

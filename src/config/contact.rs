@@ -72,7 +72,7 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         let dx = s.f64("dx", Some(DEFAULT_GRID_DX), Range::OpenClosed(0.0, 0.01));
         let dy = s.f64("dy", Some(DEFAULT_GRID_DY), Range::OpenClosed(0.0, 0.01));
         let law = s.choice("friction_law", Some("regularised"), &["regularised", "coulomb"]);
-        let scheme = s.choice("scheme", Some("second-order"), &["second-order", "first-order"]);
+        let scheme = s.choice("scheme", Some("second-order"), &["second-order", "first-order", "third-order"]);
         Some(FixedKeys { dx, dx_given: given, dy, law, scheme })
     } else {
         // The fixed grid's keys on the adapted mesh: checked, kept in the
@@ -87,7 +87,7 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
             s.choice("friction_law", None, &["regularised", "coulomb"]);
         }
         if s.has("scheme") {
-            s.choice("scheme", None, &["second-order", "first-order"]);
+            s.choice("scheme", None, &["second-order", "first-order", "third-order"]);
         }
         None
     };
@@ -133,7 +133,11 @@ pub(super) fn reconcile_step(
         dx,
         dy,
         friction_law: if law == "coulomb" { FrictionLaw::Coulomb } else { FrictionLaw::Regularised },
-        scheme: if scheme == "first-order" { GridScheme::FirstOrder } else { GridScheme::SecondOrder },
+        scheme: match scheme {
+            "first-order" => GridScheme::FirstOrder,
+            "third-order" => GridScheme::ThirdOrder,
+            _ => GridScheme::SecondOrder,
+        },
     }))
 }
 
@@ -183,7 +187,14 @@ pub(super) fn check_grid_size(scene: &crate::params::Scene, errors: &mut Vec<Con
     }
     let shape = crate::run::derive(scene).shape;
     let s = crate::run::fixed_grid_spec(scene, &shape, f);
-    let g = crate::contact::grid::PotentialGrid::covering(s.a_max, s.b_max, s.dx, s.dy, s.align_x, s.align_y);
+    let g = crate::contact::grid::PotentialGrid::covering(
+        s.a_max,
+        s.b_max,
+        (s.dx, s.dy),
+        s.lead_columns(),
+        s.align_x,
+        s.align_y,
+    );
     if g.nx > MAX_GRID.0 || g.ny > MAX_GRID.1 {
         errors.push(ConfigError::new(
             if g.nx > MAX_GRID.0 { "contact.dx" } else { "contact.dy" },

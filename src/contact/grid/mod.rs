@@ -78,21 +78,20 @@ impl Alignment {
     }
 }
 
-/// Relative margin of the grid around the largest patch, besides two whole
-/// elements along x and one along y on every side: the discrete contact area
-/// of a quadratic gap lies within one element of the Hertz ellipse, and the
-/// two leading columns must stay out of contact (they supply the earlier
-/// displacements of the first columns in contact).
+/// Relative margin of the grid around the largest patch, besides whole
+/// elements on every side: one along y, and along x as many as the columns
+/// that supply the earlier displacements of the first columns in contact
+/// (two, three for the third-order difference): the discrete contact area
+/// of a quadratic gap lies within one element of the Hertz ellipse.
 pub const GRID_MARGIN: f64 = 0.05;
 
 impl PotentialGrid {
     /// The grid of `dx x dy` elements that holds the patch `|x| <= a`,
-    /// `|y| <= b` with [`GRID_MARGIN`] and two elements more along x, one
-    /// along y, on every side,
-    /// shifted by less than half a rail cell so that its element edges fall on
-    /// `align_x` and `align_y`.
-    pub fn covering(a: f64, b: f64, dx: f64, dy: f64, align_x: Alignment, align_y: Alignment) -> Self {
-        let half_x = a * (1.0 + GRID_MARGIN) + 2.0 * dx + 0.5 * align_x.period;
+    /// `|y| <= b` with [`GRID_MARGIN`] and `lead` elements more along x, one
+    /// along y, on every side, shifted by less than half a rail cell so that
+    /// its element edges fall on `align_x` and `align_y`.
+    pub fn covering(a: f64, b: f64, (dx, dy): (f64, f64), lead: usize, align_x: Alignment, align_y: Alignment) -> Self {
+        let half_x = a * (1.0 + GRID_MARGIN) + lead as f64 * dx + 0.5 * align_x.period;
         let half_y = b * (1.0 + GRID_MARGIN) + dy + 0.5 * align_y.period;
         // Of two successive counts, the one whose centred grid needs the
         // smaller shift: a grid symmetric about the patch centre where the
@@ -157,7 +156,7 @@ mod tests {
         let (a, b, dx, dy) = (6.0e-3, 10.0e-3, 2e-4, 5e-4);
         let ax = Alignment { edge: 0.13e-4, period: 1e-4 };
         let ay = Alignment { edge: -0.012 + 1.25e-4, period: 2.5e-4 };
-        let g = PotentialGrid::covering(a, b, dx, dy, ax, ay);
+        let g = PotentialGrid::covering(a, b, (dx, dy), 2, ax, ay);
         // Every element edge falls on an allowed position.
         for k in 0..=g.nx {
             let e = g.x_front - k as f64 * dx;
@@ -175,7 +174,7 @@ mod tests {
         assert!(g.y_low <= -(b * (1.0 + GRID_MARGIN) + dy) + 1e-12);
         assert!(g.y_low + g.ny as f64 * dy >= b * (1.0 + GRID_MARGIN) + dy - 1e-12);
         // No alignment asked: symmetric about the patch centre.
-        let s = PotentialGrid::covering(a, b, dx, dy, Alignment::default(), Alignment::default());
+        let s = PotentialGrid::covering(a, b, (dx, dy), 2, Alignment::default(), Alignment::default());
         assert!((s.x(0) + s.x(s.nx - 1)).abs() < 1e-15 && (s.y(0) + s.y(s.ny - 1)).abs() < 1e-15);
     }
 }

@@ -180,7 +180,7 @@ mod tests {
         let curv = Curvatures { a: 1.0, b: 0.444 };
         let shape = HertzShape::new(curv, el).unwrap();
         let hz = shape.patch(1e5).unwrap();
-        let grid = PotentialGrid::covering(hz.a, hz.b, 5e-4, 1e-3, Default::default(), Default::default());
+        let grid = PotentialGrid::covering(hz.a, hz.b, (5e-4, 1e-3), 2, Default::default(), Default::default());
         let kernel = ToeplitzKernel::normal(&grid, el.shear_modulus(), el.poisson_ratio);
         let conv = FftConvolution::new(&kernel);
         let (xs, ys) = grid.centres();

@@ -65,6 +65,7 @@ impl GridScheme {
         match self {
             GridScheme::FirstOrder => "first-order",
             GridScheme::SecondOrder => "second-order",
+            GridScheme::ThirdOrder => "third-order",
         }
     }
 }
@@ -77,6 +78,8 @@ pub enum GridScheme {
     /// `(3 u - 4 u_o + u_oo)/(2 dt)`.
     #[default]
     SecondOrder,
+    /// `(11 u - 18 u_o + 9 u_oo - 2 u_ooo)/(6 dt)`.
+    ThirdOrder,
 }
 
 /// What a fixed-grid model is built from.
@@ -107,6 +110,17 @@ pub struct FixedGridSpec {
     pub scheme: GridScheme,
 }
 
+impl FixedGridSpec {
+    /// Steps of history the difference uses: the leading columns kept out
+    /// of contact (at least two).
+    pub fn lead_columns(&self) -> usize {
+        match self.scheme {
+            GridScheme::ThirdOrder => 3,
+            _ => 2,
+        }
+    }
+}
+
 /// State carried from one step to the next, on the whole grid.
 #[derive(Debug, Clone)]
 struct History {
@@ -114,6 +128,8 @@ struct History {
     u: (Vec<f64>, Vec<f64>),
     /// That of the step before, if any (second-order scheme).
     older: Option<(Vec<f64>, Vec<f64>)>,
+    /// That of the step before that (third-order scheme).
+    oldest: Option<(Vec<f64>, Vec<f64>)>,
     /// Pressure of the last step (Pa).
     p3: Vec<f64>,
     /// Slips of the last step, interleaved (m/s).
@@ -154,7 +170,14 @@ pub struct FixedGrid {
 impl FixedGrid {
     /// Builds the grid, its influence coefficients and transforms.
     pub fn new(spec: FixedGridSpec) -> Self {
-        let grid = PotentialGrid::covering(spec.a_max, spec.b_max, spec.dx, spec.dy, spec.align_x, spec.align_y);
+        let grid = PotentialGrid::covering(
+            spec.a_max,
+            spec.b_max,
+            (spec.dx, spec.dy),
+            spec.lead_columns(),
+            spec.align_x,
+            spec.align_y,
+        );
         let (g, nu) = (spec.elastic.shear_modulus(), spec.elastic.poisson_ratio);
         let normal_kernel = ToeplitzKernel::normal(&grid, g, nu);
         let kernel = ToeplitzKernel::tangential(&grid, g, nu);
@@ -335,19 +358,21 @@ impl FixedGrid {
             }
         })?;
         let (out, s_grid) = self.expand(input, &set, &weight, &p3, &sol);
-        let older = self.history.take().map(|h| h.u);
-        self.history = Some(History { u: (ux, uy), older, p3, s: s_grid, xi: sol.xi });
+        let (older, oldest) = match self.history.take() {
+            Some(h) => (Some(h.u), h.older),
+            None => (None, None),
+        };
+        self.history = Some(History { u: (ux, uy), older, oldest, p3, s: s_grid, xi: sol.xi });
         Ok(out)
     }
 
-    /// The elements in contact must keep off the grid's edge: two columns at
-    /// the leading edge (they supply the earlier displacements), one
-    /// element elsewhere.
+    /// The elements in contact must keep off the grid's edge: the leading
+    /// columns that supply the earlier displacements, one element elsewhere.
     fn check_inside(&self, set: &ContactSet) -> Result<(), String> {
-        let (nx, ny) = (self.grid.nx, self.grid.ny);
+        let (nx, ny, lead) = (self.grid.nx, self.grid.ny, self.spec.lead_columns());
         match set.element.iter().find(|&&k| {
             let (ix, iy) = (k % nx, k / nx);
-            ix < 2 || ix + 1 >= nx || iy == 0 || iy + 1 >= ny
+            ix < lead || ix + 1 >= nx || iy == 0 || iy + 1 >= ny
         }) {
             Some(&k) => Err(format!(
                 "the contact area reaches the edge of the potential-contact grid at element ({}, {}) of {nx} x {ny}: \
@@ -370,23 +395,37 @@ impl FixedGrid {
             return e;
         };
         let at = |f: &(Vec<f64>, Vec<f64>), k: usize, back: usize| (f.0[k - back], f.1[k - back]);
-        let older = h.older.as_ref().filter(|_| self.spec.scheme == GridScheme::SecondOrder);
+        let order = match self.spec.scheme {
+            GridScheme::FirstOrder => 1,
+            GridScheme::SecondOrder => 2,
+            GridScheme::ThirdOrder => 3,
+        };
+        let level = match (&h.older, &h.oldest) {
+            (Some(_), Some(_)) => order.min(3),
+            (Some(_), None) => order.min(2),
+            _ => 1,
+        };
         for (c, &k) in set.element.iter().enumerate() {
-            debug_assert!(k % nx >= 2, "kept off the leading edge by check_inside");
+            debug_assert!(k % nx >= level, "kept off the leading edge by check_inside");
             let (ox, oy) = at(&h.u, k, 1);
-            let (ux, uy) = match older {
-                Some(o) => {
-                    let (qx, qy) = at(o, k, 2);
+            let (ux, uy) = match level {
+                3 => {
+                    let (qx, qy) = at(h.older.as_ref().expect("level 3"), k, 2);
+                    let (rx, ry) = at(h.oldest.as_ref().expect("level 3"), k, 3);
+                    (3.0 * ox - 1.5 * qx + rx / 3.0, 3.0 * oy - 1.5 * qy + ry / 3.0)
+                }
+                2 => {
+                    let (qx, qy) = at(h.older.as_ref().expect("level 2"), k, 2);
                     (2.0 * ox - 0.5 * qx, 2.0 * oy - 0.5 * qy)
                 }
-                None => (ox, oy),
+                _ => (ox, oy),
             };
             e.u_prev[2 * c] = ux;
             e.u_prev[2 * c + 1] = uy;
             e.s0[2 * c] = h.s[2 * k];
             e.s0[2 * c + 1] = h.s[2 * k + 1];
         }
-        e.beta = if older.is_some() { 1.5 } else { 1.0 };
+        e.beta = [1.0, 1.5, 11.0 / 6.0][level - 1];
         e.xi0 = h.xi;
         e
     }
