@@ -4,7 +4,8 @@
 #   - the adapted mesh (10 x 10) with each step solver (Newton-Raphson, the
 #     reference, and Gauss-Seidel, the default);
 #   - the fixed grid (0.2 x 0.5 mm, the default) with each friction law
-#     (regularised, the default, and exact Coulomb);
+#     (regularised, the default, and exact Coulomb), and with the
+#     third-order difference;
 # against
 #   - the regularisation eps (1e-3 ... 1e-7 m/s; not for Coulomb),
 #   - the step V dt (adapted: 0.2 ... 3.6 mm, 0.17 ... 3 element lengths;
@@ -14,18 +15,20 @@
 # Each run's outcome (converged, or the program's error), iterations (Newton or sweeps)
 # per step, CPU time, and the centre-line wear difference against the
 # variant's baseline go to out/stability_map/<variant>/stability.{csv,md}.
-# About 8 minutes on 2 cores.
+# About 35 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cargo build --release --quiet
-for variant in newton gauss-seidel fixed-regularised fixed-coulomb; do
+for variant in newton gauss-seidel fixed-regularised fixed-coulomb fixed-third-order; do
 out=out/stability_map/$variant
 mkdir -p "$out/runs"
 manifest="$out/manifest.csv"
 echo "sweep,value,file,exit_code,message" > "$manifest"
 case $variant in
   newton|gauss-seidel) base=(--set contact.solver="$variant" --set contact.elements_x=10 --set contact.elements_y=10) ;;
+  fixed-third-order) base=(--set contact.grid=fixed --set contact.scheme=third-order --set contact.dx=2e-4
+                           --set contact.dy=5e-4) ;;
   fixed-*) base=(--set contact.grid=fixed --set contact.friction_law="${variant#fixed-}" --set contact.dx=2e-4
                  --set contact.dy=5e-4) ;;
 esac
