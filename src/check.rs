@@ -3,8 +3,8 @@
 //! and a rough cost estimate.
 
 use corrugation::config::Resolved;
+use corrugation::contact::grid::GRID_MARGIN;
 use corrugation::contact::grid::convolution::smooth_padding;
-use corrugation::contact::grid::{GRID_MARGIN, PotentialGrid};
 use corrugation::contact::transient::StepSolver;
 use corrugation::dynamics::TrackDynamics;
 use corrugation::growth::traffic::TrafficScaling;
@@ -86,14 +86,7 @@ pub fn print_check(r: &Resolved) {
         ContactGrid::Adapted => None,
     };
     if let Some((f, spec)) = &fixed {
-        let g = PotentialGrid::covering(
-            spec.a_max,
-            spec.b_max,
-            (f.dx, f.dy),
-            spec.lead_columns(),
-            spec.align_x,
-            spec.align_y,
-        );
+        let g = spec.grid();
         let in_contact = |a: f64, b: f64| std::f64::consts::PI * a * b / (f.dx * f.dy);
         println!(
             "grid               fixed, {} x {} = {} elements of {:.4} x {:.4} mm over x in [{:.4}, {:.4}] mm, y in \

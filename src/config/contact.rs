@@ -187,14 +187,7 @@ pub(super) fn check_grid_size(scene: &crate::params::Scene, errors: &mut Vec<Con
     }
     let shape = crate::run::derive(scene).shape;
     let s = crate::run::fixed_grid_spec(scene, &shape, f);
-    let g = crate::contact::grid::PotentialGrid::covering(
-        s.a_max,
-        s.b_max,
-        (s.dx, s.dy),
-        s.lead_columns(),
-        s.align_x,
-        s.align_y,
-    );
+    let g = s.grid();
     if g.nx > MAX_GRID.0 || g.ny > MAX_GRID.1 {
         errors.push(ConfigError::new(
             if g.nx > MAX_GRID.0 { "contact.dx" } else { "contact.dy" },

@@ -171,15 +171,7 @@ pub fn element_count(scene: &Scene) -> usize {
         ContactGrid::Fixed(f) if scene.contact.model == ContactModelKind::ExactTransient => {
             let shape = derive(scene).shape;
             let s = fixed_grid_spec(scene, &shape, f);
-            crate::contact::grid::PotentialGrid::covering(
-                s.a_max,
-                s.b_max,
-                (s.dx, s.dy),
-                s.lead_columns(),
-                s.align_x,
-                s.align_y,
-            )
-            .len()
+            s.grid().len()
         }
         _ => scene.contact.elements_x * scene.contact.elements_y,
     }

@@ -119,6 +119,18 @@ impl FixedGridSpec {
             _ => 2,
         }
     }
+
+    /// The potential-contact grid (without its influence coefficients).
+    pub fn grid(&self) -> PotentialGrid {
+        PotentialGrid::covering(
+            self.a_max,
+            self.b_max,
+            (self.dx, self.dy),
+            self.lead_columns(),
+            self.align_x,
+            self.align_y,
+        )
+    }
 }
 
 /// State carried from one step to the next, on the whole grid.
@@ -170,14 +182,7 @@ pub struct FixedGrid {
 impl FixedGrid {
     /// Builds the grid, its influence coefficients and transforms.
     pub fn new(spec: FixedGridSpec) -> Self {
-        let grid = PotentialGrid::covering(
-            spec.a_max,
-            spec.b_max,
-            (spec.dx, spec.dy),
-            spec.lead_columns(),
-            spec.align_x,
-            spec.align_y,
-        );
+        let grid = spec.grid();
         let (g, nu) = (spec.elastic.shear_modulus(), spec.elastic.poisson_ratio);
         let normal_kernel = ToeplitzKernel::normal(&grid, g, nu);
         let kernel = ToeplitzKernel::tangential(&grid, g, nu);
