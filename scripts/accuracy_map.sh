@@ -20,6 +20,7 @@
 # About 25 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/fixed_grid_args.sh
 install=0
 [ "${1:-}" = "--install" ] && install=1
 out=out/accuracy_map
@@ -35,10 +36,8 @@ for lambda in 0.010 0.015 0.020 0.030 0.045 0.060; do
     local f="$out/runs/${lambda}_$1_$2.h5"
     local set=(--set contact.model="$1" --set contact.elements_x="$2" --set contact.elements_y="$2")
     if [ "$1" = exact-fixed ]; then
-      local dx
-      dx=$(python3 -c "print($2 * 1e-6)")
-      set=(--set contact.model=exact-transient --set contact.grid=fixed --set contact.dx="$dx"
-           --set contact.dy="$(python3 -c "print(2.5 * $dx)")" --set passage.step_length="$dx")
+      fixed_grid_args "$2"
+      set=("${fixed_args[@]}")
     fi
     rm -f "$f"
     ./target/release/corrugation run configs/paper_normal_30mm.toml -o "$f" "${set[@]}" --set output.store_fields=false \

@@ -12,6 +12,7 @@
 # About 20 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/fixed_grid_args.sh
 out=out/growth_accuracy
 bash scripts/setup.sh
 cargo build --release --quiet
@@ -33,9 +34,8 @@ run() { # model mesh [overrides...] (default: the model on an n x n mesh)
 }
 for n in 10 14 20 28; do run exact-transient "$n"; done
 for um in 400 300 200 150; do
-  dx=$(python3 -c "print($um * 1e-6)")
-  run exact-fixed "$um" --set contact.model=exact-transient --set contact.grid=fixed --set contact.dx="$dx" \
-    --set contact.dy="$(python3 -c "print(2.5 * $dx)")" --set passage.step_length="$dx"
+  fixed_grid_args "$um"
+  run exact-fixed "$um" "${fixed_args[@]}"
 done
 for n in 10 20 40; do run simplified-transient "$n"; run fastsim "$n"; done
 PYTHONPATH=postprocess .venv/bin/python -m corrugation_post growth-accuracy "$manifest" --out "$out"

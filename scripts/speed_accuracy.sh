@@ -12,6 +12,7 @@
 #   bash scripts/speed_accuracy.sh --quick   # one scene, coarse meshes, reference fixed 0.2 mm (~1 min)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/fixed_grid_args.sh
 out=out/speed_accuracy
 if [ "${1:-}" = "--quick" ]; then
   scenes=(paper_normal_30mm); cheap=(6 10); exact=(6); fixed=(800 400); ref=200; out=out/speed_accuracy_quick
@@ -29,10 +30,8 @@ run() { # scene model mesh repeat reference
   local f="$out/runs/$1_$2_$3_r$4.h5"
   local set=(--set contact.model="$2" --set contact.elements_x="$3" --set contact.elements_y="$3")
   if [ "$2" = exact-fixed ]; then
-    local dx
-    dx=$(python3 -c "print($3 * 1e-6)")
-    set=(--set contact.model=exact-transient --set contact.grid=fixed --set contact.dx="$dx"
-         --set contact.dy="$(python3 -c "print(2.5 * $dx)")" --set passage.step_length="$dx")
+    fixed_grid_args "$3"
+    set=("${fixed_args[@]}")
   fi
   rm -f "$f"
   if ./target/release/corrugation run "configs/$1.toml" -o "$f" "${set[@]}" --set output.store_fields=false \
