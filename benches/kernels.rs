@@ -28,7 +28,16 @@ fn paper() -> (HertzShape, Fastsim) {
 fn fastsim(c: &mut Criterion) {
     let (shape, f) = paper();
     let patch = shape.patch(1e5).unwrap();
-    let input = StepInput { patch, speed: 27.78, dt: 0.0, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
+    let input = StepInput {
+        patch,
+        speed: 27.78,
+        dt: 0.0,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     c.bench_function("fastsim_20x20_force_control", |b| b.iter(|| f.solve_force(black_box(&input)).unwrap()));
     c.bench_function("fastsim_20x20_creepage_control", |b| {
         b.iter(|| f.solve_creepage(black_box(&patch), Creepage { x: -1.3e-3, ..Default::default() }, 0.4, 27.78))
@@ -38,7 +47,16 @@ fn fastsim(c: &mut Criterion) {
 fn wear_step(c: &mut Criterion) {
     let (shape, f) = paper();
     let patch = shape.patch(1e5).unwrap();
-    let input = StepInput { patch, speed: 27.78, dt: 0.0, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
+    let input = StepInput {
+        patch,
+        speed: 27.78,
+        dt: 0.0,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     let rates = archard_rates(3.4e-14, &f.solve_force(&input).unwrap());
     let mesh = EllipseMesh::new(20, 20);
     let dep = WearDeposit::new(&mesh);
@@ -58,8 +76,16 @@ fn transient_step(c: &mut Criterion) {
     let el = Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 };
     let shape = HertzShape::new(Curvatures::wheel_on_rail(0.5, -0.409, 0.3), el).unwrap();
     let patch = shape.patch(1e5).unwrap();
-    let input =
-        StepInput { patch, speed: 27.778, dt: 2e-4 / 27.778, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
+    let input = StepInput {
+        patch,
+        speed: 27.778,
+        dt: 2e-4 / 27.778,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     let mut g = c.benchmark_group("exact_transient_step");
     g.sample_size(20);
     for n in [10, 20, 30] {
@@ -165,6 +191,7 @@ fn fixed_grid(c: &mut Criterion) {
             force_x: 2e4,
             creepage_y: 0.0,
             spin: 0.0,
+            position: 0.0,
         };
         for _ in 0..(0.012 / dx) as usize {
             solver.step(&input).unwrap();

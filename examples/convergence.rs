@@ -15,8 +15,16 @@ fn steady(nx: usize, ny: usize, eps: f64) -> (f64, f64) {
     let mesh = EllipseMesh::new(nx, ny);
     let e = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
     let mut s = Transient::new(mesh, ElasticModel::Exact(Box::new(e)), PressureShape::Hertz, eps);
-    let input =
-        StepInput { patch, speed: 27.778, dt: 2e-4 / 27.778, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
+    let input = StepInput {
+        patch,
+        speed: 27.778,
+        dt: 2e-4 / 27.778,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     let t = std::time::Instant::now();
     let mut xi = 0.0;
     for _ in 0..150 {

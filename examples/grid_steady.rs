@@ -48,7 +48,16 @@ fn main() {
     let tolerance = num(7, corrugation::contact::grid::solver::GRID_TOLERANCE);
     let mut solver = FixedGrid::new(spec).with_tolerance(tolerance);
     let speed = 27.778;
-    let input = StepInput { patch, speed, dt: dx / speed, friction: 0.4, force_x: fx, creepage_y: 0.0, spin: 0.0 };
+    let input = StepInput {
+        patch,
+        speed,
+        dt: dx / speed,
+        friction: 0.4,
+        force_x: fx,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     let steps = (rolled / dx).round() as usize;
     let clock = Instant::now();
     let mut sweeps = 0;

@@ -111,6 +111,34 @@ pub struct FixedGridParams {
     pub friction_law: FrictionLaw,
     /// Backward difference of the material derivative.
     pub scheme: GridScheme,
+    /// What the normal problem sees of the rail.
+    pub normal: NormalContact,
+}
+
+/// The normal contact of the fixed grid (`contact.normal`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum NormalContact {
+    /// The quadratic gap of the curvatures: Hertz's contact (discretised),
+    /// the profile entering through the dynamic force only.
+    #[default]
+    Hertz,
+    /// The quadratic gap less the rail profile under the patch
+    /// (non-Hertzian); the dynamics see the equivalent roughness.
+    Profile {
+        /// Size of the potential-contact grid along x and y relative to
+        /// the largest Hertz patch (1).
+        grid_scale: f64,
+    },
+}
+
+impl NormalContact {
+    /// Config name (`contact.normal`).
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalContact::Hertz => "hertz",
+            NormalContact::Profile { .. } => "profile",
+        }
+    }
 }
 
 /// Rail-surface grid.

@@ -8,11 +8,13 @@
 //! interpolated sub-steps). The kernel knows nothing of files or terminals:
 //! progress is reported through a callback.
 
-use crate::contact::{ContactError, PatchSolution, StepInput, TangentialSolver};
+use crate::contact::grid::RailSurface;
+use crate::contact::{ContactError, Elements, PatchSolution, StepInput, TangentialSolver};
 use crate::hertz::{HertzError, HertzShape};
 use crate::loads::ImposedLoads;
 use crate::wear::{PatchWear, RailGrid, WearKernel, archard_rates};
 use ndarray::Array2;
+use std::sync::Arc;
 
 /// Kinematics, loads and discretisation of one passage (SI units).
 #[derive(Debug, Clone, PartialEq)]
@@ -42,6 +44,9 @@ pub struct PassageSpec {
     pub wear_window: (f64, f64),
     /// Dynamic normal force added to the imposed loads (growth studies).
     pub dynamic_normal_force: Option<PeriodicSignal>,
+    /// The rail surface in the normal problem (`contact.normal =
+    /// "profile"`); `None`: the Hertz contact of the curvatures.
+    pub surface: Option<Arc<RailSurface>>,
 }
 
 /// A periodic signal sampled at `x0 + i dx`, i = 0..n, period n dx,
@@ -107,8 +112,12 @@ pub struct PatchHistory {
     pub semi_axis_a: Vec<f64>,
     /// Semi-axis across the rail (m).
     pub semi_axis_b: Vec<f64>,
-    /// Hertz maximum pressure (Pa).
+    /// Maximum pressure (Pa): Hertz's p0 on the adapted mesh, the largest
+    /// element pressure on the fixed grid.
     pub max_pressure: Vec<f64>,
+    /// Area in contact (m^2): pi a b of the Hertz patch on the adapted
+    /// mesh, the elements with pressure on the fixed grid.
+    pub contact_area: Vec<f64>,
     /// Fraction of elements in stick (1).
     pub stick_fraction: Vec<f64>,
     /// 1 when wheel and rail are in contact (N > 0), 0 otherwise.
@@ -158,6 +167,7 @@ impl PatchHistory {
             &mut self.semi_axis_a,
             &mut self.semi_axis_b,
             &mut self.max_pressure,
+            &mut self.contact_area,
             &mut self.stick_fraction,
             &mut self.newton_iterations,
             &mut self.wear_volume_rate,
@@ -222,6 +232,19 @@ pub enum PassageError {
         /// Cause.
         source: HertzError,
     },
+    /// The normal problem on the rail surface failed (equivalent roughness).
+    #[error("normal problem on the rail profile at X = {x:.6e} m (N = {normal_force:.6e} N): {source}")]
+    Approach {
+        /// Patch position (m).
+        x: f64,
+        /// Normal force (N).
+        normal_force: f64,
+        /// Cause.
+        source: ContactError,
+    },
+    /// The contact model cannot take the passage's rail surface.
+    #[error("{0}")]
+    Surface(ContactError),
     /// The tangential solver failed at this step.
     #[error("step {step} at X = {x:.6e} m (N = {normal_force:.6e} N, F_x = {force_x:.6e} N): {source}")]
     Tangential {
@@ -268,12 +291,14 @@ pub fn run_passage(
 ) -> Result<PassageResult, PassageError> {
     let steps = spec.n_steps();
     let dt = spec.dt();
-    let n_el = solver.elements().len();
+    let elements = solver.elements();
+    let n_el = elements.len();
     let mut wear = Array2::zeros((grid.ny, grid.nx));
     let mut h = PatchHistory { fields: record_fields.then(|| PatchFields::new(steps, n_el)), ..Default::default() };
     // The previous step's patch (x_c, a, b) and wear rates.
     let mut previous: Option<PreviousPatch> = None;
     solver.reset();
+    solver.set_surface(spec.surface.clone()).map_err(PassageError::Surface)?;
     for n in 0..steps {
         let x = spec.position(n);
         let normal_force = spec.loads.normal_force_at(x) + spec.dynamic_normal_force.as_ref().map_or(0.0, |d| d.at(x));
@@ -297,6 +322,7 @@ pub fn run_passage(
             force_x,
             creepage_y: spec.creepage_y,
             spin: spec.spin,
+            position: x,
         };
         let sol = solver.step(&input).map_err(|source| PassageError::Tangential {
             step: n,
@@ -327,7 +353,15 @@ pub fn run_passage(
         h.spin.push(sol.creepage.spin);
         h.semi_axis_a.push(patch.a);
         h.semi_axis_b.push(patch.b);
-        h.max_pressure.push(patch.p0);
+        let (max_pressure, contact_area) = match &elements {
+            Elements::Grid(g) => (
+                sol.pressure.iter().fold(0.0f64, |m, p| m.max(*p)),
+                sol.pressure.iter().filter(|p| **p > 0.0).count() as f64 * g.area(),
+            ),
+            Elements::Adapted(_) => (patch.p0, std::f64::consts::PI * patch.a * patch.b),
+        };
+        h.max_pressure.push(max_pressure);
+        h.contact_area.push(contact_area);
         h.stick_fraction.push(sol.stick_fraction());
         h.newton_iterations.push(sol.iterations as f64);
         h.wear_volume_rate.push(deposit.integral(&rates, patch.a, patch.b));

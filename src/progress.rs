@@ -79,6 +79,13 @@ impl Progress {
                     }
                 }
             }
+            Event::Warning { pass, message } => {
+                let text = format!("warning: passage {}: {message}", pass + 1);
+                match &self.bar {
+                    Some(b) => b.println(text),
+                    None => say!("{text}"),
+                }
+            }
             Event::Checkpoint { done } => {
                 let text = format!("checkpoint written after passage {done}");
                 match &self.bar {

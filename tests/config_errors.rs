@@ -145,6 +145,19 @@ fn fixed_grid_keys() {
             "contact.dy: = 0.0002 m x 0.00001 m gives a potential-contact grid of",
         ),
         (
+            &[exact, "contact.normal=profile"],
+            "contact.normal: = \"profile\" solves the discrete normal problem on the rail profile, which needs \
+             contact.grid = \"fixed\"",
+        ),
+        (
+            &[exact, "contact.grid=fixed", "contact.normal=elastic"],
+            "contact.normal: = \"elastic\" is not allowed; expected one of \"hertz\", \"profile\"",
+        ),
+        (
+            &[exact, "contact.grid=fixed", "contact.normal=profile", "contact.profile_grid_scale=0.5"],
+            "contact.profile_grid_scale: = 0.5 is out of range; expected a number in [1, 4]",
+        ),
+        (
             &[exact, "contact.grid=square"],
             "contact.grid: = \"square\" is not allowed; expected one of \"adapted\", \"fixed\"",
         ),

@@ -23,6 +23,7 @@ fn input(concave: bool, force_x: f64) -> StepInput {
         force_x,
         creepage_y: 0.0,
         spin: 0.0,
+        position: 0.0,
     }
 }
 

@@ -55,7 +55,8 @@ fn roll(solver: &mut FixedGrid, shape: &HertzShape, force_x: f64, steps: usize) 
     let patch = shape.patch(1e5).unwrap();
     let dx = solver.grid().dx;
     let speed = 27.778;
-    let input = StepInput { patch, speed, dt: dx / speed, friction: 0.4, force_x, creepage_y: 0.0, spin: 0.0 };
+    let input =
+        StepInput { patch, speed, dt: dx / speed, friction: 0.4, force_x, creepage_y: 0.0, spin: 0.0, position: 0.0 };
     solver.reset();
     (0..steps)
         .map(|_| {
@@ -254,8 +255,16 @@ fn kalker_cattaneo_to_carter_classic_on_the_grid() {
     let step = 2.5e-4;
     let mut solver =
         grid_solver(&shape, curvatures, el, n, (step, step), (FrictionLaw::Coulomb, GridScheme::FirstOrder, 1e-6));
-    let input =
-        StepInput { patch, speed: 1.0, dt: step, friction: mu, force_x: -0.657 * mu * n, creepage_y: 0.0, spin: 0.0 };
+    let input = StepInput {
+        patch,
+        speed: 1.0,
+        dt: step,
+        friction: mu,
+        force_x: -0.657 * mu * n,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     let h: Vec<f64> = (0..61).map(|_| solver.step(&input).unwrap().creepage.x).collect();
     let (pv, pa) = peak(&h, step);
     eprintln!("classic: first {:.4e} peak {pv:.4e} at {pa:.3e} steady {:.4e}", h[1], h[60]);
@@ -338,6 +347,7 @@ fn higher_order_differences_approach_contacts_grid_limit() {
             force_x: 2e4,
             creepage_y: 0.0,
             spin: 0.0,
+            position: 0.0,
         };
         let sol = solver.step(&input).unwrap();
         let area = cell.0 * cell.1;

@@ -23,6 +23,7 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
         substeps: 4,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,
+        surface: None,
     };
     let dx = 1e-4;
     let grid = RailGrid { x_min: 0.0, dx, nx: (length / dx).round() as usize, half_width: 0.012, dy: 5e-4, ny: 49 };
@@ -38,7 +39,19 @@ fn periodic_passage_wears_every_node_once() {
     let (spec, grid, mut f) = setup(0.03);
     let dep = WearDeposit::new(f.mesh());
     let flat = Array2::zeros((grid.ny, grid.nx));
-    let g = growth_passage(&spec, &paper_shape(true), &mut f, &dep, &grid, &flat, None, false, &mut |_, _| {}).unwrap();
+    let g = growth_passage(
+        &spec,
+        &paper_shape(true),
+        &mut f,
+        &dep,
+        &grid,
+        &flat,
+        corrugation::params::NormalContact::Hertz,
+        None,
+        false,
+        &mut |_, _| {},
+    )
+    .unwrap();
     let centre = g.wear.row(grid.ny / 2).to_vec();
     let mean = centre.iter().sum::<f64>() / centre.len() as f64;
     assert!(mean > 0.0);

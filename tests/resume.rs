@@ -137,6 +137,17 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     // Deterministic: the same config twice gives the same bits.
     let again = run(dir.path(), "fagain.h5", &[&fixed[..], &["growth.passes=3"]].concat());
     assert_same(&full, &again);
+    // The profile in the normal contact: the surface and the equivalent
+    // roughness are rebuilt from the stored profile at every passage.
+    let profile = [&fixed[..], &["contact.normal=profile", "roughness.rms=5e-6"]].concat();
+    let full = run(dir.path(), "pfull.h5", &[&profile[..], &["growth.passes=3"]].concat());
+    let part = run(dir.path(), "ppart.h5", &[&profile[..], &["growth.passes=2"]].concat());
+    resume(&part, Some(1), None, &mut |_| {}).unwrap();
+    assert_same(&full, &part);
+    let hertz = run(dir.path(), "phertz.h5", &[&fixed[..], &["roughness.rms=5e-6", "growth.passes=3"]].concat());
+    let (w_profile, w_hertz) =
+        (read_f64(&full, "passes", "rms_corrugation").unwrap(), read_f64(&hertz, "passes", "rms_corrugation").unwrap());
+    assert!(w_profile != w_hertz, "the profile in the contact changes the growth");
 }
 
 #[test]

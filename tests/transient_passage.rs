@@ -75,7 +75,16 @@ fn non_convergence_is_reported_with_step_and_residuals() {
     let mut solver =
         Transient::new(mesh, ElasticModel::Exact(Box::new(e)), PressureShape::Hertz, 1e-5).with_max_iterations(2);
     let patch = shape.patch(1e5).unwrap();
-    let input = StepInput { patch, speed: 27.78, dt: 7.2e-6, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0 };
+    let input = StepInput {
+        patch,
+        speed: 27.78,
+        dt: 7.2e-6,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     let err = solver.step(&input).unwrap_err().to_string();
     assert!(err.contains("Newton-Raphson on the local slips failed"), "{err}");
     assert!(err.contains("max |R|") && err.contains("m/s in 2 iterations"), "{err}");

@@ -29,7 +29,7 @@ PASSES_VARS = {
     "cpu_seconds": ("pass",),
 }
 _STEP = ("time", "x_c", "normal_force", "longitudinal_force", "creepage_x", "creepage_y",
-         "spin", "semi_axis_a", "semi_axis_b", "max_pressure", "stick_fraction")
+         "spin", "semi_axis_a", "semi_axis_b", "max_pressure", "contact_area", "stick_fraction")
 _ELEMENT = ("xi", "eta", "d_xi", "d_eta")
 _FIELDS = ("pressure", "traction_x", "traction_y", "slip_x", "slip_y", "wear_rate", "stick")
 CONTACT_VARS = {
@@ -43,7 +43,8 @@ UNITS = {
     "x": "m", "y": "m", "profile": "m", "wear": "m", "rms_corrugation": "m",
     "cpu_seconds": "s", "time": "s", "x_c": "m", "normal_force": "N",
     "longitudinal_force": "N", "creepage_x": "1", "creepage_y": "1", "spin": "1/m",
-    "semi_axis_a": "m", "semi_axis_b": "m", "max_pressure": "Pa", "stick_fraction": "1",
+    "semi_axis_a": "m", "semi_axis_b": "m", "max_pressure": "Pa", "contact_area": "m2",
+    "stick_fraction": "1",
     "xi": "1", "eta": "1", "d_xi": "1", "d_eta": "1",
     "element_x": "m", "element_y": "m", "element_dx": "m", "element_dy": "m",
     "pressure": "Pa", "traction_x": "Pa", "traction_y": "Pa",

@@ -6,13 +6,21 @@ use super::{AUTO, ConfigError};
 use crate::contact::PressureShape;
 use crate::contact::grid::{FrictionLaw, GridScheme};
 use crate::contact::transient::StepSolver;
-use crate::params::{ContactGrid, ContactModelKind, FixedGridParams};
+use crate::params::{ContactGrid, ContactModelKind, FixedGridParams, NormalContact};
 use toml::{Table, Value};
 
 /// Default element length of the fixed grid along x (m), and so its step.
 pub const DEFAULT_GRID_DX: f64 = 2e-4;
 /// Default element width of the fixed grid along y (m).
 pub const DEFAULT_GRID_DY: f64 = 5e-4;
+
+/// Default size of the potential-contact grid with the profile in the
+/// normal problem, relative to the largest Hertz patch, along x and y: a
+/// trough whose curvature is half the wheel's lengthens the patch over it by
+/// about 2^(1/3) = 1.26 (Hertz a ~ A^(-1/3)); a crest narrows it along x and
+/// widens it across (at fixed load); 1.5 holds both up to about 70 % of
+/// the wheel's curvature.
+pub const DEFAULT_PROFILE_GRID_SCALE: f64 = 1.5;
 
 /// The keys of `[contact]` as read (each None when invalid).
 pub(super) struct ContactKeys {
@@ -35,6 +43,10 @@ pub(super) struct FixedKeys {
     pub dy: Option<f64>,
     pub law: Option<String>,
     pub scheme: Option<String>,
+    /// `contact.normal` as read.
+    pub normal: Option<String>,
+    /// `contact.profile_grid_scale` (read for `normal = "profile"`).
+    pub grid_scale: Option<f64>,
 }
 
 /// Reads `[contact]` from `root` into `resolved`.
@@ -67,13 +79,32 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
     let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
     let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
+    let normal = s.choice("normal", Some("hertz"), &["hertz", "profile"]);
+    let profile = normal.as_deref() == Some("profile");
+    if profile && !fixed {
+        s.error(
+            "normal",
+            "= \"profile\" solves the discrete normal problem on the rail profile, which needs contact.grid = \"fixed\"; \
+             allowed with contact.grid = \"adapted\": hertz"
+                .into(),
+        );
+    }
+    let length_range = Range::Closed(1.0, 4.0);
+    let grid_scale = if profile && fixed {
+        s.f64("profile_grid_scale", Some(DEFAULT_PROFILE_GRID_SCALE), length_range)
+    } else {
+        if s.has("profile_grid_scale") {
+            s.f64("profile_grid_scale", None, length_range);
+        }
+        Some(1.0)
+    };
     let fixed_keys = if fixed {
         let given = s.has("dx");
         let dx = s.f64("dx", Some(DEFAULT_GRID_DX), Range::OpenClosed(0.0, 0.01));
         let dy = s.f64("dy", Some(DEFAULT_GRID_DY), Range::OpenClosed(0.0, 0.01));
         let law = s.choice("friction_law", Some("regularised"), &["regularised", "coulomb"]);
         let scheme = s.choice("scheme", Some("second-order"), &["second-order", "first-order", "third-order"]);
-        Some(FixedKeys { dx, dx_given: given, dy, law, scheme })
+        Some(FixedKeys { dx, dx_given: given, dy, law, scheme, normal, grid_scale })
     } else {
         // The fixed grid's keys on the adapted mesh: checked, kept in the
         // resolved config, unused (so that `--set contact.grid=adapted`
@@ -110,6 +141,10 @@ pub(super) fn reconcile_step(
         return Some(ContactGrid::Adapted);
     };
     let (dx, dy, law, scheme) = (f.dx?, f.dy?, f.law.as_deref()?, f.scheme.as_deref()?);
+    let normal = match f.normal.as_deref()? {
+        "profile" => NormalContact::Profile { grid_scale: f.grid_scale? },
+        _ => NormalContact::Hertz,
+    };
     let dx = match (f.dx_given, step_given, step_length) {
         (true, true, Some(h)) if (h - dx).abs() > 1e-9 * dx => {
             errors.push(ConfigError::new(
@@ -138,6 +173,7 @@ pub(super) fn reconcile_step(
             "third-order" => GridScheme::ThirdOrder,
             _ => GridScheme::SecondOrder,
         },
+        normal,
     }))
 }
 

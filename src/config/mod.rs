@@ -279,6 +279,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
                     dy: FIXED_ASPECT * dx,
                     friction_law: FrictionLaw::Regularised,
                     scheme: GridScheme::SecondOrder,
+                    normal: crate::params::NormalContact::Hertz,
                 });
                 step_length = dx;
                 nx

@@ -19,6 +19,8 @@ pub use mesh::{EllipseMesh, PressureShape};
 
 use crate::hertz::HertzPatch;
 use grid::PotentialGrid;
+use grid::surface::RailSurface;
+use std::sync::Arc;
 
 /// The elements a solver gives its fields on.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,6 +83,9 @@ pub struct StepInput {
     pub creepage_y: f64,
     /// Prescribed spin (1/m).
     pub spin: f64,
+    /// Patch-centre position along the rail X_c (m): where a model that
+    /// takes the rail surface into its normal problem reads the profile.
+    pub position: f64,
 }
 
 impl StepInput {
@@ -139,6 +144,11 @@ pub enum ContactError {
         /// mu N (N).
         limit: f64,
     },
+    /// The model takes the Hertz contact only, not a rail surface.
+    #[error(
+        "this contact model solves the Hertz normal contact and cannot take the rail profile (contact.normal = \"profile\" needs contact.grid = \"fixed\")"
+    )]
+    NoSurface,
     /// The creepage search did not converge.
     #[error("creepage search for F_x = {force:.6e} N did not converge: {reason}")]
     NoConvergence {
@@ -161,4 +171,21 @@ pub trait TangentialSolver {
     fn reset(&mut self);
     /// The elements the fields are given on.
     fn elements(&self) -> Elements;
+    /// Puts the rail surface into the normal problem of the following steps
+    /// (`None`: the Hertz contact of the curvatures). Models that solve the
+    /// Hertz problem only refuse a surface.
+    fn set_surface(&mut self, surface: Option<Arc<RailSurface>>) -> Result<(), ContactError> {
+        match surface {
+            None => Ok(()),
+            Some(_) => Err(ContactError::NoSurface),
+        }
+    }
+    /// The rigid approach (m) of wheel and rail that holds the normal force
+    /// `force` (N) with the patch centre at `position` (m) on the surface
+    /// set by [`set_surface`](TangentialSolver::set_surface): the normal
+    /// problem alone, without history. Models without a surface refuse.
+    fn approach(&mut self, position: f64, force: f64) -> Result<f64, ContactError> {
+        let _ = (position, force);
+        Err(ContactError::NoSurface)
+    }
 }

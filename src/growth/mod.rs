@@ -17,12 +17,15 @@ pub mod spectrum;
 pub mod traffic;
 
 use crate::contact::TangentialSolver;
+use crate::contact::grid::RailSurface;
 use crate::dynamics::TrackDynamics;
 use crate::hertz::HertzShape;
 use crate::metrics::centre_row;
+use crate::params::NormalContact;
 use crate::passage::{PassageError, PassageResult, PassageSpec, PeriodicSignal, run_passage};
 use crate::wear::{RailGrid, WearKernel};
 use ndarray::Array2;
+use std::sync::Arc;
 
 /// Wear on an extended grid (same node lattice) folded onto the periodic
 /// grid `grid` (node x_min + i dx, i = 0..nx, period nx dx).
@@ -54,6 +57,41 @@ pub fn contact_filtered_line(profile: &Array2<f64>, grid: &RailGrid, b: f64) -> 
     (0..grid.nx).map(|i| weights.iter().map(|(j, w)| w * profile[[*j, i]]).sum::<f64>() / total).collect()
 }
 
+/// The equivalent roughness of the profile under the surface set on
+/// `solver`: the rigid approach that holds the mean load `force` (N) with
+/// the patch centre at `x_min + j step`, `j < n`, negated and less its
+/// mean, so that it is the height of a point rail that the wheel would
+/// follow: the contact filter derived from the contact itself (Remington
+/// and Thompson's idea, without their assumed weighting).
+///
+/// Its linear limit (small profile, fixed load N): the approach is
+/// `dPi/dN` of the contact's complementary energy, and a gap change `-r`
+/// changes that energy by `-int p r dA`, so the approach changes by
+/// `-int (dp/dN) r dA`: the profile averaged with the weight `dp/dN`, the
+/// pressure increment of a load increment. For a Hertz ellipse that is
+/// the rigid flat punch's `1 / (2 pi a b sqrt(1 - x^2/a^2 - y^2/b^2))`,
+/// whose line load along x is uniform: a profile uniform across the rail
+/// is averaged over the patch length, `sin(k a) / (k a)` for a harmonic
+/// (tests/profile_contact.rs: within 6e-4 at 16-100 mm). Beyond it the
+/// filter is nonlinear: the patch splits and leaves the troughs.
+pub fn equivalent_roughness(
+    solver: &mut dyn TangentialSolver,
+    x_min: f64,
+    step: f64,
+    n: usize,
+    force: f64,
+) -> Result<Vec<f64>, PassageError> {
+    let mut approach = Vec::with_capacity(n);
+    for j in 0..n {
+        let x = x_min + j as f64 * step;
+        let d =
+            solver.approach(x, force).map_err(|source| PassageError::Approach { x, normal_force: force, source })?;
+        approach.push(d);
+    }
+    let mean = approach.iter().sum::<f64>() / n.max(1) as f64;
+    Ok(approach.iter().map(|d| mean - d).collect())
+}
+
 /// What one growth passage produced.
 #[derive(Debug, Clone)]
 pub struct GrowthPass {
@@ -63,12 +101,22 @@ pub struct GrowthPass {
     pub wear: Array2<f64>,
     /// Dynamic normal force on the periodic grid (N).
     pub dynamic_force: Vec<f64>,
+    /// Steps inside the stretch where the wheel left the rail (N <= 0):
+    /// the linear track model is not valid there.
+    pub contact_loss_steps: usize,
 }
 
 /// Runs one passage over the periodic stretch with the current `profile`:
-/// the dynamic force of the contact-filtered profile (if `dynamics`) adds to
-/// the imposed loads; wear is deposited for patch positions inside the
-/// stretch and folded onto `grid`.
+/// the dynamic force of the profile as the contact sees it (if `dynamics`)
+/// adds to the imposed loads; wear is deposited for patch positions inside
+/// the stretch and folded onto `grid`.
+///
+/// What the contact sees (`normal`): with [`NormalContact::Hertz`] the
+/// profile weighted across the mean patch width by the Hertz line load
+/// ([`contact_filtered_line`]), the contact itself Hertzian; with
+/// [`NormalContact::Profile`] the corrugation is in the normal problem of
+/// every step ([`RailSurface::corrugation`]) and the dynamics see its
+/// [`equivalent_roughness`] at the mean load.
 #[allow(clippy::too_many_arguments)]
 pub fn growth_passage(
     spec: &PassageSpec,
@@ -77,17 +125,37 @@ pub fn growth_passage(
     deposit: &dyn WearKernel,
     grid: &RailGrid,
     profile: &Array2<f64>,
+    normal: NormalContact,
     dynamics: Option<&dyn TrackDynamics>,
     record_fields: bool,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<GrowthPass, PassageError> {
     let length = grid.nx as f64 * grid.dx;
-    let b_mean = shape.patch(spec.loads.normal_force).map(|p| p.b).unwrap_or(grid.half_width);
+    let mut spec = spec.clone();
+    let seen = match normal {
+        NormalContact::Hertz => {
+            let b_mean = shape.patch(spec.loads.normal_force).map(|p| p.b).unwrap_or(grid.half_width);
+            contact_filtered_line(profile, grid, b_mean)
+        }
+        NormalContact::Profile { .. } => {
+            let surface = Arc::new(RailSurface::corrugation(profile, grid));
+            solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
+            spec.surface = Some(surface);
+            if dynamics.is_some() {
+                let n = (length / spec.step_length).round().max(1.0) as usize;
+                let step = length / n as f64;
+                let r = equivalent_roughness(solver, grid.x_min, step, n, spec.loads.normal_force)?;
+                let signal = PeriodicSignal { x0: grid.x_min, dx: step, values: r };
+                grid.xs().iter().map(|x| signal.at(*x)).collect()
+            } else {
+                vec![0.0; grid.nx]
+            }
+        }
+    };
     let dynamic_force = match dynamics {
-        Some(d) => d.force_from_profile(&contact_filtered_line(profile, grid, b_mean), grid.dx, spec.speed),
+        Some(d) => d.force_from_profile(&seen, grid.dx, spec.speed),
         None => vec![0.0; grid.nx],
     };
-    let mut spec = spec.clone();
     spec.wear_window = (grid.x_min, grid.x_min + length);
     spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: dynamic_force.clone() });
     // Extended grid on the same lattice, wide enough for the largest patch
@@ -95,11 +163,18 @@ pub fn growth_passage(
     // clipped at its ends.
     let peak_force = spec.loads.max_normal_force() + dynamic_force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     let a_max = shape.patch(peak_force).map(|p| p.a).unwrap_or(0.0);
+    let a_max = match normal {
+        NormalContact::Profile { grid_scale } => a_max * grid_scale,
+        NormalContact::Hertz => a_max,
+    };
     let reach = (a_max / grid.dx).ceil() as usize + 2;
     let ext = RailGrid { x_min: grid.x_min - reach as f64 * grid.dx, nx: grid.nx + 2 * reach, ..grid.clone() };
     let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, progress)?;
     let wear = fold_periodic(&passage.wear, &ext, grid);
-    Ok(GrowthPass { passage, wear, dynamic_force })
+    let h = &passage.history;
+    let window = grid.x_min..grid.x_min + length;
+    let contact_loss_steps = h.x_c.iter().zip(&h.in_contact).filter(|(x, c)| window.contains(*x) && **c == 0.0).count();
+    Ok(GrowthPass { passage, wear, dynamic_force, contact_loss_steps })
 }
 
 #[cfg(test)]

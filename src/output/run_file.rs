@@ -221,7 +221,7 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
 
 /// Per-step variables of a patch history: (name, units, long_name), in the
 /// order of [`step_columns`].
-pub(super) const STEP_VARS: [(&str, &str, &str); 14] = [
+pub(super) const STEP_VARS: [(&str, &str, &str); 15] = [
     ("time", "s", "time since the start of the passage"),
     ("x_c", "m", "patch centre position along the rail"),
     ("normal_force", "N", "normal force"),
@@ -229,9 +229,14 @@ pub(super) const STEP_VARS: [(&str, &str, &str); 14] = [
     ("creepage_x", "1", "longitudinal creepage (negative for a positive force on the wheel)"),
     ("creepage_y", "1", "lateral creepage"),
     ("spin", "1/m", "spin creepage"),
-    ("semi_axis_a", "m", "contact semi-axis along the rail"),
-    ("semi_axis_b", "m", "contact semi-axis across the rail"),
-    ("max_pressure", "Pa", "Hertz maximum pressure p0"),
+    ("semi_axis_a", "m", "Hertz semi-axis along the rail"),
+    ("semi_axis_b", "m", "Hertz semi-axis across the rail"),
+    (
+        "max_pressure",
+        "Pa",
+        "maximum pressure: Hertz p0 on the adapted mesh, the largest element pressure on the fixed grid",
+    ),
+    ("contact_area", "m2", "area in contact: pi a b on the adapted mesh, the elements with pressure on the fixed grid"),
     ("stick_fraction", "1", "fraction of elements in stick"),
     ("wear_volume_rate", "m3/s", "patch integral of the Archard wear rate"),
     (
@@ -243,7 +248,7 @@ pub(super) const STEP_VARS: [(&str, &str, &str); 14] = [
 ];
 
 /// The columns of [`STEP_VARS`].
-fn step_columns(h: &PatchHistory) -> [&Vec<f64>; 14] {
+fn step_columns(h: &PatchHistory) -> [&Vec<f64>; 15] {
     [
         &h.time,
         &h.x_c,
@@ -255,6 +260,7 @@ fn step_columns(h: &PatchHistory) -> [&Vec<f64>; 14] {
         &h.semi_axis_a,
         &h.semi_axis_b,
         &h.max_pressure,
+        &h.contact_area,
         &h.stick_fraction,
         &h.wear_volume_rate,
         &h.newton_iterations,
@@ -263,7 +269,7 @@ fn step_columns(h: &PatchHistory) -> [&Vec<f64>; 14] {
 }
 
 /// The columns of [`STEP_VARS`], to fill in.
-pub(super) fn step_columns_mut(h: &mut PatchHistory) -> [&mut Vec<f64>; 14] {
+pub(super) fn step_columns_mut(h: &mut PatchHistory) -> [&mut Vec<f64>; 15] {
     [
         &mut h.time,
         &mut h.x_c,
@@ -275,6 +281,7 @@ pub(super) fn step_columns_mut(h: &mut PatchHistory) -> [&mut Vec<f64>; 14] {
         &mut h.semi_axis_a,
         &mut h.semi_axis_b,
         &mut h.max_pressure,
+        &mut h.contact_area,
         &mut h.stick_fraction,
         &mut h.wear_volume_rate,
         &mut h.newton_iterations,

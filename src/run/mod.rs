@@ -14,7 +14,7 @@ use crate::contact::{Elements, EllipseMesh, PressureShape, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams, hertz_stiffness};
 use crate::hertz::{HertzPatch, HertzShape};
-use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, Scene};
+use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
 use crate::passage::PassageSpec;
 use crate::wear::{CellDeposit, RailGrid, WearDeposit, WearKernel};
 
@@ -59,6 +59,7 @@ pub fn derive(scene: &Scene) -> Derived {
         substeps: scene.wear_substeps,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,
+        surface: None,
     };
     Derived {
         shape,
@@ -123,13 +124,18 @@ pub const DYNAMIC_LOAD_FACTOR: f64 = 1.3;
 pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::FixedGridParams) -> FixedGridSpec {
     let largest = shape.patch(fixed_grid_load(scene)).expect("validated loads keep N > 0");
     let rail = if scene.growth.is_some() { periodic_grid(scene) } else { derive_grid(scene) };
+    // The profile's troughs lengthen the patch over them, its crests widen it.
+    let scale = match f.normal {
+        NormalContact::Profile { grid_scale } => grid_scale,
+        NormalContact::Hertz => 1.0,
+    };
     FixedGridSpec {
         curvatures: scene.geometry.curvatures(),
         elastic: scene.material.elastic,
         dx: f.dx,
         dy: f.dy,
-        a_max: largest.a,
-        b_max: largest.b,
+        a_max: scale * largest.a,
+        b_max: scale * largest.b,
         // Rail cell boundaries x_i + dx/2 in the contact frame of the first
         // step. Across, the grid stays symmetric about the centre line (a
         // symmetric problem keeps a symmetric answer); the deposit spreads
@@ -139,6 +145,14 @@ pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::Fixe
         law: f.friction_law,
         eps: scene.contact.regularisation,
         scheme: f.scheme,
+    }
+}
+
+/// What the normal problem of a scene sees of the rail.
+pub fn normal_contact(scene: &Scene) -> NormalContact {
+    match scene.contact.grid {
+        ContactGrid::Fixed(f) => f.normal,
+        ContactGrid::Adapted => NormalContact::Hertz,
     }
 }
 

@@ -16,7 +16,7 @@
 //! (every passage starts with a run-in from a reset solver), so a resumed
 //! run computes bit for bit what the uninterrupted run would have.
 
-use super::{build_deposit, build_solver, derive, element_count, periodic_grid, track_dynamics};
+use super::{build_deposit, build_solver, derive, element_count, normal_contact, periodic_grid, track_dynamics};
 use crate::config::{ConfigErrors, Resolved, load_str};
 use crate::dynamics::TrackDynamics;
 use crate::growth::roughness::profile_line;
@@ -38,7 +38,7 @@ use std::path::{Path, PathBuf};
 const MAX_PASSES: usize = 1_000_000;
 
 /// What a run reports while it goes.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Event {
     /// Contact steps done, of the steps this invocation computes.
     Steps {
@@ -61,6 +61,13 @@ pub enum Event {
         rms: f64,
         /// Relative profile change of its update (1).
         update_ratio: f64,
+    },
+    /// Something the user must know about a passage's results.
+    Warning {
+        /// Simulated passage index (0-based).
+        pass: usize,
+        /// What happened.
+        message: String,
     },
     /// The run file was rewritten after `done` passages.
     Checkpoint {
@@ -308,11 +315,22 @@ fn continue_run(
                     deposit.as_ref(),
                     &grid,
                     &state.profile,
+                    normal_contact(scene),
                     dynamics.as_ref().map(|t| t as &dyn TrackDynamics),
                     record_fields,
                     &mut report,
                 )
                 .map_err(|source| RunError::Passage { pass, source })?;
+                if g.contact_loss_steps > 0 {
+                    progress(Event::Warning {
+                        pass,
+                        message: format!(
+                            "the wheel left the rail at {} of the stretch's steps (N <= 0): the linear track model \
+                             is not valid there, and the growth this passage drives is not reliable",
+                            g.contact_loss_steps
+                        ),
+                    });
+                }
                 (g.wear, g.passage.history)
             }
         };

@@ -30,9 +30,11 @@ pub mod convolution;
 pub mod coupling;
 pub mod normal;
 pub mod solver;
+pub mod surface;
 pub mod tangential;
 
 pub use solver::{FixedGrid, FrictionLaw, GridScheme};
+pub use surface::RailSurface;
 
 /// A uniform rectangular grid of elements in the contact frame.
 ///

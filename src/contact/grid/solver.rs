@@ -24,11 +24,14 @@
 use super::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use super::coupling::{Coupling, FoldedKernel};
 use super::normal::{self, NormalError};
+use super::surface::RailSurface;
 use super::tangential::{self, ContactSet, GridStep, Law};
 use super::{Alignment, PotentialGrid};
 use crate::contact::transient::{GS_MAX_SWEEPS, STICK_SLIP_FACTOR, friction};
 use crate::contact::{ContactError, Creepage, Elements, PatchSolution, StepInput, TangentialSolver};
 use crate::hertz::{Curvatures, Elastic};
+use std::borrow::Cow;
+use std::sync::Arc;
 
 /// Default tolerance on the kinematic residual of a step, in units of eps:
 /// 1e-7 m/s at eps = 1e-5 m/s. Tighter tolerances change the steady
@@ -177,6 +180,10 @@ pub struct FixedGrid {
     tolerance: f64,
     /// The folded coupling of a grid symmetric about y = 0.
     folded: Option<FoldedKernel>,
+    /// The rail surface in the gap (`None`: the quadratic gap alone).
+    surface: Option<Arc<RailSurface>>,
+    /// Warm start of [`FixedGrid::approach`]'s normal solves (Pa).
+    approach_start: Option<Vec<f64>>,
 }
 
 impl FixedGrid {
@@ -200,6 +207,8 @@ impl FixedGrid {
             history: None,
             tolerance: GRID_TOLERANCE,
             folded: None,
+            surface: None,
+            approach_start: None,
         }
         .fold_if_symmetric()
     }
@@ -229,6 +238,46 @@ impl FixedGrid {
     /// Padded FFT size of the products (mx, my).
     pub fn padded(&self) -> (usize, usize) {
         self.tangential.padded()
+    }
+
+    /// The undeformed gap on the grid with the patch centre at `position`:
+    /// the quadratic gap less the rail surface's height (module
+    /// [`super::surface`]).
+    fn gap_at(&self, position: f64) -> Cow<'_, [f64]> {
+        let Some(surface) = &self.surface else {
+            return Cow::Borrowed(&self.gap);
+        };
+        let (nx, g) = (self.grid.nx, &self.grid);
+        Cow::Owned(
+            self.gap.iter().enumerate().map(|(k, h)| h - surface.height(position + g.x(k % nx), g.y(k / nx))).collect(),
+        )
+    }
+
+    /// The normal problem alone with the patch centre at `position` (m) and
+    /// the normal force `force` (N), on the surface set (if any), warm
+    /// started from the previous call's pressure: the pressure on the grid
+    /// and the approach (h + u over the contact area, m).
+    pub fn normal_solution(&mut self, position: f64, force: f64) -> Result<normal::NormalSolution, ContactError> {
+        let gap = self.gap_at(position).into_owned();
+        let start = self.approach_start.take();
+        let sol = normal::solve(&self.normal, &mut self.scratch, &gap, self.grid.area(), force, start.as_deref())
+            .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
+        self.approach_start = Some(sol.pressure.clone());
+        Ok(sol)
+    }
+
+    /// The undeformed gap (m) on the grid with the patch centre at
+    /// `position` (m).
+    pub fn gap(&self, position: f64) -> Vec<f64> {
+        self.gap_at(position).into_owned()
+    }
+
+    /// Whether a gap is symmetric about y = 0 (to rounding), so that the
+    /// folded coupling may solve its symmetric problems.
+    fn symmetric(&self, gap: &[f64]) -> bool {
+        let (nx, ny) = (self.grid.nx, self.grid.ny);
+        let scale = gap.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        (0..gap.len()).all(|k| (gap[k] - gap[(ny - 1 - k / nx) * nx + k % nx]).abs() <= 1e-12 * scale)
     }
 
     fn law(&self) -> Law {
@@ -262,13 +311,16 @@ impl FixedGrid {
         let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
         let area = self.grid.area();
         let start: Option<Vec<f64>> = self.history.as_ref().map(|h| h.p3.clone());
-        let normal = normal::solve(&self.normal, &mut self.scratch, &self.gap, area, n_force, start.as_deref())
+        let gap = self.gap_at(input.position).into_owned();
+        let normal = normal::solve(&self.normal, &mut self.scratch, &gap, area, n_force, start.as_deref())
             .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
         let mut p3 = normal.pressure;
         // A problem symmetric about y = 0 is solved on the lower half of the
         // grid (coupling): the normal solution, symmetric to rounding, made
         // exactly so.
-        let folded = self.folded.as_ref().filter(|_| input.creepage_y == 0.0 && input.spin == 0.0);
+        let symmetric =
+            input.creepage_y == 0.0 && input.spin == 0.0 && (self.surface.is_none() || self.symmetric(&gap));
+        let folded = self.folded.as_ref().filter(|_| symmetric);
         let mirror = |k: usize| (ny - 1 - k / nx) * nx + k % nx;
         if folded.is_some() {
             for k in 0..n {
@@ -381,9 +433,14 @@ impl FixedGrid {
         }) {
             Some(&k) => Err(format!(
                 "the contact area reaches the edge of the potential-contact grid at element ({}, {}) of {nx} x {ny}: \
-                 the patch is larger than the grid was sized for",
+                 the patch is larger than the grid was sized for{}",
                 k % nx,
-                k / nx
+                k / nx,
+                if self.surface.is_some() {
+                    " (the profile's troughs lengthen it, its crests widen it: raise contact.profile_grid_scale)"
+                } else {
+                    ""
+                }
             )),
             None => Ok(()),
         }
@@ -547,5 +604,15 @@ impl TangentialSolver for FixedGrid {
 
     fn elements(&self) -> Elements {
         Elements::Grid(self.grid.clone())
+    }
+
+    fn set_surface(&mut self, surface: Option<Arc<RailSurface>>) -> Result<(), ContactError> {
+        self.surface = surface;
+        self.approach_start = None;
+        Ok(())
+    }
+
+    fn approach(&mut self, position: f64, force: f64) -> Result<f64, ContactError> {
+        Ok(self.normal_solution(position, force)?.approach)
     }
 }
