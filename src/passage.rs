@@ -259,6 +259,21 @@ pub enum PassageError {
         /// Cause.
         source: ContactError,
     },
+    /// The contact area left the rail grid across the rail: its wear would
+    /// be lost.
+    #[error(
+        "step {step} at X = {x:.6e} m: the contact area reaches |y| = {y:.6e} m, beyond the rail grid's cells (to {half_width:.6e} m): its wear would be lost (raise rail.half_width)"
+    )]
+    OffRail {
+        /// Step index.
+        step: usize,
+        /// Patch position (m).
+        x: f64,
+        /// Lateral position of the outermost element in contact (m).
+        y: f64,
+        /// Where the rail grid's outermost cells end (m).
+        half_width: f64,
+    },
     /// A result is not finite (never written to the output).
     #[error("step {step} at X = {x:.6e} m: non-finite {what} in the contact solution")]
     NonFinite {
@@ -332,6 +347,17 @@ pub fn run_passage(
             source,
         })?;
         check_finite(&sol, n, x)?;
+        if let Elements::Grid(g) = &elements {
+            let reach = (0..n_el)
+                .filter(|&k| sol.pressure[k] > 0.0)
+                .map(|k| (g.y(k / g.nx) - 0.5 * g.dy).abs().max((g.y(k / g.nx) + 0.5 * g.dy).abs()))
+                .fold(0.0f64, f64::max);
+            // The outermost rail cells reach half a cell beyond the nodes.
+            let edge = grid.half_width + 0.5 * grid.dy;
+            if reach > edge * (1.0 + 1e-9) {
+                return Err(PassageError::OffRail { step: n, x, y: reach, half_width: edge });
+            }
+        }
         let rates = archard_rates(spec.k_over_h, &sol);
         let (w0, w1) = spec.wear_window;
         // The interval from the previous step belongs to the window when its

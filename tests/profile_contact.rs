@@ -17,12 +17,16 @@
 //!   corrugated rail.
 mod common;
 use common::{STEEL, paper_shape, rel};
+use corrugation::config::load_str;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::solver::FixedGridSpec;
 use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, RailSurface};
 use corrugation::contact::{StepInput, TangentialSolver};
 use corrugation::growth::equivalent_roughness;
 use corrugation::hertz::Curvatures;
+use corrugation::passage::{PassageError, run_passage};
+use corrugation::run::{build_deposit, build_solver, derive};
+use corrugation::wear::RailGrid;
 use std::f64::consts::PI;
 use std::sync::Arc;
 
@@ -265,4 +269,27 @@ fn force_balance_and_complementarity_at_every_step_over_a_corrugated_rail() {
         multiple = multiple.max(strips);
     }
     assert!(multiple >= 2, "the patch never split ({multiple} strips)");
+}
+
+#[test]
+fn wear_off_the_rail_grid_stops_the_passage() {
+    // A rail grid narrower than the patch: its wear would be lost, so the
+    // passage stops naming the key.
+    let set = [
+        "contact.model=exact-transient",
+        "contact.grid=fixed",
+        "contact.dx=4e-4",
+        "contact.dy=1e-3",
+        "passage.step_length=4e-4",
+        "passage.end=0.002",
+    ];
+    let r = load_str(include_str!("../configs/paper_normal_15mm.toml"), "n15", &set.map(String::from)).unwrap();
+    let d = derive(&r.scene);
+    let mut solver = build_solver(&r.scene, &d.shape);
+    let dep = build_deposit(&solver.elements());
+    let narrow = RailGrid { half_width: 0.004, ny: 9, dy: 1e-3, ..d.grid.clone() };
+    let e =
+        run_passage(&d.passage, &d.shape, solver.as_mut(), dep.as_ref(), &narrow, false, &mut |_, _| {}).unwrap_err();
+    assert!(matches!(e, PassageError::OffRail { step: 0, .. }), "{e}");
+    assert!(e.to_string().contains("raise rail.half_width"), "{e}");
 }
