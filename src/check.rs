@@ -47,6 +47,22 @@ fn print_auto(a: &AutoChoice) {
         })
         .collect();
     println!("auto candidates    (cheapest first) {}", list.join("; "));
+    if let Some(d) = a.hertz_difference {
+        let limit = corrugation::model_choice::hertz_validity::HERTZ_LIMIT;
+        let verdict = if d <= limit {
+            "inside the Hertz region: the Hertz normal contact".to_string()
+        } else if c.grid_dx().is_some() {
+            "outside the Hertz region: the profile in the normal contact".to_string()
+        } else {
+            "outside the Hertz region: the chosen model has no profile contact; the run warns".to_string()
+        };
+        let by = if d.is_finite() { format!("{:.1} %", 100.0 * d) } else { "beyond the map".into() };
+        println!(
+            "auto normal        the initial corrugation: Hertz and profile contact differ by {by} in the wear's first \
+             harmonic (limit {:.0} %, scripts/validity_map.sh): {verdict}",
+            100.0 * limit
+        );
+    }
 }
 
 /// Prints what `check` reports.

@@ -178,6 +178,9 @@ fn report(s: &RunSummary, out: &Path) {
         s.removed_volume,
         s.rms_corrugation,
     );
+    if let Some(reason) = &s.stop_reason {
+        say!("the study stopped before its planned passages (growth.stop = \"saturation\"): {reason}");
+    }
     let (q, pass) = s.max_update_ratio;
     if q > s.update_bound * (1.0 + 1e-9) {
         let effect = if q <= 1.0 {

@@ -229,4 +229,23 @@ pub struct GrowthParams {
     pub roughness: crate::growth::roughness::Roughness,
     /// Dynamics model.
     pub dynamics: DynamicsKind,
+    /// When the study stops before `passes`.
+    pub stop: StopRule,
+}
+
+/// When a growth study stops before its planned passages (`growth.stop`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum StopRule {
+    /// Runs every planned passage.
+    #[default]
+    Never,
+    /// Stops after a passage in which the wheel left the rail, or once the
+    /// corrugation has stopped growing: its rms grew by less than `rate`
+    /// (dB per 1e5 real passages) over the last
+    /// [`crate::growth::traffic::SATURATION_WINDOW`] passages.
+    Saturation {
+        /// Growth rate of the rms below which the corrugation counts as
+        /// saturated (dB per 1e5 real passages).
+        rate: f64,
+    },
 }

@@ -21,6 +21,7 @@ fn paper_configs_are_valid() {
         ("paper_normal_15mm", include_str!("../configs/paper_normal_15mm.toml")),
         ("paper_longitudinal_30mm", include_str!("../configs/paper_longitudinal_30mm.toml")),
         ("paper_longitudinal_15mm", include_str!("../configs/paper_longitudinal_15mm.toml")),
+        ("growth_saturation", include_str!("../configs/growth_saturation.toml")),
     ] {
         assert_eq!(errors(text, &[]), Vec::<String>::new(), "{name}");
     }

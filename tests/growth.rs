@@ -170,6 +170,13 @@ fn growth_config_errors() {
     assert!(e.iter().any(|m| m.contains("growth.traffic_scale_max: = 10 must be >= growth.traffic_scale")), "{e:?}");
     let e = errors(&["growth.max_update_ratio=0"]);
     assert!(e.iter().any(|m| m.starts_with("growth.max_update_ratio: ")), "{e:?}");
+    let e = errors(&["growth.stop=forever"]);
+    assert!(e.iter().any(|m| m.contains("growth.stop: = \"forever\" is not allowed; expected one of \"never\", \"saturation\"")), "{e:?}");
+    let e = errors(&["growth.stop=saturation", "growth.saturation_rate=0"]);
+    assert!(
+        e.iter().any(|m| m.contains("growth.saturation_rate: = 0 is out of range; expected a number in (0, 100]")),
+        "{e:?}"
+    );
     let single = include_str!("../configs/paper_normal_30mm.toml").to_string() + "\n[dynamics]\nmodel = \"imposed\"\n";
     let e = load_str(&single, "x", &[]).unwrap_err();
     assert!(e.to_string().contains("dynamics: is only allowed with a [growth] section"));

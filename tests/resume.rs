@@ -212,3 +212,27 @@ fn resume_refuses_what_it_cannot_continue() {
     assert_eq!(code, Some(2));
     assert!(err.contains("single-passage run, not a growth study"), "{err}");
 }
+
+#[test]
+fn a_study_that_stops_at_saturation_resumes_to_the_same_stop() {
+    // growth.stop = "saturation" with a rate no corrugation of this study
+    // reaches: it stops after the first full window (11 passages) of the 20
+    // planned, complete, with its reason; a run resumed from passage 6 stops
+    // at the same passage, bit for bit.
+    let dir = tempfile::tempdir().unwrap();
+    let set =
+        ["growth.stop=saturation", "growth.saturation_rate=100", "growth.adaptive=false", "growth.contact_history=[]"];
+    let full = run(dir.path(), "sfull.h5", &[&set[..], &["growth.passes=20"]].concat());
+    assert_eq!(read_f64(&full, "passes", "traffic").unwrap().len(), 11);
+    assert_eq!(read_attr_str(&full, "", "status").unwrap(), "complete");
+    assert!(read_attr_str(&full, "", "stop_reason").unwrap().starts_with("saturation: the rms grew by"));
+    let part = run(dir.path(), "spart.h5", &[&set[..], &["growth.passes=6"]].concat());
+    assert_eq!(read_attr_str(&part, "", "stop_reason").unwrap(), "");
+    let s = resume(&part, Some(14), None, &mut |_| {}).unwrap();
+    assert_eq!((s.passes, s.computed), (11, 5));
+    assert!(s.stop_reason.is_some());
+    assert_same(&full, &part);
+    // Resuming a stopped study computes nothing more.
+    let s = resume(&full, Some(5), Some(&dir.path().join("again.h5")), &mut |_| {}).unwrap();
+    assert_eq!((s.passes, s.computed), (11, 0));
+}

@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,check}``.
+"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,check}``.
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -24,6 +24,8 @@ MANIFEST_COMMANDS = (
      "sweep, value, file, exit_code, message (one 'baseline' row)"),
     ("grid-convergence", "convergence of both discretisations of the exact model (scripts/grid_convergence.sh)",
      "scene, grid (fixed or adapted), size (contact.dx in m, or the adapted mesh n), file"),
+    ("validity-map", "where the Hertz normal contact differs from the profile's (scripts/validity_map.sh)",
+     "wavelength, amplitude, normal, file, exit_code, message, contact_loss"),
 )
 
 
@@ -140,6 +142,12 @@ def _grid_convergence(args) -> int:
     return EXIT_OK
 
 
+def _validity_map(args) -> int:
+    from .validity_map import markdown, run
+
+    return _print_table(run(args.manifest, args.out), markdown)
+
+
 def _check(args) -> int:
     from .schema import check_file
 
@@ -158,7 +166,7 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     handler = {"figures": _figures, "compare": _compare, "growth": _growth,
                "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "grid-convergence": _grid_convergence,
-               "check": _check}[args.command]
+               "validity-map": _validity_map, "check": _check}[args.command]
     try:
         return handler(args)
     except RunFileError as err:

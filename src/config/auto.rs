@@ -4,10 +4,13 @@
 
 use super::ConfigError;
 use crate::growth::roughness::Roughness;
+use crate::growth::roughness::profile_line;
+use crate::growth::spectrum::{amplitudes, wavelengths};
 use crate::hertz::HertzShape;
 use crate::loads::ImposedLoads;
+use crate::model_choice::hertz_validity::HertzValidity;
 use crate::model_choice::{AccuracyMap, AutoChoice, ChoiceError, SAFETY};
-use crate::params::GrowthParams;
+use crate::params::{DynamicsKind, GrowthParams};
 
 /// The config name of the automatic choice.
 pub const AUTO: &str = "auto";
@@ -44,7 +47,14 @@ pub fn resolve(
     let wavelength = shortest_wavelength(loads, growth);
     let lambda_over_2a = wavelength / (2.0 * a_max);
     match AccuracyMap::builtin().choose(lambda_over_2a, tolerance) {
-        Ok(c) => Some(AutoChoice { tolerance, lambda_over_2a, wavelength, chosen: c.chosen, exact: c.exact }),
+        Ok(c) => Some(AutoChoice {
+            tolerance,
+            lambda_over_2a,
+            wavelength,
+            chosen: c.chosen,
+            exact: c.exact,
+            hertz_difference: None,
+        }),
         Err(e @ ChoiceError::OutsideMap { .. }) => {
             errors.push(ConfigError::new(
                 "contact.model",
@@ -67,4 +77,26 @@ pub fn resolve(
             None
         }
     }
+}
+
+/// The validity map's difference between the Hertz and the profile normal
+/// contact ([`HertzValidity`]) at the initial profile of a growth study
+/// with track dynamics (over a stretch of `length` m sampled every `dx` m):
+/// the largest over its harmonics of at least half the dominant amplitude.
+/// None without a growth study, dynamics or roughness.
+pub fn hertz_difference(growth: Option<&GrowthParams>, length: f64, dx: f64) -> Option<f64> {
+    let g = growth?;
+    if g.dynamics == DynamicsKind::Imposed || !(length > 0.0 && dx > 0.0) {
+        return None;
+    }
+    let n = (length / dx).round() as usize;
+    let xs: Vec<f64> = (0..n).map(|i| i as f64 * length / n as f64).collect();
+    let spectrum = amplitudes(&profile_line(&g.roughness, &xs, length));
+    let waves = wavelengths(n, length / n as f64);
+    let top = spectrum.iter().cloned().fold(0.0f64, f64::max);
+    if top <= 0.0 {
+        return None;
+    }
+    let map = HertzValidity::builtin();
+    spectrum.iter().zip(&waves).filter(|(a, _)| **a >= 0.5 * top).map(|(a, w)| map.difference(*w, *a)).reduce(f64::max)
 }

@@ -6,8 +6,12 @@ use super::ConfigError;
 use super::reader::{Range, Section};
 use crate::growth::roughness::{LevelBand, ProfileHarmonic, Roughness, band_harmonics};
 use crate::growth::traffic::{DEFAULT_MAX_UPDATE_RATIO, TrafficScaling};
-use crate::params::{DynamicsKind, GrowthParams};
+use crate::params::{DynamicsKind, GrowthParams, StopRule};
 use toml::{Table, Value};
+
+/// Default `growth.saturation_rate` (dB per 1e5 real passages): a tenth of
+/// a decibel, about 1 % of rms, per 1e5 passages.
+pub const DEFAULT_SATURATION_RATE: f64 = 0.1;
 
 /// Keys of `roughness.kind = "random"` (besides the seed).
 const RANDOM_KEYS: [&str; 3] = ["rms", "wavelength_min", "wavelength_max"];
@@ -45,6 +49,13 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
     let store_every = s.usize("store_every", Some(1), 1, 1_000_000);
     let checkpoint_every = s.usize("checkpoint_every", Some(10), 1, 1_000_000);
     let history = s.usize_list("contact_history", vec![0], 1_000_000);
+    let stop = s.choice("stop", Some("never"), &["never", "saturation"]);
+    let rate = s.f64("saturation_rate", Some(DEFAULT_SATURATION_RATE), Range::OpenClosed(0.0, 100.0));
+    let stop = match (stop.as_deref(), rate) {
+        (Some("saturation"), Some(rate)) => Some(StopRule::Saturation { rate }),
+        (Some(_), Some(_)) => Some(StopRule::Never),
+        _ => None,
+    };
     resolved.insert("growth".into(), Value::Table(s.finish()));
 
     let mut s = Section::new(root, "", "roughness", errors);
@@ -100,7 +111,7 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
     };
     resolved.insert("dynamics".into(), Value::Table(s.finish()));
 
-    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics) {
+    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics, stop) {
         (
             Some(passes),
             Some(traffic),
@@ -109,6 +120,7 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
             Some(contact_history),
             Some(roughness),
             Some(dynamics),
+            Some(stop),
         ) => Ok(Some(GrowthParams {
             passes,
             traffic,
@@ -117,6 +129,7 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
             contact_history,
             roughness,
             dynamics,
+            stop,
         })),
         _ => Err(()),
     }

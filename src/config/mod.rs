@@ -266,9 +266,10 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         let Some(shape) = shape.as_ref() else {
             return (None, resolved);
         };
-        let Some(choice) = auto::resolve(tolerance, &loads, growth.as_ref(), shape, errors) else {
+        let Some(mut choice) = auto::resolve(tolerance, &loads, growth.as_ref(), shape, errors) else {
             return (None, resolved);
         };
+        choice.hertz_difference = auto::hertz_difference(growth.as_ref(), x_max - x_min, dx);
         // The fixed grid of the map: its element, dy = 2.5 dx, the step the
         // element (the map measured it so); the adapted mesh n x n.
         let chosen = choice.chosen;
@@ -279,7 +280,14 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
                     dy: FIXED_ASPECT * dx,
                     friction_law: FrictionLaw::Regularised,
                     scheme: GridScheme::SecondOrder,
-                    normal: crate::params::NormalContact::Hertz,
+                    // The profile in the normal contact when the initial
+                    // corrugation is outside the Hertz region.
+                    normal: match choice.hertz_difference {
+                        Some(d) if d > crate::model_choice::hertz_validity::HERTZ_LIMIT => {
+                            crate::params::NormalContact::Profile { grid_scale: contact::DEFAULT_PROFILE_GRID_SCALE }
+                        }
+                        _ => crate::params::NormalContact::Hertz,
+                    },
                 });
                 step_length = dx;
                 nx

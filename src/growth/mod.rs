@@ -14,6 +14,7 @@
 
 pub mod roughness;
 pub mod spectrum;
+pub mod stop;
 pub mod traffic;
 
 use crate::contact::TangentialSolver;

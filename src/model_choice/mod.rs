@@ -20,6 +20,8 @@
 //! [`SAFETY`] of it, a margin for the interpolation and for scenes that
 //! differ from the map's.
 
+pub mod hertz_validity;
+
 use crate::params::ContactModelKind;
 use std::sync::OnceLock;
 
@@ -118,6 +120,11 @@ pub struct AutoChoice {
     pub chosen: Candidate,
     /// The cheapest exact-transient mesh within the tolerance.
     pub exact: Option<Candidate>,
+    /// The validity map's difference between the Hertz and the profile
+    /// normal contact at the initial corrugation of a growth study (1);
+    /// beyond [`hertz_validity::HERTZ_LIMIT`] a fixed-grid choice takes the
+    /// profile into its normal contact.
+    pub hertz_difference: Option<f64>,
 }
 
 /// Why no choice could be made.

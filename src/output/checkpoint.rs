@@ -58,6 +58,11 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         ["traffic", "traffic_scale", "rms_corrugation", "removed_volume", "cpu_seconds", "update_ratio"].map(column);
     let (traffic, scale, rms, volume, cpu, ratio) = (traffic?, scale?, rms?, volume?, cpu?, ratio?);
     let (spectrum, filtered, rate) = (table("spectrum")?, table("filtered_spectrum")?, table("growth_rate")?);
+    // Files written before the column existed had no contact loss recorded.
+    let loss = match read_f64(path, "passes", "contact_loss_steps") {
+        Ok(_) => column("contact_loss_steps")?,
+        Err(_) => ndarray::Array1::zeros(done),
+    };
     let rows = (0..done)
         .map(|k| PassRow {
             index: k as i64,
@@ -67,6 +72,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             removed_volume: volume[k],
             cpu_seconds: cpu[k],
             update_ratio: ratio[k],
+            contact_loss_steps: loss[k],
             spectrum: spectrum.row(k).to_vec(),
             filtered_spectrum: filtered.row(k).to_vec(),
             growth_rate: rate.row(k).to_vec(),

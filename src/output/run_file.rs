@@ -3,7 +3,8 @@
 //!
 //! * root attributes: `title`, `version`, `contact_model`, `config` (the
 //!   resolved TOML), `status` ("checkpoint" or "complete"), `passes_done`,
-//!   `passes_planned`;
+//!   `passes_planned`, `stop_reason` (why a study with `growth.stop`
+//!   ended before its planned passages; empty otherwise);
 //! * group `rail`: coordinates `x`, `y`, `pass`; `traffic(pass)`,
 //!   `profile(pass, y, x)`, `wear(pass, y, x)`, and `state(y, x)`, the
 //!   profile after the last passage done (what a resumed run starts from);
@@ -35,6 +36,8 @@ pub struct PassRow {
     /// Relative profile change of the update, q = m max_k |W_k| / |R_k| (1);
     /// see [`crate::growth::traffic`].
     pub update_ratio: f64,
+    /// Steps of the stretch where the wheel left the rail (N <= 0) (1).
+    pub contact_loss_steps: f64,
     /// Amplitude spectrum of the centre-line profile after the passage (m),
     /// on the record's `wavelengths`.
     pub spectrum: Vec<f64>,
@@ -98,6 +101,8 @@ pub struct RunRecord<'a> {
     pub state: &'a RunState,
     /// Passages the run will have when complete.
     pub passes_planned: usize,
+    /// Why the study stopped before `passes_planned` (it is then complete).
+    pub stop_reason: Option<&'a str>,
 }
 
 /// Writes `record` to `path` atomically.
@@ -109,7 +114,9 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         root.attr_str("contact_model", record.contact_model)?;
         root.attr_str("config", record.config)?;
         let done = record.state.rows.len();
-        root.attr_str("status", if done >= record.passes_planned { "complete" } else { "checkpoint" })?;
+        let complete = done >= record.passes_planned || record.stop_reason.is_some();
+        root.attr_str("status", if complete { "complete" } else { "checkpoint" })?;
+        root.attr_str("stop_reason", record.stop_reason.unwrap_or(""))?;
         root.attr_i64("passes_done", done as i64)?;
         root.attr_i64("passes_planned", record.passes_planned as i64)?;
         write_rail(&root.group("rail")?, record)?;
@@ -168,7 +175,7 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
     let idx: Vec<i64> = rows.iter().map(|r| r.index).collect();
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
     let col = |f: fn(&PassRow) -> f64| -> Array1<f64> { rows.iter().map(f).collect() };
-    let vars: [(&str, Array1<f64>, &str, &str); 6] = [
+    let vars: [(&str, Array1<f64>, &str, &str); 7] = [
         ("traffic", col(|r| r.traffic), "1", "real wheel passages represented"),
         ("traffic_scale", col(|r| r.traffic_scale), "1", "real passages per simulated passage"),
         ("rms_corrugation", col(|r| r.rms_corrugation), "m", "rms of the centre-line rail profile minus its mean"),
@@ -184,6 +191,12 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
             col(|r| r.update_ratio),
             "1",
             "relative profile change of the update, m max_k |W_k|/|R_k| over the corrugation harmonics",
+        ),
+        (
+            "contact_loss_steps",
+            col(|r| r.contact_loss_steps),
+            "1",
+            "steps of the stretch where the wheel left the rail (N <= 0; the linear track model is not valid there)",
         ),
     ];
     for (name, v, units, long_name) in vars {

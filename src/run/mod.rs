@@ -2,6 +2,7 @@
 //! -> run file. The terminal and the file system stay out of the kernels:
 //! progress is a callback, output goes through [`crate::output`].
 
+mod hertz_check;
 mod study;
 
 pub use study::{Event, ResumeError, RunError, RunState, RunSummary, resume, run_scene};

@@ -16,6 +16,7 @@
 //! (every passage starts with a run-in from a reset solver), so a resumed
 //! run computes bit for bit what the uninterrupted run would have.
 
+use super::hertz_check::HertzCheck;
 use super::{build_deposit, build_solver, derive, element_count, normal_contact, periodic_grid, track_dynamics};
 use crate::config::{ConfigErrors, Resolved, load_str};
 use crate::dynamics::TrackDynamics;
@@ -28,7 +29,7 @@ use crate::output::checkpoint::{StateLayout, read_run_state};
 use crate::output::netcdf::{NcError, read_attr_str, read_f64};
 pub use crate::output::run_file::RunState;
 use crate::output::run_file::{PassRow, RailSnapshot, RunRecord, write_run_file};
-use crate::params::Scene;
+use crate::params::{NormalContact, Scene};
 use crate::passage::{PassageError, run_passage};
 use crate::wear::RailGrid;
 use ndarray::Array2;
@@ -68,6 +69,13 @@ pub enum Event {
         pass: usize,
         /// What happened.
         message: String,
+    },
+    /// The study stopped after this passage (`growth.stop`).
+    Stopped {
+        /// Simulated passage index (0-based).
+        pass: usize,
+        /// Why.
+        reason: String,
     },
     /// The run file was rewritten after `done` passages.
     Checkpoint {
@@ -155,6 +163,8 @@ pub struct RunSummary {
     pub max_update_ratio: (f64, usize),
     /// The bound the update ratio should stay under (1).
     pub update_bound: f64,
+    /// Why the study stopped before its planned passages (`growth.stop`).
+    pub stop_reason: Option<String>,
 }
 
 /// Runs the scene (one passage, or a growth study over `growth.passes`
@@ -260,7 +270,7 @@ fn continue_run(
     let line = |p: &Array2<f64>| p.row(centre).to_vec();
     // What the wheel sees: the profile weighted across the mean patch width.
     let filtered = |p: &Array2<f64>| contact_filtered_line(p, &grid, d.patch_mean.b);
-    let write = |state: &RunState| {
+    let write = |state: &RunState, stop_reason: Option<&str>| {
         let title = if scene.output.title.is_empty() { "corrugation run" } else { scene.output.title.as_str() };
         let record = RunRecord {
             title,
@@ -272,6 +282,7 @@ fn continue_run(
             wavelengths: &waves,
             state,
             passes_planned: passes,
+            stop_reason,
         };
         write_run_file(out, &record)
     };
@@ -285,14 +296,26 @@ fn continue_run(
         traffic: state.rows.last().map_or(0.0, |r| r.traffic),
         max_update_ratio: (0.0, 0),
         update_bound: scaling.max_update_ratio(),
+        stop_reason: None,
     };
+    let mut hertz_check = HertzCheck {
+        active: normal_contact(scene) == NormalContact::Hertz && dynamics.is_some(),
+        fixed: matches!(scene.contact.grid, crate::params::ContactGrid::Fixed(_)),
+    };
+    // A study that stopped (growth.stop) stays stopped when resumed: the rule
+    // reads the stored rows.
+    let mut stopped = stop_reason(growth, &state.rows);
     for pass in first..passes {
+        if stopped.is_some() {
+            break;
+        }
         let keep_history = growth.is_none_or(|g| g.contact_history.contains(&pass));
         let record_fields = keep_history && scene.output.store_fields;
         let clock = cpu_time::ProcessTime::now();
         let total_steps = (passes - first) * steps;
         let mut report =
             |done: usize, _: usize| progress(Event::Steps { done: (pass - first) * steps + done, total: total_steps });
+        let mut loss = 0;
         let (wear, history) = match growth {
             None => {
                 let r = run_passage(
@@ -321,6 +344,7 @@ fn continue_run(
                     &mut report,
                 )
                 .map_err(|source| RunError::Passage { pass, source })?;
+                loss = g.contact_loss_steps;
                 if g.contact_loss_steps > 0 {
                     progress(Event::Warning {
                         pass,
@@ -348,6 +372,9 @@ fn continue_run(
         state.profile.scaled_add(-m, &wear);
         let spectrum = amplitudes(&line(&state.profile));
         let filtered_spectrum = amplitudes(&filtered(&state.profile));
+        if let Some(message) = hertz_check.check(&waves, &filtered_spectrum) {
+            progress(Event::Warning { pass, message });
+        }
         let row = PassRow {
             index: pass as i64,
             traffic,
@@ -356,6 +383,7 @@ fn continue_run(
             removed_volume: wear.sum() * grid.dx * grid.dy,
             cpu_seconds,
             update_ratio: m * rho,
+            contact_loss_steps: loss as f64,
             // Below 1e-12 m (1 pm) an amplitude is numerical noise.
             growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
             spectrum,
@@ -382,19 +410,38 @@ fn continue_run(
             state.histories.push((pass as i64, history));
         }
         state.rows.push(row);
+        stopped = stop_reason(growth, &state.rows);
+        if let Some(reason) = &stopped {
+            progress(Event::Stopped { pass, reason: reason.clone() });
+        }
         if let Some(g) = growth
             && (pass + 1) % g.checkpoint_every == 0
             && pass + 1 < passes
+            && stopped.is_none()
         {
-            write(&state)?;
+            write(&state, None)?;
             progress(Event::Checkpoint { done: pass + 1 });
         }
     }
-    write(&state)?;
+    write(&state, stopped.as_deref())?;
+    summary.passes = state.rows.len();
+    summary.computed = state.rows.len() - first;
+    summary.stop_reason = stopped;
     summary.max_update_ratio = state
         .rows
         .iter()
         .map(|r| (r.update_ratio, r.index as usize))
         .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a });
     Ok(summary)
+}
+
+/// Why a growth study stops after its last row, by its `growth.stop` rule.
+fn stop_reason(growth: Option<&crate::params::GrowthParams>, rows: &[PassRow]) -> Option<String> {
+    let crate::params::StopRule::Saturation { rate } = growth?.stop else {
+        return None;
+    };
+    let last = rows.last()?;
+    let rms: Vec<f64> = rows.iter().map(|r| r.rms_corrugation).collect();
+    let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
+    crate::growth::stop::saturation(&rms, &traffic, last.contact_loss_steps, rate)
 }
