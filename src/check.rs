@@ -132,7 +132,14 @@ pub fn print_check(r: &Resolved) {
             f.friction_law.name(),
             f.scheme.name()
         );
-        if let NormalContact::Profile { grid_scale } = f.normal {
+        if let NormalContact::Auto { amplitude, .. } = f.normal {
+            println!(
+                "normal contact     auto: the Hertz contact while the corrugation's dominant harmonic is below \
+                 {:.2} um or inside the Hertz region, the profile beyond (on the profile's grid)",
+                amplitude * 1e6
+            );
+        }
+        if let NormalContact::Profile { grid_scale } | NormalContact::Auto { grid_scale, .. } = f.normal {
             println!(
                 "normal contact     profile: the rail's corrugation in the gap of every step (the grid {grid_scale} times \
                  the largest Hertz patch both ways); the dynamics see the equivalent roughness (a normal solve per step \
@@ -196,7 +203,7 @@ pub fn print_check(r: &Resolved) {
         // With the profile in the contact: a larger grid, the gap of every
         // step and the equivalent roughness's normal solves; 2.0 times on
         // growth_exact.toml (3 passages: 3.6 s with "hertz", 7.3 s).
-        let profile = if matches!(f.normal, NormalContact::Profile { .. }) { 2.0 } else { 1.0 };
+        let profile = if matches!(f.normal, NormalContact::Hertz) { 1.0 } else { 2.0 };
         5.0e-3 * (n_c / 478.0).powf(1.46) * if symmetric { 1.0 } else { 2.7 } * profile
     });
     let contact = match s.contact.model {

@@ -129,6 +129,17 @@ pub enum NormalContact {
         /// the largest Hertz patch (1).
         grid_scale: f64,
     },
+    /// A growth study chooses per passage: the Hertz contact while the
+    /// dominant harmonic of the corrugation is below `amplitude` or inside
+    /// the Hertz region ([`crate::model_choice::hertz_validity`]), the
+    /// profile beyond, on one grid sized for the profile.
+    Auto {
+        /// Size of the potential-contact grid (as for `Profile`) (1).
+        grid_scale: f64,
+        /// Amplitude of the dominant harmonic (m) from which the profile
+        /// contact can be used: above its noise floor on the grid.
+        amplitude: f64,
+    },
 }
 
 impl NormalContact {
@@ -137,6 +148,16 @@ impl NormalContact {
         match self {
             NormalContact::Hertz => "hertz",
             NormalContact::Profile { .. } => "profile",
+            NormalContact::Auto { .. } => "auto",
+        }
+    }
+
+    /// Size of the potential-contact grid relative to the largest Hertz
+    /// patch (1).
+    pub fn grid_scale(self) -> f64 {
+        match self {
+            NormalContact::Hertz => 1.0,
+            NormalContact::Profile { grid_scale } | NormalContact::Auto { grid_scale, .. } => grid_scale,
         }
     }
 }

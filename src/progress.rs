@@ -86,6 +86,13 @@ impl Progress {
                     None => say!("{text}"),
                 }
             }
+            Event::Note { pass, message } => {
+                let text = format!("passage {}: {message}", pass + 1);
+                match &self.bar {
+                    Some(b) => b.println(text),
+                    None => say!("{text}"),
+                }
+            }
             Event::Stopped { pass, reason } => {
                 let text = format!("stopped after passage {}: {reason}", pass + 1);
                 match &self.bar {

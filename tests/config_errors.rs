@@ -152,7 +152,12 @@ fn fixed_grid_keys() {
         ),
         (
             &[exact, "contact.grid=fixed", "contact.normal=elastic"],
-            "contact.normal: = \"elastic\" is not allowed; expected one of \"hertz\", \"profile\"",
+            "contact.normal: = \"elastic\" is not allowed; expected one of \"hertz\", \"profile\", \"auto\"",
+        ),
+        (&[exact, "contact.normal=auto"], "contact.normal: = \"auto\" solves the discrete normal problem"),
+        (
+            &[exact, "contact.grid=fixed", "contact.normal=auto", "contact.profile_from=0"],
+            "contact.profile_from: = 0 is out of range; expected a number in (0, 0.001]",
         ),
         (
             &[exact, "contact.grid=fixed", "contact.normal=profile", "contact.profile_grid_scale=0.5"],

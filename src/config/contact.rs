@@ -22,6 +22,19 @@ pub const DEFAULT_GRID_DY: f64 = 5e-4;
 /// the wheel's curvature.
 pub const DEFAULT_PROFILE_GRID_SCALE: f64 = 1.5;
 
+/// Default `contact.profile_from` at [`PROFILE_NOISE_ELEMENT`]: twice the
+/// profile contact's noise floor there. The floor is the corrugation
+/// amplitude whose wear harmonic the sub-element wandering of the patch
+/// over the grid drowns (the contact point moves by R dr/dX; elements enter
+/// and leave contact whole): about 2.5 um at 0.4 mm elements (60 mm
+/// corrugation, scripts/validity_map.sh: the wear harmonic per um of
+/// amplitude is 3 times its large-amplitude value at 1 um, 1.8 times at
+/// 0.2 mm elements). First order in the element: scaled with `contact.dx`.
+pub const PROFILE_NOISE_AMPLITUDE: f64 = 5e-6;
+
+/// The element length at which [`PROFILE_NOISE_AMPLITUDE`] holds (m).
+pub const PROFILE_NOISE_ELEMENT: f64 = 4e-4;
+
 /// The keys of `[contact]` as read (each None when invalid).
 pub(super) struct ContactKeys {
     pub model: Option<String>,
@@ -47,6 +60,8 @@ pub(super) struct FixedKeys {
     pub normal: Option<String>,
     /// `contact.profile_grid_scale` (read for `normal = "profile"`).
     pub grid_scale: Option<f64>,
+    /// `contact.profile_from` (m) as given (`Some(None)`: the default).
+    pub from: Option<Option<f64>>,
 }
 
 /// Reads `[contact]` from `root` into `resolved`.
@@ -79,16 +94,27 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
     let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
     let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
-    let normal = s.choice("normal", Some("hertz"), &["hertz", "profile"]);
-    let profile = normal.as_deref() == Some("profile");
+    let normal = s.choice("normal", Some("hertz"), &["hertz", "profile", "auto"]);
+    let profile = matches!(normal.as_deref(), Some("profile" | "auto"));
     if profile && !fixed {
         s.error(
             "normal",
-            "= \"profile\" solves the discrete normal problem on the rail profile, which needs contact.grid = \"fixed\"; \
-             allowed with contact.grid = \"adapted\": hertz"
-                .into(),
+            format!(
+                "= \"{}\" solves the discrete normal problem on the rail profile, which needs contact.grid = \"fixed\"; \
+                 allowed with contact.grid = \"adapted\": hertz",
+                normal.as_deref().unwrap_or_default()
+            ),
         );
     }
+    let from_range = Range::OpenClosed(0.0, 1e-3);
+    let from = if normal.as_deref() == Some("auto") && fixed {
+        if s.has("profile_from") { s.f64("profile_from", None, from_range).map(Some) } else { Some(None) }
+    } else {
+        if s.has("profile_from") {
+            s.f64("profile_from", None, from_range);
+        }
+        Some(None)
+    };
     let length_range = Range::Closed(1.0, 4.0);
     let grid_scale = if profile && fixed {
         s.f64("profile_grid_scale", Some(DEFAULT_PROFILE_GRID_SCALE), length_range)
@@ -104,7 +130,7 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         let dy = s.f64("dy", Some(DEFAULT_GRID_DY), Range::OpenClosed(0.0, 0.01));
         let law = s.choice("friction_law", Some("regularised"), &["regularised", "coulomb"]);
         let scheme = s.choice("scheme", Some("second-order"), &["second-order", "first-order", "third-order"]);
-        Some(FixedKeys { dx, dx_given: given, dy, law, scheme, normal, grid_scale })
+        Some(FixedKeys { dx, dx_given: given, dy, law, scheme, normal, grid_scale, from })
     } else {
         // The fixed grid's keys on the adapted mesh: checked, kept in the
         // resolved config, unused (so that `--set contact.grid=adapted`
@@ -143,6 +169,10 @@ pub(super) fn reconcile_step(
     let (dx, dy, law, scheme) = (f.dx?, f.dy?, f.law.as_deref()?, f.scheme.as_deref()?);
     let normal = match f.normal.as_deref()? {
         "profile" => NormalContact::Profile { grid_scale: f.grid_scale? },
+        "auto" => NormalContact::Auto {
+            grid_scale: f.grid_scale?,
+            amplitude: f.from?.unwrap_or(PROFILE_NOISE_AMPLITUDE * dx / PROFILE_NOISE_ELEMENT),
+        },
         _ => NormalContact::Hertz,
     };
     let dx = match (f.dx_given, step_given, step_length) {

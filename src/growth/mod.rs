@@ -138,7 +138,7 @@ pub fn growth_passage(
             let b_mean = shape.patch(spec.loads.normal_force).map(|p| p.b).unwrap_or(grid.half_width);
             contact_filtered_line(profile, grid, b_mean)
         }
-        NormalContact::Profile { .. } => {
+        NormalContact::Profile { .. } | NormalContact::Auto { .. } => {
             let surface = Arc::new(RailSurface::corrugation(profile, grid));
             solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
             spec.surface = Some(surface);
@@ -164,10 +164,7 @@ pub fn growth_passage(
     // clipped at its ends.
     let peak_force = spec.loads.max_normal_force() + dynamic_force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
     let a_max = shape.patch(peak_force).map(|p| p.a).unwrap_or(0.0);
-    let a_max = match normal {
-        NormalContact::Profile { grid_scale } => a_max * grid_scale,
-        NormalContact::Hertz => a_max,
-    };
+    let a_max = a_max * normal.grid_scale();
     let reach = (a_max / grid.dx).ceil() as usize + 2;
     let ext = RailGrid { x_min: grid.x_min - reach as f64 * grid.dx, nx: grid.nx + 2 * reach, ..grid.clone() };
     let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, progress)?;

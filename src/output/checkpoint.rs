@@ -59,10 +59,11 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
     let (traffic, scale, rms, volume, cpu, ratio) = (traffic?, scale?, rms?, volume?, cpu?, ratio?);
     let (spectrum, filtered, rate) = (table("spectrum")?, table("filtered_spectrum")?, table("growth_rate")?);
     // Files written before the column existed had no contact loss recorded.
-    let loss = match read_f64(path, "passes", "contact_loss_steps") {
-        Ok(_) => column("contact_loss_steps")?,
-        Err(_) => ndarray::Array1::zeros(done),
+    let optional = |name: &str| match read_f64(path, "passes", name) {
+        Ok(_) => column(name),
+        Err(_) => Ok(ndarray::Array1::zeros(done)),
     };
+    let (loss, profile) = (optional("contact_loss_steps")?, optional("profile_contact")?);
     let rows = (0..done)
         .map(|k| PassRow {
             index: k as i64,
@@ -73,6 +74,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             cpu_seconds: cpu[k],
             update_ratio: ratio[k],
             contact_loss_steps: loss[k],
+            profile_contact: profile[k],
             spectrum: spectrum.row(k).to_vec(),
             filtered_spectrum: filtered.row(k).to_vec(),
             growth_rate: rate.row(k).to_vec(),

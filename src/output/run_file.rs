@@ -38,6 +38,8 @@ pub struct PassRow {
     pub update_ratio: f64,
     /// Steps of the stretch where the wheel left the rail (N <= 0) (1).
     pub contact_loss_steps: f64,
+    /// 1 when the passage's normal contact took the profile, 0 for Hertz.
+    pub profile_contact: f64,
     /// Amplitude spectrum of the centre-line profile after the passage (m),
     /// on the record's `wavelengths`.
     pub spectrum: Vec<f64>,
@@ -175,7 +177,7 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
     let idx: Vec<i64> = rows.iter().map(|r| r.index).collect();
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
     let col = |f: fn(&PassRow) -> f64| -> Array1<f64> { rows.iter().map(f).collect() };
-    let vars: [(&str, Array1<f64>, &str, &str); 7] = [
+    let vars: [(&str, Array1<f64>, &str, &str); 8] = [
         ("traffic", col(|r| r.traffic), "1", "real wheel passages represented"),
         ("traffic_scale", col(|r| r.traffic_scale), "1", "real passages per simulated passage"),
         ("rms_corrugation", col(|r| r.rms_corrugation), "m", "rms of the centre-line rail profile minus its mean"),
@@ -197,6 +199,12 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
             col(|r| r.contact_loss_steps),
             "1",
             "steps of the stretch where the wheel left the rail (N <= 0; the linear track model is not valid there)",
+        ),
+        (
+            "profile_contact",
+            col(|r| r.profile_contact),
+            "1",
+            "1: the rail profile was in the normal contact of the passage; 0: the Hertz contact",
         ),
     ];
     for (name, v, units, long_name) in vars {

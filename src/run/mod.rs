@@ -126,10 +126,7 @@ pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::Fixe
     let largest = shape.patch(fixed_grid_load(scene)).expect("validated loads keep N > 0");
     let rail = if scene.growth.is_some() { periodic_grid(scene) } else { derive_grid(scene) };
     // The profile's troughs lengthen the patch over them, its crests widen it.
-    let scale = match f.normal {
-        NormalContact::Profile { grid_scale } => grid_scale,
-        NormalContact::Hertz => 1.0,
-    };
+    let scale = f.normal.grid_scale();
     FixedGridSpec {
         curvatures: scene.geometry.curvatures(),
         elastic: scene.material.elastic,

@@ -63,6 +63,13 @@ pub enum Event {
         /// Relative profile change of its update (1).
         update_ratio: f64,
     },
+    /// What the run did (not a problem).
+    Note {
+        /// Simulated passage index (0-based).
+        pass: usize,
+        /// What happened.
+        message: String,
+    },
     /// Something the user must know about a passage's results.
     Warning {
         /// Simulated passage index (0-based).
@@ -311,6 +318,23 @@ fn continue_run(
         }
         let keep_history = growth.is_none_or(|g| g.contact_history.contains(&pass));
         let record_fields = keep_history && scene.output.store_fields;
+        // What the normal contact of this passage sees of the rail.
+        let normal = match normal_contact(scene) {
+            NormalContact::Auto { grid_scale, amplitude } => {
+                let spectrum = amplitudes(&filtered(&state.profile));
+                let profile = choose_profile(&waves, &spectrum, amplitude);
+                let before = state.rows.last().is_some_and(|r| r.profile_contact > 0.0);
+                if profile != before {
+                    let which = if profile { "profile" } else { "Hertz" };
+                    progress(Event::Note {
+                        pass,
+                        message: format!("contact.normal = \"auto\": the {which} normal contact from this passage on"),
+                    });
+                }
+                if profile { NormalContact::Profile { grid_scale } } else { NormalContact::Hertz }
+            }
+            fixed => fixed,
+        };
         let clock = cpu_time::ProcessTime::now();
         let total_steps = (passes - first) * steps;
         let mut report =
@@ -338,7 +362,7 @@ fn continue_run(
                     deposit.as_ref(),
                     &grid,
                     &state.profile,
-                    normal_contact(scene),
+                    normal,
                     dynamics.as_ref().map(|t| t as &dyn TrackDynamics),
                     record_fields,
                     &mut report,
@@ -384,6 +408,7 @@ fn continue_run(
             cpu_seconds,
             update_ratio: m * rho,
             contact_loss_steps: loss as f64,
+            profile_contact: if matches!(normal, NormalContact::Profile { .. }) { 1.0 } else { 0.0 },
             // Below 1e-12 m (1 pm) an amplitude is numerical noise.
             growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
             spectrum,
@@ -444,4 +469,33 @@ fn stop_reason(growth: Option<&crate::params::GrowthParams>, rows: &[PassRow]) -
     let rms: Vec<f64> = rows.iter().map(|r| r.rms_corrugation).collect();
     let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
     crate::growth::stop::saturation(&rms, &traffic, last.contact_loss_steps, rate)
+}
+
+/// Whether `contact.normal = "auto"` takes the profile into the normal
+/// contact for a corrugation of spectrum `amplitudes` (m) at `wavelengths`
+/// (m): its dominant harmonic at least `from` (m, the profile contact's
+/// usable amplitude on the grid) and outside the Hertz region.
+fn choose_profile(wavelengths: &[f64], amplitudes: &[f64], from: f64) -> bool {
+    let Some((i, a)) = amplitudes.iter().copied().enumerate().max_by(|p, q| p.1.total_cmp(&q.1)) else {
+        return false;
+    };
+    a >= from
+        && !crate::model_choice::hertz_validity::HertzValidity::builtin()
+            .hertz_is_valid(wavelengths.get(i).copied().unwrap_or(f64::INFINITY), a)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::choose_profile;
+
+    #[test]
+    fn auto_normal_contact_takes_the_profile_above_its_floor_outside_the_hertz_region() {
+        let waves = [0.12, 0.06, 0.04, 0.03, 0.024, 0.02];
+        // Below the usable amplitude: Hertz, wherever the map puts it.
+        assert!(!choose_profile(&waves, &[0.0, 0.0, 0.0, 0.0, 0.0, 1e-6], 5e-6));
+        // 10 um at 20 mm: outside the Hertz region (the map: > 100 %).
+        assert!(choose_profile(&waves, &[0.0, 1e-6, 0.0, 0.0, 0.0, 1e-5], 5e-6));
+        // Nothing: Hertz.
+        assert!(!choose_profile(&[], &[], 5e-6));
+    }
 }
