@@ -37,6 +37,9 @@ COLUMNS = ("wavelength", "amplitude", "mean_difference", "harmonic_difference", 
 
 # The line where the Hertz contact stops being good enough.
 THRESHOLD = 0.05
+# Below this amplitude the profile contact's own wear harmonic is within a
+# factor of two of its noise floor at 0.4 mm elements (README).
+PROFILE_USABLE = 5e-6
 
 
 def _wear(path, wavelength):
@@ -110,6 +113,9 @@ def chart(rows, path):
                 ax.plot(r["wavelength"] * 1e3, r["amplitude"] * 1e6, "rx", ms=9)
             elif r["contact_loss"]:
                 ax.plot(r["wavelength"] * 1e3, r["amplitude"] * 1e6, "o", mfc="none", mec="orange", ms=9)
+        ax.axhline(PROFILE_USABLE * 1e6, color="w", ls="--", lw=1)
+        ax.text(x[0], PROFILE_USABLE * 1e6 * 0.85, " profile contact's noise floor x 2 (0.4 mm grid)", color="w",
+                fontsize=8, va="top")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("corrugation wavelength (mm)")
