@@ -52,7 +52,9 @@ fn print_auto(a: &AutoChoice) {
         let verdict = if d <= limit {
             "inside the Hertz region: the Hertz normal contact".to_string()
         } else if c.grid_dx().is_some() {
-            "outside the Hertz region: the profile in the normal contact".to_string()
+            "outside the Hertz region: the profile in the normal contact once the corrugation is above the profile \
+             contact's floor (contact.normal = \"auto\")"
+                .to_string()
         } else {
             "outside the Hertz region: the chosen model has no profile contact; the run warns".to_string()
         };

@@ -275,18 +275,25 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         let chosen = choice.chosen;
         let mesh = match chosen.grid_dx() {
             Some(dx) => {
+                // A growth study's step must divide its stretch: the next
+                // finer element that does (at least as accurate).
+                let length = x_max - x_min;
+                let dx = if growth.is_some() { length / (length / dx - 1e-9).ceil() } else { dx };
                 contact_grid = ContactGrid::Fixed(FixedGridParams {
                     dx,
                     dy: FIXED_ASPECT * dx,
                     friction_law: FrictionLaw::Regularised,
                     scheme: GridScheme::SecondOrder,
-                    // The profile in the normal contact when the initial
-                    // corrugation is outside the Hertz region.
+                    // A growth study with track dynamics switches to the
+                    // profile in the normal contact once its corrugation
+                    // leaves the Hertz region (and the profile contact
+                    // resolves it on this grid).
                     normal: match choice.hertz_difference {
-                        Some(d) if d > crate::model_choice::hertz_validity::HERTZ_LIMIT => {
-                            crate::params::NormalContact::Profile { grid_scale: contact::DEFAULT_PROFILE_GRID_SCALE }
-                        }
-                        _ => crate::params::NormalContact::Hertz,
+                        Some(_) => crate::params::NormalContact::Auto {
+                            grid_scale: contact::DEFAULT_PROFILE_GRID_SCALE,
+                            amplitude: contact::PROFILE_NOISE_AMPLITUDE * dx / contact::PROFILE_NOISE_ELEMENT,
+                        },
+                        None => crate::params::NormalContact::Hertz,
                     },
                 });
                 step_length = dx;

@@ -121,9 +121,10 @@ pub struct AutoChoice {
     /// The cheapest exact-transient mesh within the tolerance.
     pub exact: Option<Candidate>,
     /// The validity map's difference between the Hertz and the profile
-    /// normal contact at the initial corrugation of a growth study (1);
-    /// beyond [`hertz_validity::HERTZ_LIMIT`] a fixed-grid choice takes the
-    /// profile into its normal contact.
+    /// normal contact at the initial corrugation of a growth study with
+    /// track dynamics (1); such a study on the fixed grid takes
+    /// `contact.normal = "auto"` (the profile once the corrugation leaves
+    /// the Hertz region).
     pub hertz_difference: Option<f64>,
 }
 
