@@ -8,7 +8,7 @@
 //! rail grid, Kalker's table range) run on the keys that were valid.
 
 mod auto;
-mod contact;
+pub mod contact;
 mod growth;
 mod overrides;
 mod reader;

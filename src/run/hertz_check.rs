@@ -11,6 +11,11 @@ pub(super) struct HertzCheck {
     pub active: bool,
     /// Whether the study runs on the fixed grid (the profile contact's).
     pub fixed: bool,
+    /// The amplitude (m) from which the profile contact resolves the
+    /// corrugation's own wear on the grid (below it the map's difference
+    /// is the profile contact's noise, and there is nothing better to
+    /// switch to).
+    pub from: f64,
 }
 
 impl HertzCheck {
@@ -23,7 +28,7 @@ impl HertzCheck {
         let (i, amplitude) =
             amplitudes.iter().copied().enumerate().fold((0, 0.0), |m, (i, a)| if a > m.1 { (i, a) } else { m });
         let wavelength = *wavelengths.get(i)?;
-        if amplitude <= 0.0 {
+        if amplitude < self.from {
             return None;
         }
         let map = HertzValidity::builtin();
@@ -34,9 +39,9 @@ impl HertzCheck {
         let d = map.difference(wavelength, amplitude);
         let by = if d.is_finite() { format!("by {:.0} %", 100.0 * d) } else { "beyond the map (full sliding)".into() };
         let how = if self.fixed {
-            "set contact.normal = \"profile\""
+            "set contact.normal = \"auto\" (or \"profile\")"
         } else {
-            "set contact.grid = \"fixed\" and contact.normal = \"profile\""
+            "set contact.grid = \"fixed\" and contact.normal = \"auto\" (or \"profile\")"
         };
         Some(format!(
             "the dominant harmonic of the corrugation ({:.1} mm, {:.3} um) has left the Hertz region: there the Hertz \

@@ -18,6 +18,7 @@
 
 use super::hertz_check::HertzCheck;
 use super::{build_deposit, build_solver, derive, element_count, normal_contact, periodic_grid, track_dynamics};
+use crate::config::contact::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::config::{ConfigErrors, Resolved, load_str};
 use crate::dynamics::TrackDynamics;
 use crate::growth::roughness::profile_line;
@@ -308,6 +309,10 @@ fn continue_run(
     let mut hertz_check = HertzCheck {
         active: normal_contact(scene) == NormalContact::Hertz && dynamics.is_some(),
         fixed: matches!(scene.contact.grid, crate::params::ContactGrid::Fixed(_)),
+        from: match scene.contact.grid {
+            crate::params::ContactGrid::Fixed(f) => PROFILE_NOISE_AMPLITUDE * f.dx / PROFILE_NOISE_ELEMENT,
+            crate::params::ContactGrid::Adapted => PROFILE_NOISE_AMPLITUDE,
+        },
     };
     // A study that stopped (growth.stop) stays stopped when resumed: the rule
     // reads the stored rows.
