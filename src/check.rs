@@ -137,7 +137,7 @@ pub fn print_check(r: &Resolved) {
         if let NormalContact::Auto { amplitude, .. } = f.normal {
             println!(
                 "normal contact     auto: the Hertz contact while the corrugation's dominant harmonic is below \
-                 {:.2} um or inside the Hertz region, the profile beyond (on the profile's grid)",
+                 {:.2} um or inside the Hertz region, the profile from then on (on the profile's grid)",
                 amplitude * 1e6
             );
         }

@@ -132,7 +132,8 @@ pub enum NormalContact {
     /// A growth study chooses per passage: the Hertz contact while the
     /// dominant harmonic of the corrugation is below `amplitude` or inside
     /// the Hertz region ([`crate::model_choice::hertz_validity`]), the
-    /// profile beyond, on one grid sized for the profile.
+    /// profile from the first passage beyond (and then on), on one grid
+    /// sized for the profile.
     Auto {
         /// Size of the potential-contact grid (as for `Profile`) (1).
         grid_scale: f64,

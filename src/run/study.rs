@@ -326,9 +326,14 @@ fn continue_run(
         // What the normal contact of this passage sees of the rail.
         let normal = match normal_contact(scene) {
             NormalContact::Auto { grid_scale, amplitude } => {
-                let spectrum = amplitudes(&filtered(&state.profile));
-                let profile = choose_profile(&waves, &spectrum, amplitude);
+                // Once taken, the profile stays: the corrugation it wears
+                // down below `from` is still one the Hertz contact gets
+                // wrong (without this, a corrugation that the profile
+                // contact wears and the Hertz contact grows would switch
+                // the contact every passage).
                 let before = state.rows.last().is_some_and(|r| r.profile_contact > 0.0);
+                let spectrum = amplitudes(&filtered(&state.profile));
+                let profile = before || choose_profile(&waves, &spectrum, amplitude);
                 if profile != before {
                     let which = if profile { "profile" } else { "Hertz" };
                     progress(Event::Note {
