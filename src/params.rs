@@ -261,10 +261,12 @@ pub enum StopRule {
     /// Runs every planned passage.
     #[default]
     Never,
-    /// Stops after a passage in which the wheel left the rail, or once the
-    /// corrugation has stopped growing: its rms grew by less than `rate`
-    /// (dB per 1e5 real passages) over the last
-    /// [`crate::growth::traffic::SATURATION_WINDOW`] passages.
+    /// Stops after a passage in which the wheel left the rail, at a passage
+    /// whose dynamic force takes N below F_x / mu (full sliding: that
+    /// passage is not recorded), or once the corrugation has stopped
+    /// growing: its rms grew by less than `rate` (dB per 1e5 real
+    /// passages) over the last [`crate::growth::stop::SATURATION_WINDOW`]
+    /// passages.
     Saturation {
         /// Growth rate of the rms below which the corrugation counts as
         /// saturated (dB per 1e5 real passages).

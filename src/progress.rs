@@ -94,7 +94,7 @@ impl Progress {
                 }
             }
             Event::Stopped { pass, reason } => {
-                let text = format!("stopped after passage {}: {reason}", pass + 1);
+                let text = format!("stopped at passage {}: {reason}", pass + 1);
                 match &self.bar {
                     Some(b) => b.println(text),
                     None => say!("{text}"),

@@ -236,3 +236,17 @@ fn a_study_that_stops_at_saturation_resumes_to_the_same_stop() {
     let s = resume(&full, Some(5), Some(&dir.path().join("again.h5")), &mut |_| {}).unwrap();
     assert_eq!((s.passes, s.computed), (11, 0));
 }
+
+#[test]
+fn a_study_that_stops_at_saturation_ends_at_full_sliding() {
+    // A 100 um corrugation takes N below F_x / mu in the first passage:
+    // an error without growth.stop, the end of a complete study with it.
+    let dir = tempfile::tempdir().unwrap();
+    let big = ["roughness.kind=harmonics", "roughness.harmonics=[{amplitude = 1e-4, wavelength = 0.03}]"];
+    let r = load_str(GROWTH, "growth", &overrides(&big)).unwrap();
+    assert!(run_scene(&r, &dir.path().join("x.h5"), &mut |_| {}).is_err());
+    let out = run(dir.path(), "slide.h5", &[&big[..], &["growth.stop=saturation"]].concat());
+    assert_eq!(read_attr_str(&out, "", "status").unwrap(), "complete");
+    let reason = read_attr_str(&out, "", "stop_reason").unwrap();
+    assert!(reason.starts_with("full sliding in passage 1: ") && reason.contains("friction limit"), "{reason}");
+}

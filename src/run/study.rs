@@ -376,8 +376,19 @@ fn continue_run(
                     dynamics.as_ref().map(|t| t as &dyn TrackDynamics),
                     record_fields,
                     &mut report,
-                )
-                .map_err(|source| RunError::Passage { pass, source })?;
+                );
+                // At saturation the dynamic force may take N below F_x / mu:
+                // the prescribed force can no longer be transmitted, the
+                // end of what the model describes; the study stops there.
+                let g = match g {
+                    Err(source) if sliding_stops(growth, &source) => {
+                        let reason = format!("full sliding in passage {}: {source}", pass + 1);
+                        progress(Event::Stopped { pass, reason: reason.clone() });
+                        stopped = Some(reason);
+                        break;
+                    }
+                    g => g.map_err(|source| RunError::Passage { pass, source })?,
+                };
                 loss = g.contact_loss_steps;
                 if g.contact_loss_steps > 0 {
                     progress(Event::Warning {
@@ -508,4 +519,16 @@ mod tests {
         // Nothing: Hertz.
         assert!(!choose_profile(&[], &[], 5e-6));
     }
+}
+
+/// Whether a passage that failed with `e` ends a study that stops at
+/// saturation: the prescribed longitudinal force reached the friction limit
+/// (full sliding), which the growing dynamic force brings about before the
+/// wheel leaves the rail.
+fn sliding_stops(growth: Option<&crate::params::GrowthParams>, e: &PassageError) -> bool {
+    matches!(growth.map(|g| g.stop), Some(crate::params::StopRule::Saturation { .. }))
+        && matches!(
+            e,
+            PassageError::Tangential { source: crate::contact::ContactError::ForceExceedsFriction { .. }, .. }
+        )
 }
