@@ -14,7 +14,7 @@
 # died out, so the wear's harmonic is the corrugation's alone); the rail
 # grid is 40 mm wide so that a widened patch stays on it. Runs that fail
 # (full sliding when the dynamic force takes N below F_x / mu) are recorded
-# with the program's error. About 6 minutes on 2 cores.
+# with the program's error. About 10 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
