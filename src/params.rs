@@ -220,6 +220,8 @@ pub struct Scene {
     pub output: OutputParams,
     /// Growth study (None: a single passage).
     pub growth: Option<GrowthParams>,
+    /// The track under the wheel (`[track]`).
+    pub track: crate::dynamics::track::TrackConfig,
 }
 
 /// Vehicle-track dynamics of a growth study.

@@ -12,6 +12,7 @@ pub mod contact;
 mod growth;
 mod overrides;
 mod reader;
+mod track;
 
 use crate::contact::grid::{FrictionLaw, GridScheme};
 use crate::creep_coefficients::creep_coefficients;
@@ -172,6 +173,12 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let title = s.string("title", "");
     resolved.insert("output".into(), Value::Table(s.finish()));
     let growth = growth::read(&mut root, &mut resolved, errors);
+    // The track matters to growth studies (and is read when given).
+    let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
+        track::read(&mut root, &mut resolved, errors)
+    } else {
+        Some(Default::default())
+    };
 
     for (k, _) in root {
         errors.push(ConfigError::new(&k, "unknown section or key".into()));
@@ -247,6 +254,9 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             ),
         ));
     }
+    let Some(track) = track else {
+        return (None, resolved);
+    };
     let Ok(growth) = growth else {
         return (None, resolved);
     };
@@ -330,6 +340,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         rail: RailParams { x_min, x_max, dx, dy, half_width },
         output: OutputParams { store_fields, title },
         growth,
+        track,
     };
     contact::check_grid_size(&scene, errors);
     contact::check_periodic_steps(&scene, errors);

@@ -19,7 +19,9 @@
 //! track model (discrete sleepers, Timoshenko rail, moving load) can replace
 //! the [`receptance`] model without touching the loop.
 
+pub mod rail;
 pub mod receptance;
+pub mod track;
 
 pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,

@@ -24,9 +24,10 @@
 //! `delta0`: `k_H = dN/d delta = 3 N0 / (2 delta0)` ([`hertz_stiffness`]),
 //! `alpha_c = 1 / k_H`.                                                (2)
 //!
-//! **Support** (per unit rail length): pad `s_p* = s_p (1 + i eta_p)` between
-//! rail and a distributed sleeper mass `m_s`, ballast
-//! `s_b* = s_b (1 + i eta_b)` between sleeper and rigid ground. Eliminating
+//! **Support** (per unit rail length): pad `s_p* = s_p (1 + i eta_p) + i w c_p`
+//! between rail and a distributed sleeper mass `m_s`, ballast
+//! `s_b* = s_b (1 + i eta_b) + i w c_b` between sleeper and rigid ground
+//! (hysteretic loss factors or viscous dampers, `[track]`). Eliminating
 //! the sleeper displacement (`-m_s w^2 w_s = s_p* (w_r - w_s) - s_b* w_s`)
 //! gives the foundation stiffness seen by the rail (Thompson 2009, ch. 3)
 //! ```text
@@ -198,6 +199,11 @@ pub struct TrackParams {
     pub ballast_stiffness: f64,
     /// Ballast loss factor eta_b (1).
     pub ballast_loss_factor: f64,
+    /// Viscous pad damping per rail length c_p (N s/m^2): `s_p*` gains
+    /// `i w c_p` (0 with a loss factor).
+    pub pad_damping: f64,
+    /// Viscous ballast damping per rail length c_b (N s/m^2).
+    pub ballast_damping: f64,
 }
 
 impl TrackParams {
@@ -215,6 +221,8 @@ impl TrackParams {
             sleeper_mass: HALF_SLEEPER_MASS / SLEEPER_SPACING,
             ballast_stiffness: BALLAST_STIFFNESS_PER_HALF_SLEEPER / SLEEPER_SPACING,
             ballast_loss_factor: BALLAST_LOSS_FACTOR,
+            pad_damping: 0.0,
+            ballast_damping: 0.0,
         }
     }
 
@@ -229,14 +237,27 @@ impl TrackParams {
         check("pad_loss_factor", self.pad_loss_factor, "", "finite and >= 0", nonneg(self.pad_loss_factor))?;
         check("sleeper_mass", self.sleeper_mass, "kg/m", "finite and >= 0", nonneg(self.sleeper_mass))?;
         check("ballast_stiffness", self.ballast_stiffness, "N/m^2", "finite and > 0", pos(self.ballast_stiffness))?;
-        check("ballast_loss_factor", self.ballast_loss_factor, "", "finite and >= 0", nonneg(self.ballast_loss_factor))
+        check(
+            "ballast_loss_factor",
+            self.ballast_loss_factor,
+            "",
+            "finite and >= 0",
+            nonneg(self.ballast_loss_factor),
+        )?;
+        check("pad_damping", self.pad_damping, "N s/m^2", "finite and >= 0", nonneg(self.pad_damping))?;
+        check("ballast_damping", self.ballast_damping, "N s/m^2", "finite and >= 0", nonneg(self.ballast_damping))
     }
 
     /// Foundation stiffness per length `s(w)` (N/m^2) of the pad / sleeper /
     /// ballast layers at angular frequency `omega` (rad/s); module docs, eq. 3.
     pub fn foundation_stiffness(&self, omega: f64) -> Complex64 {
-        let sp = Complex64::new(self.pad_stiffness, self.pad_stiffness * self.pad_loss_factor);
-        let sb = Complex64::new(self.ballast_stiffness, self.ballast_stiffness * self.ballast_loss_factor);
+        // Hysteretic (loss factor) and viscous damping: s (1 + i eta) + i w c.
+        let sp =
+            Complex64::new(self.pad_stiffness, self.pad_stiffness * self.pad_loss_factor + omega * self.pad_damping);
+        let sb = Complex64::new(
+            self.ballast_stiffness,
+            self.ballast_stiffness * self.ballast_loss_factor + omega * self.ballast_damping,
+        );
         let inertia = self.sleeper_mass * omega * omega;
         sp * (sb - inertia) / (sp + sb - inertia)
     }

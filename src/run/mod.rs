@@ -13,7 +13,7 @@ use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use crate::contact::transient::{ElasticModel, Transient};
 use crate::contact::{Elements, EllipseMesh, PressureShape, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
-use crate::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams, hertz_stiffness};
+use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
 use crate::hertz::{HertzPatch, HertzShape};
 use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
 use crate::passage::PassageSpec;
@@ -210,7 +210,7 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<ReceptanceModel> {
         DynamicsKind::Receptance { unsprung_mass } => {
             let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
             let wheel = WheelParams { unsprung_mass };
-            Some(ReceptanceModel::new(TrackParams::uic60_default(), wheel, k_h).expect("validated parameters"))
+            Some(ReceptanceModel::new(scene.track.smeared(), wheel, k_h).expect("validated parameters"))
         }
     }
 }

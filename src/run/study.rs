@@ -505,6 +505,18 @@ fn choose_profile(wavelengths: &[f64], amplitudes: &[f64], from: f64) -> bool {
             .hertz_is_valid(wavelengths.get(i).copied().unwrap_or(f64::INFINITY), a)
 }
 
+/// Whether a passage that failed with `e` ends a study that stops at
+/// saturation: the prescribed longitudinal force reached the friction limit
+/// (full sliding), which the growing dynamic force brings about before the
+/// wheel leaves the rail.
+fn sliding_stops(growth: Option<&crate::params::GrowthParams>, e: &PassageError) -> bool {
+    matches!(growth.map(|g| g.stop), Some(crate::params::StopRule::Saturation { .. }))
+        && matches!(
+            e,
+            PassageError::Tangential { source: crate::contact::ContactError::ForceExceedsFriction { .. }, .. }
+        )
+}
+
 #[cfg(test)]
 mod tests {
     use super::choose_profile;
@@ -519,16 +531,4 @@ mod tests {
         // Nothing: Hertz.
         assert!(!choose_profile(&[], &[], 5e-6));
     }
-}
-
-/// Whether a passage that failed with `e` ends a study that stops at
-/// saturation: the prescribed longitudinal force reached the friction limit
-/// (full sliding), which the growing dynamic force brings about before the
-/// wheel leaves the rail.
-fn sliding_stops(growth: Option<&crate::params::GrowthParams>, e: &PassageError) -> bool {
-    matches!(growth.map(|g| g.stop), Some(crate::params::StopRule::Saturation { .. }))
-        && matches!(
-            e,
-            PassageError::Tangential { source: crate::contact::ContactError::ForceExceedsFriction { .. }, .. }
-        )
 }
