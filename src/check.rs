@@ -247,6 +247,26 @@ pub fn print_check(r: &Resolved) {
             ),
         }
         println!("checkpoints        every {} passages; rail stored every {}", g.checkpoint_every, g.store_every);
+        if g.dynamics != DynamicsKind::Imposed {
+            let t = &s.track;
+            let damping = |d: corrugation::dynamics::track::Damping| match d {
+                corrugation::dynamics::track::Damping::LossFactor(eta) => format!("loss factor {eta}"),
+                corrugation::dynamics::track::Damping::Viscous(c) => format!("{c:.4e} N s/m"),
+            };
+            println!(
+                "track              {} rail (EI {:.4e} N m^2, {} kg/m) on {:.1} MN/m pads ({}) at {} m, {} kg per half \
+                 sleeper, {:.1} MN/m ballast ({}); smeared for the continuous model",
+                t.rail_name,
+                t.rail.bending_stiffness,
+                t.rail.mass,
+                t.pad_stiffness / 1e6,
+                damping(t.pad_damping),
+                t.sleeper_spacing,
+                t.sleeper_mass,
+                t.ballast_stiffness / 1e6,
+                damping(t.ballast_damping)
+            );
+        }
         if let Some(t) = track_dynamics(s, &d) {
             for (label, f) in t.describe_resonances() {
                 println!("resonance          {f:8.1} Hz  {label}");
