@@ -173,7 +173,7 @@ mod tests {
         t.rail.shear_stiffness = 1e20;
         t.rail.rotary_inertia = 0.0;
         t.rail_loss_factor = 0.0;
-        let (k, w) = (7.0, 2.0 * PI * 300.0);
+        let (k, w): (f64, f64) = (7.0, 2.0 * PI * 300.0);
         let eb = 1.0 / (t.rail.bending_stiffness * k.powi(4) - t.rail.mass * w * w);
         assert!((t.spectral(k, w).re - eb).abs() < 1e-9 * eb.abs());
     }
