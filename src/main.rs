@@ -63,6 +63,18 @@ enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
     },
+    /// Write the receptances of the configured track and wheel (20-5000 Hz,
+    /// positions across a sleeper bay) and their resonances.
+    Track {
+        /// Scene config (TOML) with a [track] section (or its defaults).
+        config: PathBuf,
+        /// Output file (default: the config's name with _track.h5).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Override a config key (repeatable).
+        #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
+        set: Vec<String>,
+    },
     /// Validate a config and print derived quantities.
     Check {
         /// Scene config (TOML).
@@ -97,6 +109,57 @@ fn main() -> ExitCode {
             run(&resolved, &out)
         }
         Command::Resume { file, passes, output } => resume(&file, passes.map(|n| n as usize), output.as_deref()),
+        Command::Track { config, output, set } => {
+            let resolved = match load(&config, &set) {
+                Ok(r) => r,
+                Err(code) => return code,
+            };
+            let out = output.unwrap_or_else(|| {
+                let stem = config.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or("track".into());
+                PathBuf::from(format!("{stem}_track.h5"))
+            });
+            track(&resolved, &out)
+        }
+    }
+}
+
+/// `corrugation track`: the receptances of the configured track and wheel.
+fn track(resolved: &Resolved, out: &Path) -> ExitCode {
+    use corrugation::dynamics::receptance::{WheelParams, hertz_stiffness};
+    // Before computing: the output's folder must exist.
+    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    if !parent.is_dir() {
+        say_raw!("error: cannot write {}: the folder {} does not exist", out.display(), parent.display());
+        return ExitCode::from(2);
+    }
+    let s = &resolved.scene;
+    let d = corrugation::run::derive(s);
+    let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
+    let mass = match s.growth.as_ref().map(|g| g.dynamics) {
+        Some(corrugation::params::DynamicsKind::Receptance { unsprung_mass }) => unsprung_mass,
+        _ => corrugation::dynamics::receptance::FREIGHT_UNSPRUNG_MASS,
+    };
+    let r = corrugation::dynamics::track_response::track_response(&s.track, WheelParams { unsprung_mass: mass }, k_h);
+    match corrugation::output::track_file::write_track_file(out, &r, s.track.rail_name, &resolved.toml) {
+        Ok(()) => {
+            say!(
+                "wrote {}: {} rail on {} m sleeper spacing; pinned-pinned {:.0} Hz (simply supported span {:.0} Hz), \
+                 rail on pad {:.0} Hz, track on ballast {:.0} Hz; contact spring {:.3e} N/m, wheel {mass} kg",
+                out.display(),
+                s.track.rail_name,
+                s.track.sleeper_spacing,
+                r.pinned_pinned,
+                r.span_frequency,
+                r.rail_on_pad,
+                r.track_on_ballast,
+                k_h
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            say!("error: {e}");
+            ExitCode::from(1)
+        }
     }
 }
 

@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,check}``.
+"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}``.
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -59,6 +59,10 @@ def _parser() -> argparse.ArgumentParser:
         cmd = sub.add_parser(name, help=help_)
         cmd.add_argument("manifest", help=f"CSV: {manifest}")
         cmd.add_argument("--out", required=True, help="output folder (created if needed)")
+
+    trk = sub.add_parser("track", help="receptance figure of a `corrugation track` file")
+    trk.add_argument("file", help="track file (.h5)")
+    trk.add_argument("--out", required=True, help="output folder (created if needed)")
 
     chk = sub.add_parser("check", help="check a run file against the layout contract")
     chk.add_argument("run", help="run file (.h5)")
@@ -148,6 +152,14 @@ def _validity_map(args) -> int:
     return _print_table(run(args.manifest, args.out), markdown)
 
 
+def _track(args) -> int:
+    from .track import figure
+
+    for p in figure(args.file, args.out):
+        print(p)
+    return EXIT_OK
+
+
 def _check(args) -> int:
     from .schema import check_file
 
@@ -166,7 +178,7 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     handler = {"figures": _figures, "compare": _compare, "growth": _growth,
                "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "grid-convergence": _grid_convergence,
-               "validity-map": _validity_map, "check": _check}[args.command]
+               "validity-map": _validity_map, "track": _track, "check": _check}[args.command]
     try:
         return handler(args)
     except RunFileError as err:

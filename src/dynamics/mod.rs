@@ -23,6 +23,7 @@ pub mod discrete;
 pub mod rail;
 pub mod receptance;
 pub mod track;
+pub mod track_response;
 
 pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,

@@ -5,3 +5,4 @@ pub mod checkpoint;
 mod h5ds;
 pub mod netcdf;
 pub mod run_file;
+pub mod track_file;

@@ -1,0 +1,47 @@
+"""`corrugation track` on a real config: the file reads with xarray, the
+receptances are passive, the mid-span peak is the pinned-pinned resonance,
+and the figure is drawn; a missing output folder is refused before any
+computation."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from corrugation_post.track import figure
+
+BIN = os.environ.get("CORRUGATION_BIN")
+REPO = Path(__file__).resolve().parents[2]
+
+
+@pytest.mark.skipif(not BIN, reason="CORRUGATION_BIN not set (scripts/test.sh sets it)")
+def test_track_file_and_figure(tmp_path):
+    out = tmp_path / "track.h5"
+    cfg = str(REPO / "configs" / "growth_fastsim.toml")
+    done = subprocess.run([BIN, "track", cfg, "-o", str(out)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    ds = xr.open_dataset(out, engine="h5netcdf", group="track")
+    assert ds["receptance_real"].dims == ("position", "frequency")
+    assert ds["frequency"].attrs["units"] == "Hz" and ds["receptance_imag"].attrs["units"] == "m/N"
+    assert (ds["receptance_imag"].values <= 0).all() and (ds["continuous_receptance_imag"].values <= 0).all()
+    f = ds["frequency"].values
+    mid = np.hypot(ds["receptance_real"][-1], ds["receptance_imag"][-1]).values
+    band = (f > 700) & (f < 1500)
+    peak = f[band][np.argmax(mid[band])]
+    assert abs(peak - ds.attrs["span_frequency_hz"]) < 0.03 * ds.attrs["span_frequency_hz"]
+    assert (tmp_path / "fig").exists() is False
+    assert figure(out, tmp_path / "fig")[0].stat().st_size > 1000
+    # Softer pads lower the rail-on-pad resonance by the square root.
+    soft = tmp_path / "soft.h5"
+    done = subprocess.run([BIN, "track", cfg, "-o", str(soft), "--set", "track.pad_stiffness=50e6"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    ratio = ds.attrs["rail_on_pad_hz"] / xr.open_dataset(soft, engine="h5netcdf", group="track").attrs["rail_on_pad_hz"]
+    assert abs(ratio - 2.0) < 1e-9
+    bad = subprocess.run([BIN, "track", cfg, "-o", str(tmp_path / "no" / "x.h5")], capture_output=True, text=True)
+    assert bad.returncode == 2 and "does not exist" in bad.stderr

@@ -1,0 +1,87 @@
+//! The receptances of a configured track and wheel over a frequency sweep
+//! (what `corrugation track` writes): the rail point receptance of the
+//! discrete model at positions across a sleeper bay, the continuous
+//! model's, the wheel's and the contact spring's, and the resonances.
+
+use super::discrete::DiscreteTrack;
+use super::receptance::{TrackParams, WheelParams};
+use super::track::TrackConfig;
+use num_complex::Complex64;
+use rayon::prelude::*;
+use std::f64::consts::PI;
+
+/// Lowest frequency of the sweep (Hz).
+pub const SWEEP_FROM: f64 = 20.0;
+/// Highest frequency of the sweep (Hz).
+pub const SWEEP_TO: f64 = 5000.0;
+/// Log-spaced frequencies of the sweep (a ratio of 1.023 between neighbours).
+pub const SWEEP_POINTS: usize = 241;
+
+/// The track's response.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrackResponse {
+    /// Frequencies (Hz).
+    pub frequency: Vec<f64>,
+    /// Positions from a sleeper (m): 0 (above it) to d/2 (mid-span).
+    pub position: Vec<f64>,
+    /// Rail point receptance of the discrete model (m/N), [position][frequency].
+    pub rail: Vec<Vec<Complex64>>,
+    /// Rail point receptance of the continuous model (m/N), [frequency].
+    pub continuous: Vec<Complex64>,
+    /// Wheel receptance `-1 / (M w^2)` (m/N), [frequency].
+    pub wheel: Vec<f64>,
+    /// Contact receptance `1 / k_H` (m/N).
+    pub contact: f64,
+    /// The simply supported span's first bending frequency (Hz).
+    pub span_frequency: f64,
+    /// The pinned-pinned resonance: the peak of the mid-span receptance
+    /// within a factor 1.5 of the span frequency (Hz).
+    pub pinned_pinned: f64,
+    /// The rail-on-pad resonance with the sleepers blocked,
+    /// `sqrt(k_p / (m_r d)) / 2 pi` (Hz).
+    pub rail_on_pad: f64,
+    /// The whole track bouncing on the ballast: the peak of the continuous
+    /// model's receptance below 300 Hz (Hz).
+    pub track_on_ballast: f64,
+}
+
+/// The response of `track` with `wheel` on a contact spring `contact_stiffness` (N/m).
+pub fn track_response(track: &TrackConfig, wheel: WheelParams, contact_stiffness: f64) -> TrackResponse {
+    let discrete = DiscreteTrack::new(track);
+    let continuous: TrackParams = track.smeared();
+    let frequency: Vec<f64> = (0..SWEEP_POINTS)
+        .map(|k| SWEEP_FROM * (SWEEP_TO / SWEEP_FROM).powf(k as f64 / (SWEEP_POINTS - 1) as f64))
+        .collect();
+    let d = track.sleeper_spacing;
+    let position: Vec<f64> = (0..=4).map(|k| d * k as f64 / 8.0).collect();
+    let rail: Vec<Vec<Complex64>> = position
+        .iter()
+        .map(|&x| frequency.par_iter().map(|f| discrete.receptance(x, 2.0 * PI * f)).collect())
+        .collect();
+    let cont: Vec<Complex64> = frequency.iter().map(|f| continuous.rail_receptance(2.0 * PI * f)).collect();
+    let wheel_r: Vec<f64> = frequency.iter().map(|f| -1.0 / (wheel.unsprung_mass * (2.0 * PI * f).powi(2))).collect();
+    let span = discrete.pinned_pinned_frequency();
+    let peak = |values: &[Complex64], lo: f64, hi: f64| {
+        frequency
+            .iter()
+            .zip(values)
+            .filter(|(f, _)| (lo..=hi).contains(*f))
+            .max_by(|a, b| a.1.norm().total_cmp(&b.1.norm()))
+            .map_or(f64::NAN, |(f, _)| *f)
+    };
+    let pinned_pinned = peak(&rail[rail.len() - 1], span / 1.5, span * 1.5);
+    let rail_on_pad = (continuous.pad_stiffness / continuous.rail_mass).sqrt() / (2.0 * PI);
+    let track_on_ballast = peak(&cont, SWEEP_FROM, 300.0);
+    TrackResponse {
+        frequency,
+        position,
+        rail,
+        continuous: cont,
+        wheel: wheel_r,
+        contact: 1.0 / contact_stiffness,
+        span_frequency: span,
+        pinned_pinned,
+        rail_on_pad,
+        track_on_ballast,
+    }
+}
