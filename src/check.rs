@@ -266,6 +266,12 @@ pub fn print_check(r: &Resolved) {
                 t.ballast_stiffness / 1e6,
                 damping(t.ballast_damping)
             );
+            let discrete = corrugation::dynamics::discrete::DiscreteTrack::new(t);
+            println!(
+                "resonance          {:8.1} Hz  pinned-pinned (discrete supports: the simply supported Timoshenko span; \
+                 not in the continuous model the growth loop uses; `corrugation track` gives the receptances)",
+                discrete.pinned_pinned_frequency()
+            );
         }
         if let Some(t) = track_dynamics(s, &d) {
             for (label, f) in t.describe_resonances() {
