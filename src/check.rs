@@ -6,7 +6,6 @@ use corrugation::config::Resolved;
 use corrugation::contact::grid::GRID_MARGIN;
 use corrugation::contact::grid::convolution::smooth_padding;
 use corrugation::contact::transient::StepSolver;
-use corrugation::dynamics::TrackDynamics;
 use corrugation::growth::traffic::TrafficScaling;
 use corrugation::loads::LoadQuantity;
 use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, SAFETY, departures};
@@ -273,7 +272,9 @@ pub fn print_check(r: &Resolved) {
                 discrete.pinned_pinned_frequency()
             );
         }
-        if let Some(t) = track_dynamics(s, &d) {
+        // (The discrete model tabulates its receptances for seconds: its
+        // pinned-pinned resonance is printed above.)
+        if let Some(t) = track_dynamics(s, &d).filter(|_| matches!(g.dynamics, DynamicsKind::Receptance { .. })) {
             for (label, f) in t.describe_resonances() {
                 println!("resonance          {f:8.1} Hz  {label}");
             }

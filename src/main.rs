@@ -136,7 +136,10 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
     let d = corrugation::run::derive(s);
     let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
     let mass = match s.growth.as_ref().map(|g| g.dynamics) {
-        Some(corrugation::params::DynamicsKind::Receptance { unsprung_mass }) => unsprung_mass,
+        Some(
+            corrugation::params::DynamicsKind::Receptance { unsprung_mass }
+            | corrugation::params::DynamicsKind::Discrete { unsprung_mass },
+        ) => unsprung_mass,
         _ => corrugation::dynamics::receptance::FREIGHT_UNSPRUNG_MASS,
     };
     let r = corrugation::dynamics::track_response::track_response(&s.track, WheelParams { unsprung_mass: mass }, k_h);

@@ -230,6 +230,13 @@ pub enum DynamicsKind {
     /// Only the imposed `load.harmonics` (no feedback of the profile).
     Imposed,
     /// Linear receptance model (wheel mass, Hertz spring, UIC60 track).
+    /// The Timoshenko rail on discrete supports (`[track]`), the
+    /// receptance depending on the wheel's place in the sleeper bay, with
+    /// the supports' parametric excitation.
+    Discrete {
+        /// Unsprung mass per wheel (kg).
+        unsprung_mass: f64,
+    },
     Receptance {
         /// Unsprung mass per wheel (kg).
         unsprung_mass: f64,

@@ -101,11 +101,12 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
     resolved.insert("roughness".into(), Value::Table(s.finish()));
 
     let mut s = Section::new(root, "", "dynamics", errors);
-    let model = s.choice("model", Some("imposed"), &["imposed", "receptance"]);
+    let model = s.choice("model", Some("imposed"), &["imposed", "receptance", "discrete"]);
     // Read for every model so that --set can switch models.
     let mass = s.f64("unsprung_mass", Some(600.0), Range::OpenClosed(0.0, 1e4));
     let dynamics = match (model.as_deref(), mass) {
         (Some("receptance"), Some(m)) => Some(DynamicsKind::Receptance { unsprung_mass: m }),
+        (Some("discrete"), Some(m)) => Some(DynamicsKind::Discrete { unsprung_mass: m }),
         (Some(_), Some(_)) => Some(DynamicsKind::Imposed),
         _ => None,
     };

@@ -342,6 +342,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         growth,
         track,
     };
+    check_sleeper_bays(&scene, errors);
     contact::check_grid_size(&scene, errors);
     contact::check_periodic_steps(&scene, errors);
     (Some(scene), resolved)
@@ -458,5 +459,27 @@ fn check_loads(loads: &ImposedLoads, mu: f64, rail_dx: Option<f64>, errors: &mut
                 ));
             }
         }
+    }
+}
+
+/// With the discrete track the periodic stretch is a whole number of
+/// sleeper bays (its first node above a sleeper).
+fn check_sleeper_bays(scene: &Scene, errors: &mut Vec<ConfigError>) {
+    let Some(g) = &scene.growth else {
+        return;
+    };
+    if !matches!(g.dynamics, crate::params::DynamicsKind::Discrete { .. }) {
+        return;
+    }
+    let (length, d) = (scene.rail.x_max - scene.rail.x_min, scene.track.sleeper_spacing);
+    let bays = length / d;
+    if bays < 0.5 || (bays - bays.round()).abs() > 1e-6 * bays.max(1.0) {
+        errors.push(ConfigError::new(
+            "rail.x_max",
+            format!(
+                "- rail.x_min = {length} m must be a whole number of sleeper bays (track.sleeper_spacing = {d} m) with \
+                 dynamics.model = \"discrete\" (it is {bays:.3} bays)"
+            ),
+        ));
     }
 }

@@ -20,6 +20,7 @@
 //! the [`receptance`] model without touching the loop.
 
 pub mod discrete;
+pub mod discrete_dynamics;
 pub mod rail;
 pub mod receptance;
 pub mod track;

@@ -13,6 +13,9 @@ use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use crate::contact::transient::{ElasticModel, Transient};
 use crate::contact::{Elements, EllipseMesh, PressureShape, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
+use crate::dynamics::TrackDynamics;
+use crate::dynamics::discrete::DiscreteTrack;
+use crate::dynamics::discrete_dynamics::DiscreteDynamics;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
 use crate::hertz::{HertzPatch, HertzShape};
 use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
@@ -203,14 +206,29 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
     RailGrid { x_min: r.x_min, dx: (r.x_max - r.x_min) / nx as f64, nx, ..full }
 }
 
-/// The track model of a growth study, if it has one.
-pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<ReceptanceModel> {
+/// The track model of a growth study, if it has one. The discrete model
+/// tabulates its receptances for the study's speed and periodic stretch
+/// (the first rail node is above a sleeper).
+pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamics>> {
+    let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
     match scene.growth.as_ref()?.dynamics {
         DynamicsKind::Imposed => None,
         DynamicsKind::Receptance { unsprung_mass } => {
-            let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
             let wheel = WheelParams { unsprung_mass };
-            Some(ReceptanceModel::new(scene.track.smeared(), wheel, k_h).expect("validated parameters"))
+            Some(Box::new(ReceptanceModel::new(scene.track.smeared(), wheel, k_h).expect("validated parameters")))
+        }
+        DynamicsKind::Discrete { unsprung_mass } => {
+            let grid = periodic_grid(scene);
+            Some(Box::new(DiscreteDynamics::new(
+                DiscreteTrack::new(&scene.track),
+                WheelParams { unsprung_mass },
+                k_h,
+                scene.loads.normal_force,
+                grid.x_min,
+                grid.nx,
+                grid.dx,
+                scene.speed,
+            )))
         }
     }
 }

@@ -20,7 +20,6 @@ use super::hertz_check::HertzCheck;
 use super::{build_deposit, build_solver, derive, element_count, normal_contact, periodic_grid, track_dynamics};
 use crate::config::contact::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::config::{ConfigErrors, Resolved, load_str};
-use crate::dynamics::TrackDynamics;
 use crate::growth::roughness::profile_line;
 use crate::growth::spectrum::{amplitudes, growth_rates, wavelengths};
 use crate::growth::traffic::{TrafficScaling, change_rate};
@@ -373,7 +372,7 @@ fn continue_run(
                     &grid,
                     &state.profile,
                     normal,
-                    dynamics.as_ref().map(|t| t as &dyn TrackDynamics),
+                    dynamics.as_deref(),
                     record_fields,
                     &mut report,
                 );

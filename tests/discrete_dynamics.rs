@@ -1,0 +1,120 @@
+//! The discrete track in the growth loop (`dynamics.model = "discrete"`):
+//! the sleeper-passing force of a smooth rail against a direct estimate,
+//! the pinned-pinned band in the force transfer, sleeper-bay stretches, and
+//! bit-for-bit resume.
+use corrugation::config::load_str;
+use corrugation::dynamics::TrackDynamics;
+use corrugation::dynamics::discrete::DiscreteTrack;
+use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
+use corrugation::dynamics::receptance::WheelParams;
+use corrugation::dynamics::track::TrackConfig;
+use corrugation::output::netcdf::read_f64;
+use corrugation::run::{resume, run_scene};
+use std::f64::consts::PI;
+
+/// Amplitude of harmonic `k` of a periodic signal.
+fn harmonic(v: &[f64], k: usize) -> f64 {
+    let n = v.len() as f64;
+    let (mut c, mut s) = (0.0, 0.0);
+    for (i, x) in v.iter().enumerate() {
+        let a = 2.0 * PI * k as f64 * i as f64 / n;
+        c += x * a.cos();
+        s += x * a.sin();
+    }
+    2.0 * (c * c + s * s).sqrt() / n
+}
+
+#[test]
+fn sleeper_passing_force_of_a_smooth_rail() {
+    // At 10 m/s the sleeper-passing frequency V/d = 16.7 Hz lies far below
+    // the wheel-on-track resonance (about 80 Hz): the wheel follows the
+    // path its own load presses into the rail, and the force is its mass
+    // times that path's acceleration, M w^2 |r_1| (a direct estimate).
+    let (nodes, dx, speed, mass) = (300, 2e-3, 10.0, 600.0);
+    let m = DiscreteDynamics::new(
+        DiscreteTrack::new(&TrackConfig::default()),
+        WheelParams { unsprung_mass: mass },
+        1.8e9,
+        1e5,
+        0.0,
+        nodes,
+        dx,
+        speed,
+    );
+    let path = m.parametric_profile(nodes, dx);
+    let r1 = harmonic(&path, 1);
+    // The rail deflects more at mid-span: tens of micrometres between
+    // sleeper and mid-span under 100 kN.
+    assert!(r1 > 1e-7 && r1 < 1e-4, "path harmonic {r1}");
+    let force = m.force_from_profile(&vec![0.0; nodes], dx, speed);
+    let w = 2.0 * PI * speed / 0.6;
+    let direct = mass * w * w * r1;
+    let p1 = harmonic(&force, 1);
+    eprintln!("sleeper passing: path {r1:.4e} m, force {p1:.4e} N, direct estimate {direct:.4e} N");
+    assert!((p1 - direct).abs() < 0.1 * direct, "{p1} vs {direct}");
+}
+
+#[test]
+fn the_pinned_pinned_band_shows_in_the_force_transfer() {
+    // A 1 um harmonic at the pinned-pinned frequency (about 1070 Hz: 26 mm
+    // at 100 km/h): the rail's receptance has its resonance at mid-span and
+    // its anti-resonance above the sleepers, so the force it drives is far
+    // larger above the sleepers (H = 1 / (alpha_w + alpha_c + alpha_r)).
+    let (nodes, dx, speed) = (3000, 2e-4, 27.78);
+    let m = DiscreteDynamics::new(
+        DiscreteTrack::new(&TrackConfig::default()),
+        WheelParams { unsprung_mass: 600.0 },
+        1.8e9,
+        1e5,
+        0.0,
+        nodes,
+        dx,
+        speed,
+    );
+    let k = 23; // 0.6 m / 23 = 26.1 mm, 1065 Hz
+    let profile: Vec<f64> = (0..nodes).map(|i| 1e-6 * (2.0 * PI * k as f64 * i as f64 / nodes as f64).cos()).collect();
+    let smooth = m.force_from_profile(&vec![0.0; nodes], dx, speed);
+    let force: Vec<f64> = m.force_from_profile(&profile, dx, speed).iter().zip(&smooth).map(|(a, b)| a - b).collect();
+    // The envelope of the harmonic's force near mid-span and near a sleeper.
+    let env = |lo: usize, hi: usize| force[lo..hi].iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let (mid, over) = (env(1300, 1700), env(0, 200).max(env(2800, 3000)));
+    eprintln!("pinned-pinned harmonic: force {mid:.4e} N near mid-span, {over:.4e} N near a sleeper");
+    assert!(over > 2.0 * mid, "{over} vs {mid}");
+}
+
+#[test]
+fn growth_with_the_discrete_track_resumes_bit_for_bit() {
+    let base = include_str!("../configs/growth_fastsim.toml");
+    let set = |extra: &[&str]| -> Vec<String> {
+        [
+            "dynamics.model=discrete",
+            "rail.x_max=0.6",
+            "passage.end=0.6",
+            "rail.dx=1e-3",
+            "rail.dy=1e-3",
+            "passage.step_length=1e-3",
+            "contact.elements_x=6",
+            "contact.elements_y=6",
+            "growth.adaptive=false",
+            "growth.traffic_scale=100",
+            "growth.contact_history=[]",
+        ]
+        .iter()
+        .chain(extra)
+        .map(|s| s.to_string())
+        .collect()
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let full = dir.path().join("full.h5");
+    run_scene(&load_str(base, "g", &set(&["growth.passes=3"])).unwrap(), &full, &mut |_| {}).unwrap();
+    let part = dir.path().join("part.h5");
+    run_scene(&load_str(base, "g", &set(&["growth.passes=2"])).unwrap(), &part, &mut |_| {}).unwrap();
+    resume(&part, Some(1), None, &mut |_| {}).unwrap();
+    for (g, v) in [("rail", "state"), ("passes", "rms_corrugation"), ("passes", "spectrum")] {
+        let (a, b) = (read_f64(&full, g, v).unwrap(), read_f64(&part, g, v).unwrap());
+        assert!(a.iter().zip(b.iter()).all(|(x, y)| x.to_bits() == y.to_bits()), "{g}/{v}");
+    }
+    // A stretch that is not a whole number of bays is refused, naming both keys.
+    let e = load_str(base, "g", &["dynamics.model=discrete".to_string()]).unwrap_err().to_string();
+    assert!(e.contains("rail.x_max") && e.contains("track.sleeper_spacing"), "{e}");
+}
