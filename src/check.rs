@@ -266,9 +266,14 @@ pub fn print_check(r: &Resolved) {
                 damping(t.ballast_damping)
             );
             let discrete = corrugation::dynamics::discrete::DiscreteTrack::new(t);
+            let used = if matches!(g.dynamics, DynamicsKind::Discrete { .. }) {
+                "in the growth loop's discrete model"
+            } else {
+                "not in the continuous model the growth loop uses"
+            };
             println!(
                 "resonance          {:8.1} Hz  pinned-pinned (discrete supports: the simply supported Timoshenko span; \
-                 not in the continuous model the growth loop uses; `corrugation track` gives the receptances)",
+                 {used}; `corrugation track` gives the receptances)",
                 discrete.pinned_pinned_frequency()
             );
         }

@@ -22,6 +22,7 @@ fn paper_configs_are_valid() {
         ("paper_longitudinal_30mm", include_str!("../configs/paper_longitudinal_30mm.toml")),
         ("paper_longitudinal_15mm", include_str!("../configs/paper_longitudinal_15mm.toml")),
         ("growth_saturation", include_str!("../configs/growth_saturation.toml")),
+        ("growth_discrete", include_str!("../configs/growth_discrete.toml")),
     ] {
         assert_eq!(errors(text, &[]), Vec::<String>::new(), "{name}");
     }
