@@ -224,12 +224,43 @@ pub struct Scene {
     pub track: crate::dynamics::track::TrackConfig,
 }
 
+impl Scene {
+    /// The scene as wheels of traffic class `c` see it: its speed, mean
+    /// normal and longitudinal force (the imposed harmonics kept) and
+    /// unsprung mass. A study without `[traffic]` has one class whose scene
+    /// is the scene itself.
+    pub fn for_class(&self, c: &crate::growth::mix::TrafficClass) -> Scene {
+        let mut scene = self.clone();
+        scene.speed = c.speed;
+        scene.loads.normal_force = c.normal_force;
+        scene.loads.longitudinal_force = c.longitudinal_force;
+        if let Some(g) = scene.growth.as_mut() {
+            g.dynamics = g.dynamics.with_unsprung_mass(c.unsprung_mass);
+        }
+        scene
+    }
+
+    /// The largest normal force of any traffic class, imposed harmonics
+    /// included (N).
+    pub fn max_normal_force(&self) -> f64 {
+        match &self.growth {
+            Some(g) => g.classes.iter().map(|c| self.for_class(c).loads.max_normal_force()).fold(0.0, f64::max),
+            None => self.loads.max_normal_force(),
+        }
+    }
+}
+
 /// Vehicle-track dynamics of a growth study.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum DynamicsKind {
     /// Only the imposed `load.harmonics` (no feedback of the profile).
     Imposed,
-    /// Linear receptance model (wheel mass, Hertz spring, UIC60 track).
+    /// Linear receptance model (wheel mass, Hertz spring, the `[track]`
+    /// smeared into a continuous support).
+    Receptance {
+        /// Unsprung mass per wheel (kg).
+        unsprung_mass: f64,
+    },
     /// The Timoshenko rail on discrete supports (`[track]`), the
     /// receptance depending on the wheel's place in the sleeper bay, with
     /// the supports' parametric excitation.
@@ -237,10 +268,17 @@ pub enum DynamicsKind {
         /// Unsprung mass per wheel (kg).
         unsprung_mass: f64,
     },
-    Receptance {
-        /// Unsprung mass per wheel (kg).
-        unsprung_mass: f64,
-    },
+}
+
+impl DynamicsKind {
+    /// The same model with another unsprung mass (kg).
+    pub fn with_unsprung_mass(self, mass: f64) -> Self {
+        match self {
+            DynamicsKind::Imposed => DynamicsKind::Imposed,
+            DynamicsKind::Receptance { .. } => DynamicsKind::Receptance { unsprung_mass: mass },
+            DynamicsKind::Discrete { .. } => DynamicsKind::Discrete { unsprung_mass: mass },
+        }
+    }
 }
 
 /// A multi-passage growth study on the periodic stretch [x_min, x_max).
@@ -262,6 +300,9 @@ pub struct GrowthParams {
     pub dynamics: DynamicsKind,
     /// When the study stops before `passes`.
     pub stop: StopRule,
+    /// The traffic classes (`[[traffic.mix]]`, shares summing to 1; one
+    /// class of the base config without `[traffic]`).
+    pub classes: Vec<crate::growth::mix::TrafficClass>,
 }
 
 /// When a growth study stops before its planned passages (`growth.stop`).

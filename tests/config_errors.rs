@@ -200,7 +200,7 @@ fn missing_keys_and_syntax() {
     assert_eq!(
         e,
         vec![
-            "rail.half_width: = 0.005 m is narrower than the largest patch half-width b = 1.1563e-2 m; it must be >= b"
+            "rail.half_width: = 0.005 m is narrower than the largest patch half-width b = 1.1563e-2 m (at N = 1.450000e5 N); it must be >= b"
                 .to_string()
         ]
     );

@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,growth,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}``.
+"""Command line: ``python -m corrugation_post {figures,compare,growth,speeds,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}``.
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -53,6 +53,12 @@ def _parser() -> argparse.ArgumentParser:
     grw.add_argument("--out", required=True, help="output folder (created if needed)")
     grw.add_argument("--wavelength", type=float, default=None,
                      help="harmonic to follow (m; default: the one that grew most in the first run)")
+
+    spd = sub.add_parser("speeds", help="growth rate against wavelength and frequency: studies at several speeds "
+                         "and mixed traffic (scripts/discrete_speeds.sh)")
+    spd.add_argument("runs", nargs="+", help="growth-study run files (single speeds, and mixes of them)")
+    spd.add_argument("--track", default=None, help="`corrugation track` file whose resonances to mark")
+    spd.add_argument("--out", required=True, help="output folder (created if needed)")
 
     # The study commands: a manifest CSV from a script in, a table out.
     for name, help_, manifest in MANIFEST_COMMANDS:
@@ -110,6 +116,12 @@ def _growth(args) -> int:
     from .growth import compare_growth, format_table
 
     return _print_table(compare_growth(args.runs, args.out, args.wavelength), format_table)
+
+
+def _speeds(args) -> int:
+    from .speeds import format_table, speed_study
+
+    return _print_table(speed_study(args.runs, args.out, args.track), format_table)
 
 
 def _speed_accuracy(args) -> int:
@@ -176,7 +188,7 @@ def main(argv: list[str] | None = None) -> int:
 
     matplotlib.use("Agg")
     args = _parser().parse_args(argv)
-    handler = {"figures": _figures, "compare": _compare, "growth": _growth,
+    handler = {"figures": _figures, "compare": _compare, "growth": _growth, "speeds": _speeds,
                "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "grid-convergence": _grid_convergence,
                "validity-map": _validity_map, "track": _track, "check": _check}[args.command]
     try:

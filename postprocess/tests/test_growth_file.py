@@ -82,3 +82,61 @@ def test_a_checkpoint_of_a_killed_run_opens_in_xarray(tmp_path):
         assert int(root.attrs["passes_planned"]) == 60
     assert done % 3 == 0 and 0 < done < 60
     _check_layout(out, done)
+
+
+MIX = """
+[[traffic.mix]]
+name = "fast"
+share = 1.0
+
+[[traffic.mix]]
+name = "slow"
+speed = 20.0
+share = 1.0
+"""
+
+
+def test_mixed_traffic_classes_in_xarray_and_the_speeds_figure(tmp_path):
+    # Two single-speed studies and their mix, written by the binary: the
+    # traffic group and passes/traffic_class read in xarray, and `speeds`
+    # finds the mix close to the share-weighted mean of the single speeds
+    # (the linear regime; a few passages at a small m).
+    config = tmp_path / "mix.toml"
+    config.write_text((REPO / "configs" / "growth_fastsim.toml").read_text() + MIX)
+    sets = ["growth.adaptive=false", "growth.traffic_scale=2e3", "growth.contact_history=[]"]
+    runs = []
+    for name, extra in (("fast", ["growth.passes=3"]), ("slow", ["growth.passes=3", "rolling.speed=20.0"])):
+        out = tmp_path / f"{name}.h5"
+        subprocess.run(_command(out, *sets, *extra), check=True, capture_output=True)
+        runs.append(out)
+    mix = tmp_path / "mix.h5"
+    cmd = [BIN, "run", str(config), "-o", str(mix)]
+    for s in COARSE + sets + ["growth.passes=6"]:
+        cmd += ["--set", s]
+    subprocess.run(cmd, check=True, capture_output=True)
+    with xr.open_dataset(mix, engine="h5netcdf", group="traffic") as t:
+        assert t["speed"].dims == ("class",)
+        np.testing.assert_array_equal(t["speed"].values, [27.78, 20.0])
+        np.testing.assert_allclose(t["share"].values, [0.5, 0.5])
+        assert t.attrs["class_names"] == "fast slow"
+    with xr.open_dataset(mix, engine="h5netcdf", group="passes") as ps:
+        np.testing.assert_array_equal(ps["traffic_class"].values, [0, 1, 0, 1, 0, 1])
+        assert ps["traffic_class"].attrs["flag_meanings"] == "fast slow"
+    out = tmp_path / "speeds"
+    assert main(["speeds", *map(str, runs), str(mix), "--out", str(out)]) == 0
+    assert (out / "speeds.png").stat().st_size > 1000
+    from corrugation_post.io import read_csv
+
+    summary = {r["label"]: r for r in read_csv(out / "speeds_summary.csv")}
+    assert float(summary["fast"]["peak_frequency_hz"]) > 0
+    # Over the roughness band the mix's mean rate is within a tenth of the
+    # spread of the single-speed rates of their share-weighted mean.
+    rows = [r for r in read_csv(out / "speeds.csv") if r["label"] == "mix"]
+    rate = np.array([float(r["growth_rate_db_per_1e5"]) for r in rows])
+    pred = np.array([float(r["predicted_db_per_1e5"]) for r in rows])
+    both = np.isfinite(rate) & np.isfinite(pred)
+    assert both.sum() > 10
+    singles = np.array([[float(r["growth_rate_db_per_1e5"]) for r in read_csv(out / "speeds.csv")
+                         if r["label"] == name] for name in ("fast", "slow")])
+    spread = np.nanmax(np.abs(singles[0] - singles[1]))
+    assert np.max(np.abs(rate[both] - pred[both])) < 0.1 * spread

@@ -4,6 +4,7 @@
 
 use super::ConfigError;
 use super::reader::{Range, Section};
+use super::traffic::BaseClass;
 use crate::growth::roughness::{LevelBand, ProfileHarmonic, Roughness, band_harmonics};
 use crate::growth::traffic::{DEFAULT_MAX_UPDATE_RATIO, TrafficScaling};
 use crate::params::{DynamicsKind, GrowthParams, StopRule};
@@ -18,9 +19,14 @@ const RANDOM_KEYS: [&str; 3] = ["rms", "wavelength_min", "wavelength_max"];
 
 /// Reads the growth sections; `Ok(None)` for a single-passage scene, `Err`
 /// when a key is invalid (the errors are recorded).
-pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError>) -> Result<Option<GrowthParams>, ()> {
+pub fn read(
+    root: &mut Table,
+    resolved: &mut Table,
+    base: BaseClass,
+    errors: &mut Vec<ConfigError>,
+) -> Result<Option<GrowthParams>, ()> {
     if !root.contains_key("growth") {
-        for name in ["roughness", "dynamics"] {
+        for name in ["roughness", "dynamics", "traffic"] {
             if root.remove(name).is_some() {
                 errors.push(ConfigError::new(name, "is only allowed with a [growth] section".into()));
             }
@@ -111,8 +117,9 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
         _ => None,
     };
     resolved.insert("dynamics".into(), Value::Table(s.finish()));
+    let classes = super::traffic::read(root, resolved, BaseClass { unsprung_mass: mass, ..base }, errors);
 
-    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics, stop) {
+    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics, stop, classes) {
         (
             Some(passes),
             Some(traffic),
@@ -122,6 +129,7 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
             Some(roughness),
             Some(dynamics),
             Some(stop),
+            Some(classes),
         ) => Ok(Some(GrowthParams {
             passes,
             traffic,
@@ -131,6 +139,7 @@ pub fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError
             roughness,
             dynamics,
             stop,
+            classes,
         })),
         _ => Err(()),
     }

@@ -13,6 +13,7 @@ mod growth;
 mod overrides;
 mod reader;
 mod track;
+pub mod traffic;
 
 use crate::contact::grid::{FrictionLaw, GridScheme};
 use crate::creep_coefficients::creep_coefficients;
@@ -172,7 +173,9 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let store_fields = s.bool("store_fields", true);
     let title = s.string("title", "");
     resolved.insert("output".into(), Value::Table(s.finish()));
-    let growth = growth::read(&mut root, &mut resolved, errors);
+    let base =
+        traffic::BaseClass { speed, normal_force: normal, longitudinal_force: longitudinal, unsprung_mass: None };
+    let growth = growth::read(&mut root, &mut resolved, base, errors);
     // The track matters to growth studies (and is read when given).
     let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
         track::read(&mut root, &mut resolved, errors)
@@ -243,25 +246,34 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into(),
         ));
     }
-    if let Some(p) = shape.and_then(|s| s.patch(loads.max_normal_force()).ok())
-        && half_width < p.b
-    {
-        errors.push(ConfigError::new(
-            "rail.half_width",
-            format!(
-                "= {half_width} m is narrower than the largest patch half-width b = {:.4e} m; it must be >= b",
-                p.b
-            ),
-        ));
-    }
     let Some(track) = track else {
         return (None, resolved);
     };
     let Ok(growth) = growth else {
         return (None, resolved);
     };
+    // The largest normal force of any traffic class.
+    let max_normal = match &growth {
+        Some(g) => {
+            check_classes(&g.classes, &loads, mu, errors);
+            g.classes.iter().map(|c| class_loads(&loads, c).max_normal_force()).fold(0.0, f64::max)
+        }
+        None => loads.max_normal_force(),
+    };
+    if let Some(p) = shape.and_then(|s| s.patch(max_normal).ok())
+        && half_width < p.b
+    {
+        errors.push(ConfigError::new(
+            "rail.half_width",
+            format!(
+                "= {half_width} m is narrower than the largest patch half-width b = {:.4e} m (at N = {max_normal:.6e} N); \
+                 it must be >= b",
+                p.b
+            ),
+        ));
+    }
     if let Some(g) = &growth {
-        check_growth(g, &loads, start, end, (x_min, x_max, dx), shape.as_ref(), errors);
+        check_growth(g, &loads, max_normal, start, end, (x_min, x_max, dx), shape.as_ref(), errors);
     }
     let (fastsim_bound, step_solver) = contact::bound_and_solver(&bound, &solver);
     let (model, nx, ny, auto) = if model == AUTO {
@@ -352,6 +364,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
 fn check_growth(
     g: &crate::params::GrowthParams,
     loads: &ImposedLoads,
+    max_normal: f64,
     start: f64,
     end: f64,
     (x_min, x_max, dx): (f64, f64, f64),
@@ -377,7 +390,7 @@ fn check_growth(
         }
         _ => {}
     }
-    if let Some(p) = shape.and_then(|s| s.patch(loads.max_normal_force()).ok())
+    if let Some(p) = shape.and_then(|s| s.patch(max_normal).ok())
         && start > x_min - p.a
     {
         errors.push(ConfigError::new(
@@ -390,6 +403,50 @@ fn check_growth(
             "passage.end",
             format!("= {end} m must be >= rail.x_max = {x_max} m in a growth study"),
         ));
+    }
+}
+
+/// The imposed loads as wheels of class `c` see them: the class's means,
+/// the harmonics of `[load]`.
+fn class_loads(loads: &ImposedLoads, c: &crate::growth::mix::TrafficClass) -> ImposedLoads {
+    ImposedLoads { normal_force: c.normal_force, longitudinal_force: c.longitudinal_force, ..loads.clone() }
+}
+
+/// Each traffic class must keep contact where it pulls and stay below full
+/// sliding (the base config's loads are checked by [`check_loads`]).
+fn check_classes(
+    classes: &[crate::growth::mix::TrafficClass],
+    loads: &ImposedLoads,
+    mu: f64,
+    errors: &mut Vec<ConfigError>,
+) {
+    if let [c] = classes
+        && c.name == traffic::BASE_NAME
+    {
+        return;
+    }
+    for (i, c) in classes.iter().enumerate() {
+        let l = class_loads(loads, c);
+        let (n_min, f_max) = (l.min_normal_force(), l.max_longitudinal_force());
+        if n_min <= 0.0 && f_max > 0.0 {
+            errors.push(ConfigError::new(
+                &format!("traffic.mix[{i}].normal_force"),
+                format!(
+                    "= {:.6e} N: with the load.harmonics the normal force reaches {n_min:.6e} N <= 0 (contact lost) while \
+                     the class pulls with |F_x| up to {f_max:.6e} N; it must stay > 0",
+                    c.normal_force
+                ),
+            ));
+        } else if n_min > 0.0 && f_max >= mu * n_min {
+            errors.push(ConfigError::new(
+                &format!("traffic.mix[{i}].longitudinal_force"),
+                format!(
+                    "= {:.6e} N: |F_x| reaches {f_max:.6e} N, which must be < mu * min N = {:.6e} N (full sliding)",
+                    c.longitudinal_force,
+                    mu * n_min
+                ),
+            ));
+        }
     }
 }
 

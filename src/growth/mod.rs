@@ -12,6 +12,7 @@
 //! the patch positions inside the stretch is folded onto the periodic grid,
 //! so every node receives exactly one full passage of the patch.
 
+pub mod mix;
 pub mod roughness;
 pub mod spectrum;
 pub mod stop;

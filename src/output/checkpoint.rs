@@ -22,6 +22,8 @@ pub struct StateLayout<'a> {
     pub fields: bool,
     /// Passages whose history the run stores.
     pub history_passes: &'a [usize],
+    /// Traffic classes of the study.
+    pub classes: usize,
 }
 
 /// Reads the state of the run file at `path`, checking every shape against
@@ -64,6 +66,20 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         Err(_) => Ok(ndarray::Array1::zeros(done)),
     };
     let (loss, profile) = (optional("contact_loss_steps")?, optional("profile_contact")?);
+    // Files of a study without classes, or written before the column existed.
+    let class = match read_i64(path, "passes", "traffic_class") {
+        Ok(c) => {
+            let c = c.into_dimensionality::<Ix1>().map_err(|e| invalid("passes/traffic_class", e.to_string()))?;
+            if c.len() != done || c.iter().any(|k| *k < 0 || *k as usize >= layout.classes.max(1)) {
+                return Err(invalid(
+                    "passes/traffic_class",
+                    format!("must hold {done} class indices in 0 .. {}", layout.classes.max(1)),
+                ));
+            }
+            c.mapv(|k| k as usize)
+        }
+        Err(_) => ndarray::Array1::zeros(done),
+    };
     let rows = (0..done)
         .map(|k| PassRow {
             index: k as i64,
@@ -75,6 +91,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             update_ratio: ratio[k],
             contact_loss_steps: loss[k],
             profile_contact: profile[k],
+            traffic_class: class[k],
             spectrum: spectrum.row(k).to_vec(),
             filtered_spectrum: filtered.row(k).to_vec(),
             growth_rate: rate.row(k).to_vec(),

@@ -13,6 +13,7 @@
 
 use super::netcdf::{NcError, NcGroup, write_atomically};
 use crate::contact::Elements;
+use crate::growth::mix::TrafficClass;
 use crate::passage::{PatchFields, PatchHistory};
 use crate::wear::RailGrid;
 use ndarray::{Array1, Array2, Array3, ArrayView1};
@@ -40,6 +41,8 @@ pub struct PassRow {
     pub contact_loss_steps: f64,
     /// 1 when the passage's normal contact took the profile, 0 for Hertz.
     pub profile_contact: f64,
+    /// Index of the passage's traffic class (0 without a mix).
+    pub traffic_class: usize,
     /// Amplitude spectrum of the centre-line profile after the passage (m),
     /// on the record's `wavelengths`.
     pub spectrum: Vec<f64>,
@@ -105,6 +108,8 @@ pub struct RunRecord<'a> {
     pub passes_planned: usize,
     /// Why the study stopped before `passes_planned` (it is then complete).
     pub stop_reason: Option<&'a str>,
+    /// The traffic classes of a growth study (empty for one passage).
+    pub classes: &'a [TrafficClass],
 }
 
 /// Writes `record` to `path` atomically.
@@ -122,7 +127,10 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         root.attr_i64("passes_done", done as i64)?;
         root.attr_i64("passes_planned", record.passes_planned as i64)?;
         write_rail(&root.group("rail")?, record)?;
-        write_passes(&root.group("passes")?, &record.state.rows, record.wavelengths)?;
+        write_passes(&root.group("passes")?, &record.state.rows, record.wavelengths, record.classes)?;
+        if !record.classes.is_empty() {
+            write_classes(&root.group("traffic")?, record.classes)?;
+        }
         let contact = root.group("contact")?;
         for (index, history) in &record.state.histories {
             write_history(&contact.group(&format!("pass_{index:05}"))?, history, record)?;
@@ -173,7 +181,31 @@ fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
     Ok(())
 }
 
-fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<(), NcError> {
+/// Group `traffic`: one row per class on dimension `class`; the names in
+/// the attribute `class_names` (space-separated, in class order).
+fn write_classes(g: &NcGroup, classes: &[TrafficClass]) -> Result<(), NcError> {
+    let idx: Vec<i64> = (0..classes.len() as i64).collect();
+    g.coord_i64("class", &idx, "1", "traffic class index", false)?;
+    let col = |f: fn(&TrafficClass) -> f64| -> Array1<f64> { classes.iter().map(f).collect() };
+    let vars: [(&str, Array1<f64>, &str, &str); 5] = [
+        ("speed", col(|c| c.speed), "m/s", "rolling speed of the class"),
+        ("normal_force", col(|c| c.normal_force), "N", "mean normal force of the class"),
+        ("longitudinal_force", col(|c| c.longitudinal_force), "N", "mean longitudinal force on the wheel"),
+        ("unsprung_mass", col(|c| c.unsprung_mass), "kg", "unsprung mass per wheel"),
+        ("share", col(|c| c.share), "1", "share of the real wheel passages"),
+    ];
+    for (name, v, units, long_name) in vars {
+        g.var_f64(name, &["class"], v.view().into_dyn(), units, long_name)?;
+    }
+    g.attr_str("class_names", &class_names(classes))
+}
+
+/// The classes' names, space-separated.
+fn class_names(classes: &[TrafficClass]) -> String {
+    classes.iter().map(|c| c.name.as_str()).collect::<Vec<_>>().join(" ")
+}
+
+fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64], classes: &[TrafficClass]) -> Result<(), NcError> {
     let idx: Vec<i64> = rows.iter().map(|r| r.index).collect();
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
     let col = |f: fn(&PassRow) -> f64| -> Array1<f64> { rows.iter().map(f).collect() };
@@ -209,6 +241,19 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64]) -> Result<()
     ];
     for (name, v, units, long_name) in vars {
         g.var_f64(name, &["pass"], v.view().into_dyn(), units, long_name)?;
+    }
+    if !classes.is_empty() {
+        let class: Array1<i64> = rows.iter().map(|r| r.traffic_class as i64).collect();
+        g.var_i64(
+            "traffic_class",
+            &["pass"],
+            class.view().into_dyn(),
+            "1",
+            "traffic class of the passage (group traffic)",
+        )?;
+        let values: Vec<String> = (0..classes.len()).map(|c| c.to_string()).collect();
+        g.var_attr_str("traffic_class", "flag_values", &values.join(" "))?;
+        g.var_attr_str("traffic_class", "flag_meanings", &class_names(classes))?;
     }
     g.coord_f64("wavelength", wavelengths, "m", "wavelength of the profile harmonic (stretch length / n)", false)?;
     let table = |f: fn(&PassRow) -> &Vec<f64>| {

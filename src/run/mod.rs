@@ -160,7 +160,7 @@ pub fn normal_contact(scene: &Scene) -> NormalContact {
 /// The normal force (N) whose Hertz patch the fixed grid is sized for.
 pub fn fixed_grid_load(scene: &Scene) -> f64 {
     let dynamic = scene.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
-    scene.loads.max_normal_force() * if dynamic { DYNAMIC_LOAD_FACTOR } else { 1.0 }
+    scene.max_normal_force() * if dynamic { DYNAMIC_LOAD_FACTOR } else { 1.0 }
 }
 
 /// The rail grid of a single passage.

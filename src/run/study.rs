@@ -20,6 +20,8 @@ use super::hertz_check::HertzCheck;
 use super::{build_deposit, build_solver, derive, element_count, normal_contact, periodic_grid, track_dynamics};
 use crate::config::contact::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::config::{ConfigErrors, Resolved, load_str};
+use crate::dynamics::TrackDynamics;
+use crate::growth::mix::{TrafficClass, next_class, tally};
 use crate::growth::roughness::profile_line;
 use crate::growth::spectrum::{amplitudes, growth_rates, wavelengths};
 use crate::growth::traffic::{TrafficScaling, change_rate};
@@ -30,7 +32,7 @@ use crate::output::netcdf::{NcError, read_attr_str, read_f64};
 pub use crate::output::run_file::RunState;
 use crate::output::run_file::{PassRow, RailSnapshot, RunRecord, write_run_file};
 use crate::params::{NormalContact, Scene};
-use crate::passage::{PassageError, run_passage};
+use crate::passage::{PassageError, PassageSpec, run_passage};
 use crate::wear::RailGrid;
 use ndarray::Array2;
 use std::path::{Path, PathBuf};
@@ -62,6 +64,8 @@ pub enum Event {
         rms: f64,
         /// Relative profile change of its update (1).
         update_ratio: f64,
+        /// Its traffic class, in a mixed-traffic study.
+        class: Option<String>,
     },
     /// What the run did (not a problem).
     Note {
@@ -227,6 +231,7 @@ pub fn resume(
         elements,
         fields: scene.output.store_fields,
         history_passes: &growth.contact_history,
+        classes: growth.classes.len(),
     };
     if done > growth.passes {
         let msg = format!("holds {done} passages, more than its config's growth.passes = {}", growth.passes);
@@ -262,6 +267,8 @@ fn continue_run(
 ) -> Result<RunSummary, RunError> {
     let scene = &resolved.scene;
     let d = derive(scene);
+    // One solver for every traffic class: its grid is sized for the largest
+    // load of any class, and the speed and loads come with each step.
     let mut solver = build_solver(scene, &d.shape);
     let elements = solver.elements();
     let deposit = build_deposit(&elements);
@@ -269,7 +276,20 @@ fn continue_run(
     let grid = study_grid(scene);
     let passes = growth.map_or(1, |g| g.passes);
     let scaling = growth.map_or(TrafficScaling::Fixed { scale: 1.0, max_update_ratio: 1.0 }, |g| g.traffic);
-    let dynamics = track_dynamics(scene, &d);
+    // Each class's passage (speed, mean loads) and track dynamics (speed,
+    // contact spring at its load, unsprung mass).
+    let classes: Vec<TrafficClass> = growth.map_or_else(Vec::new, |g| g.classes.clone());
+    let shares: Vec<f64> = classes.iter().map(|c| c.share).collect();
+    let class_models: Vec<(PassageSpec, Option<Box<dyn TrackDynamics>>)> = classes
+        .iter()
+        .map(|c| {
+            let cs = scene.for_class(c);
+            let cd = derive(&cs);
+            let dynamics = track_dynamics(&cs, &cd);
+            (cd.passage, dynamics)
+        })
+        .collect();
+    let has_dynamics = class_models.iter().any(|(_, dy)| dy.is_some());
     let steps = d.passage.n_steps();
     let first = state.rows.len();
     let waves = wavelengths(grid.nx, grid.dx);
@@ -290,6 +310,7 @@ fn continue_run(
             state,
             passes_planned: passes,
             stop_reason,
+            classes: &classes,
         };
         write_run_file(out, &record)
     };
@@ -306,7 +327,7 @@ fn continue_run(
         stop_reason: None,
     };
     let mut hertz_check = HertzCheck {
-        active: normal_contact(scene) == NormalContact::Hertz && dynamics.is_some(),
+        active: normal_contact(scene) == NormalContact::Hertz && has_dynamics,
         fixed: matches!(scene.contact.grid, crate::params::ContactGrid::Fixed(_)),
         from: match scene.contact.grid {
             crate::params::ContactGrid::Fixed(f) => PROFILE_NOISE_AMPLITUDE * f.dx / PROFILE_NOISE_ELEMENT,
@@ -320,6 +341,11 @@ fn continue_run(
         if stopped.is_some() {
             break;
         }
+        // The class of this passage: the one furthest behind its share.
+        let class = match classes.len() {
+            0 | 1 => 0,
+            n => next_class(&shares, &tally(n, state.rows.iter().map(|r| (r.traffic_class, r.traffic_scale)))),
+        };
         let keep_history = growth.is_none_or(|g| g.contact_history.contains(&pass));
         let record_fields = keep_history && scene.output.store_fields;
         // What the normal contact of this passage sees of the rail.
@@ -364,15 +390,16 @@ fn continue_run(
                 (r.wear, r.history)
             }
             Some(_) => {
+                let (class_passage, class_dynamics) = &class_models[class];
                 let g = growth_passage(
-                    &d.passage,
+                    class_passage,
                     &d.shape,
                     solver.as_mut(),
                     deposit.as_ref(),
                     &grid,
                     &state.profile,
                     normal,
-                    dynamics.as_deref(),
+                    class_dynamics.as_deref(),
                     record_fields,
                     &mut report,
                 );
@@ -405,9 +432,13 @@ fn continue_run(
         let cpu_seconds = clock.elapsed().as_secs_f64();
         // With imposed dynamics the wear does not depend on the profile: the
         // update is exact for any m (growth::traffic).
-        let rho = if dynamics.is_some() { change_rate(&line(&state.profile), &line(&wear)) } else { 0.0 };
+        let class_dynamics = class_models.get(class).is_some_and(|(_, dy)| dy.is_some());
+        let rho = if class_dynamics { change_rate(&line(&state.profile), &line(&wear)) } else { 0.0 };
         let previous = state.rows.last();
-        let m = scaling.scale(previous.map(|r| r.traffic_scale), rho);
+        // The adaptive m rises from the last m of the same class: classes
+        // whose wear changes the profile faster keep a smaller m.
+        let previous_scale = state.rows.iter().rev().find(|r| r.traffic_class == class).map(|r| r.traffic_scale);
+        let m = scaling.scale(previous_scale, rho);
         let before = match previous {
             Some(r) => r.filtered_spectrum.clone(),
             None => amplitudes(&filtered(&state.profile)),
@@ -427,6 +458,7 @@ fn continue_run(
             removed_volume: wear.sum() * grid.dx * grid.dy,
             cpu_seconds,
             update_ratio: m * rho,
+            traffic_class: class,
             contact_loss_steps: loss as f64,
             profile_contact: if matches!(normal, NormalContact::Profile { .. }) { 1.0 } else { 0.0 },
             // Below 1e-12 m (1 pm) an amplitude is numerical noise.
@@ -441,6 +473,7 @@ fn continue_run(
             scale: m,
             rms: row.rms_corrugation,
             update_ratio: row.update_ratio,
+            class: (classes.len() > 1).then(|| classes[class].name.clone()),
         });
         summary.cpu_seconds += cpu_seconds;
         summary.removed_volume = row.removed_volume;
