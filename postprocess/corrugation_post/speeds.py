@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from .figures import DPI
 from .growth import GrowthCurves, load
@@ -157,6 +158,8 @@ def speed_study(paths, out_dir, track=None):
               title="Growth rate against wavelength")
     ax_f.set(xlabel="frequency V / wavelength (Hz)", xscale="log", title="Growth rate against frequency")
     for ax in (ax_wl, ax_f):
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        ax.xaxis.set_minor_formatter(NullFormatter())
         ax.axhline(0.0, color="black", lw=0.6)
         ax.grid(alpha=0.3, which="both")
         ax.legend(fontsize=8)
