@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Sets up (scripts/setup.sh) and runs every test: formatting, the Rust tests
 # (unit, integration, doc), a compile check of benchmarks and examples, then
-# the Python post-processing tests on a run file produced by the binary.
+# the Python post-processing tests on a run file produced by the binary, and
+# the sweep commands against a real single-node Slurm cluster
+# (scripts/slurm_test.sh, about 45 s).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -19,3 +21,5 @@ mkdir -p "$run_dir"
   --set contact.elements_x=12 --set contact.elements_y=12
 CORRUGATION_RUN_FILE="$PWD/$run_dir/paper_normal_15mm.h5" CORRUGATION_BIN="$PWD/target/debug/corrugation" \
   .venv/bin/python -m pytest -q postprocess/tests
+# Sweeps on a real Slurm (installs slurm-wlm and munge where missing).
+CORRUGATION_BIN="$PWD/target/debug/corrugation" bash scripts/slurm_test.sh

@@ -5,11 +5,9 @@
 use corrugation::config::Resolved;
 use corrugation::contact::grid::GRID_MARGIN;
 use corrugation::contact::grid::convolution::smooth_padding;
-use corrugation::contact::transient::StepSolver;
 use corrugation::growth::traffic::TrafficScaling;
-use corrugation::loads::LoadQuantity;
 use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, SAFETY, departures};
-use corrugation::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact};
+use corrugation::params::{ContactGrid, DynamicsKind, NormalContact};
 use corrugation::run::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics};
 
 /// What contact.model = "auto" chose and why.
@@ -180,57 +178,7 @@ pub fn print_check(r: &Resolved) {
         mm(g.dx),
         mm(g.dy)
     );
-    // Cost model from measurements on 2 cores (README, Performance), per
-    // step: wear ~ 20 ns per node visit; FASTSIM ~ 18 ns per element and
-    // solve, 25 solves; simplified-transient ~ 3 us per element; the exact
-    // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
-    // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
-    // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
-    // solver (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 11.8 ms at
-    // 400 elements (~N^1.15 while C fits in cache), ~N^2.2 beyond. Measured
-    // on the old AMD development machine; the newer Intel one (README,
-    // Performance) takes 0.45-0.6 of these times: an upper estimate.
-    let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
-    let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
-    // The fixed grid (scripts/solver_scaling.sh, paper_normal_30mm on the
-    // new machine): 5.0 ms per step with 478 elements in contact at the mean
-    // load, 35.9 ms with 1912, 106.5 ms with 3902, fitted by N^1.46; the
-    // wear deposit is in it. A scene that is not symmetric about the centre
-    // line (lateral creepage, spin) solves the whole grid: 2.7 times
-    // (scripts/stability_map.sh).
-    let fixed_step = fixed.as_ref().map(|(f, _)| {
-        let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
-        let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
-        // With the profile in the contact: a larger grid, the gap of every
-        // step and the equivalent roughness's normal solves; 2.0 times on
-        // growth_exact.toml (3 passages: 3.6 s with "hertz", 7.3 s).
-        let profile = if matches!(f.normal, NormalContact::Hertz) { 1.0 } else { 2.0 };
-        5.0e-3 * (n_c / 478.0).powf(1.46) * if symmetric { 1.0 } else { 2.7 } * profile
-    });
-    let contact = match s.contact.model {
-        _ if fixed_step.is_some() => fixed_step.unwrap_or_default(),
-        ContactModelKind::Fastsim => 25.0 * 18e-9 * n_el,
-        ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
-        ContactModelKind::ExactTransient if s.contact.solver == StepSolver::GaussSeidel => {
-            if n_el <= 400.0 {
-                2.4e-3 * (n_el / 100.0).powf(1.15)
-            } else {
-                11.8e-3 * (n_el / 400.0).powf(2.2)
-            }
-        }
-        ContactModelKind::ExactTransient => {
-            let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
-                || s.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
-            if varying { 2.7e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
-        }
-    };
-    // With "auto", the map's own measurement of the chosen model.
-    // (per 0.2 mm rolled: per step of the fixed grid in proportion to its element).
-    let contact =
-        s.contact.auto.map_or(contact, |a| a.chosen.cpu_per_step * a.chosen.grid_dx().map_or(1.0, |dx| dx / 2e-4));
-    let deposit = if fixed_step.is_some() { 0.0 } else { p.substeps as f64 * nodes * 20e-9 };
-    let secs = p.n_steps() as f64 * (contact + deposit);
-    let passes = s.growth.as_ref().map_or(1, |g| g.passes);
+    let cost = corrugation::cost::estimate(s);
     if let Some(g) = &s.growth {
         match g.traffic {
             TrafficScaling::Fixed { scale, .. } => println!(
@@ -300,32 +248,16 @@ pub fn print_check(r: &Resolved) {
             }
         }
     }
-    // The discrete model tabulates its receptances once per traffic class:
-    // about 1 s per 100 harmonics up to its 5 kHz on 2 cores.
-    let setup: f64 = match &s.growth {
-        Some(g) if matches!(g.dynamics, DynamicsKind::Discrete { .. }) => g
-            .classes
-            .iter()
-            .map(|c| {
-                let n = (corrugation::dynamics::discrete_dynamics::F_MAX * stretch_length(s) / c.speed).floor();
-                n.min((periodic_grid(s).nx / 2) as f64) * 0.01
-            })
-            .sum(),
-        _ => 0.0,
-    };
-    let setup_text = if setup > 0.0 {
-        format!(" plus {setup:.1} s to tabulate the discrete track's receptances")
+    let setup_text = if cost.setup > 0.0 {
+        format!(" plus {:.1} s to tabulate the discrete track's receptances", cost.setup)
     } else {
         String::new()
     };
     println!(
-        "estimated cost     {:.2} s per passage, {:.1} s in all{setup_text} on 2 cores (rough, from the benchmarks)",
-        secs,
-        secs * passes as f64
+        "estimated cost     {:.2} s per passage, {:.1} s in all{setup_text} on 2 cores (rough, from the benchmarks); \
+         memory about {:.0} MB",
+        cost.per_passage,
+        cost.per_passage * cost.passes as f64,
+        cost.memory / 1e6
     );
-}
-
-/// Length of the periodic stretch of a scene (m).
-fn stretch_length(s: &corrugation::params::Scene) -> f64 {
-    s.rail.x_max - s.rail.x_min
 }

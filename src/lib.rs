@@ -10,6 +10,7 @@
 
 pub mod config;
 pub mod contact;
+pub mod cost;
 pub mod creep_coefficients;
 pub mod dynamics;
 pub mod growth;
@@ -22,4 +23,5 @@ pub mod output;
 pub mod params;
 pub mod passage;
 pub mod run;
+pub mod sweep;
 pub mod wear;

@@ -22,6 +22,7 @@ macro_rules! say_raw {
 
 mod check;
 mod progress;
+mod sweep_cli;
 
 use clap::{Parser, Subcommand};
 use corrugation::config::{self, Resolved};
@@ -75,6 +76,11 @@ enum Command {
         #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
         set: Vec<String>,
     },
+    /// Parameter sweeps: plan, run here or on Slurm, status, collect.
+    Sweep {
+        #[command(subcommand)]
+        command: sweep_cli::SweepCommand,
+    },
     /// Validate a config and print derived quantities.
     Check {
         /// Scene config (TOML).
@@ -106,9 +112,18 @@ fn main() -> ExitCode {
                 Err(code) => return code,
             };
             let out = output.unwrap_or_else(|| default_output(&config));
+            if let Err(code) = writable(&out) {
+                return code;
+            }
             run(&resolved, &out)
         }
-        Command::Resume { file, passes, output } => resume(&file, passes.map(|n| n as usize), output.as_deref()),
+        Command::Resume { file, passes, output } => {
+            if let Err(code) = writable(output.as_deref().unwrap_or(&file)) {
+                return code;
+            }
+            resume(&file, passes.map(|n| n as usize), output.as_deref())
+        }
+        Command::Sweep { command } => sweep_cli::main(command),
         Command::Track { config, output, set } => {
             let resolved = match load(&config, &set) {
                 Ok(r) => r,
@@ -181,6 +196,15 @@ fn reset_sigpipe() {
 fn load(path: &Path, set: &[String]) -> Result<Resolved, ExitCode> {
     config::load_file(path, set).map_err(|e| {
         say_raw!("error: {e}");
+        ExitCode::from(2)
+    })
+}
+
+/// Before computing anything: the output can be written (exit 2 naming the
+/// path otherwise).
+fn writable(out: &Path) -> Result<(), ExitCode> {
+    corrugation::output::check_writable(out).map_err(|e| {
+        say!("error: cannot write {}: {e}", out.display());
         ExitCode::from(2)
     })
 }

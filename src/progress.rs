@@ -118,3 +118,63 @@ impl Progress {
         }
     }
 }
+
+/// Progress of a local sweep over its members: a bar of members done /
+/// total with ETA on a terminal, one plain line per member otherwise.
+/// Shared by the worker threads.
+pub struct MemberBar {
+    bar: Option<ProgressBar>,
+    total: usize,
+    done: std::sync::Mutex<(usize, usize)>,
+}
+
+impl MemberBar {
+    /// A bar over `total` members.
+    pub fn new(total: usize) -> Self {
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let b = ProgressBar::new(total as u64);
+            b.set_style(
+                ProgressStyle::with_template("members {pos}/{len} [{bar:30}] {elapsed} elapsed, ETA {eta} {msg}")
+                    .expect("valid template")
+                    .progress_chars("=> "),
+            );
+            b
+        });
+        MemberBar { bar, total, done: std::sync::Mutex::new((0, 0)) }
+    }
+
+    /// Member `index` ended (`ok`: complete), `elapsed` s after the start.
+    pub fn done(&self, index: usize, ok: bool, elapsed: f64) {
+        let (done, failed) = {
+            let mut d = self.done.lock().expect("no panics hold it");
+            d.0 += 1;
+            d.1 += usize::from(!ok);
+            *d
+        };
+        let failures = if failed > 0 { format!(", {failed} failed") } else { String::new() };
+        match &self.bar {
+            Some(b) => {
+                b.set_position(done as u64);
+                b.set_message(failures);
+                if !ok {
+                    b.suspend(|| say!("member {index} failed"));
+                }
+            }
+            None => {
+                let eta = elapsed / done as f64 * (self.total - done) as f64;
+                let what = if ok { "complete" } else { "FAILED" };
+                say!(
+                    "member {index} {what}: {done}/{} members{failures}; {elapsed:.1} s elapsed, ETA {eta:.0} s",
+                    self.total
+                );
+            }
+        }
+    }
+
+    /// Clears the bar.
+    pub fn finish(&self) {
+        if let Some(b) = &self.bar {
+            b.finish_and_clear();
+        }
+    }
+}

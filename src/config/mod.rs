@@ -14,6 +14,7 @@ mod overrides;
 mod reader;
 mod track;
 pub mod traffic;
+pub mod units;
 
 use crate::contact::grid::{FrictionLaw, GridScheme};
 use crate::creep_coefficients::creep_coefficients;

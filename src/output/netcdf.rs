@@ -76,9 +76,12 @@ pub enum NcError {
 
 /// Element types a variable can hold (`f64`, `i64`, `i8`). Sealed: only used to share one
 /// generic implementation among the typed public functions.
-trait NcScalar: H5Type + Copy {
+trait NcScalar: H5Type + Clone {
     /// Name used in error messages.
     const NAME: &'static str;
+    /// Whether large data of the type are deflate-compressed (HDF5 filters
+    /// do not apply to variable-length strings).
+    const COMPRESS: bool = true;
 }
 impl NcScalar for f64 {
     const NAME: &'static str = "f64";
@@ -88,6 +91,10 @@ impl NcScalar for i64 {
 }
 impl NcScalar for i8 {
     const NAME: &'static str = "i8";
+}
+impl NcScalar for VarLenUnicode {
+    const NAME: &'static str = "string";
+    const COMPRESS: bool = false;
 }
 
 /// Target size of one chunk of a chunked (compressed or extendable) dataset. Kept at the size
@@ -237,6 +244,42 @@ impl NcGroup {
         self.var(name, dims, data, units, long_name)
     }
 
+    /// Like [`NcGroup::coord_f64`] with a string coordinate (netCDF-4
+    /// `string`, variable-length UTF-8), e.g. the values of a sweep axis.
+    pub fn coord_str(&self, name: &str, values: &[String], units: &str, long_name: &str) -> Result<(), NcError> {
+        let v = self.strings(name, values.iter().map(String::as_str))?;
+        self.coord(name, &v, units, long_name, false)
+    }
+
+    /// Like [`NcGroup::var_f64`] for strings (netCDF-4 `string`,
+    /// variable-length UTF-8; stored uncompressed).
+    pub fn var_str(
+        &self,
+        name: &str,
+        dims: &[&str],
+        data: ArrayViewD<'_, String>,
+        units: &str,
+        long_name: &str,
+    ) -> Result<(), NcError> {
+        let v = self.strings(name, data.iter().map(String::as_str))?;
+        let a = ArrayD::from_shape_vec(ndarray::IxDyn(data.shape()), v).expect("same shape");
+        self.var(name, dims, a.view(), units, long_name)
+    }
+
+    fn strings<'s>(
+        &self,
+        name: &str,
+        values: impl IntoIterator<Item = &'s str>,
+    ) -> Result<Vec<VarLenUnicode>, NcError> {
+        values
+            .into_iter()
+            .map(|s| {
+                s.parse::<VarLenUnicode>()
+                    .map_err(|e| self.invalid(self.child_path(name), format!("string {s:?}: {e}")))
+            })
+            .collect()
+    }
+
     /// Write an extra string attribute (e.g. `flag_meanings`, `comment`) on the existing
     /// variable or coordinate `var` of this group. An attribute of the same name must not
     /// exist yet.
@@ -345,7 +388,7 @@ impl NcGroup {
     ) -> hdf5::Result<Dataset> {
         let shape = data.shape().to_vec();
         let nbytes = data.len() * size_of::<T>();
-        let compress = compress && nbytes >= MIN_COMPRESS_BYTES && hdf5::filters::deflate_available();
+        let compress = compress && T::COMPRESS && nbytes >= MIN_COMPRESS_BYTES && hdf5::filters::deflate_available();
         let chunked = compress || unlimited.iter().any(|&u| u);
         let extents = if shape.is_empty() {
             Extents::Scalar

@@ -1,0 +1,101 @@
+//! The unit of every numeric config key (as the README's Configuration
+//! table gives it), for outputs that name keys, such as a sweep's axes.
+
+/// (key with array indices removed, unit).
+const UNITS: &[(&str, &str)] = &[
+    ("material.young_modulus", "Pa"),
+    ("material.poisson_ratio", "1"),
+    ("material.friction_coefficient", "1"),
+    ("geometry.wheel_radius", "m"),
+    ("geometry.wheel_profile_radius", "m"),
+    ("geometry.rail_head_radius", "m"),
+    ("rolling.speed", "m/s"),
+    ("rolling.creepage_y", "1"),
+    ("rolling.spin", "1/m"),
+    ("load.normal_force", "N"),
+    ("load.longitudinal_force", "N"),
+    ("load.harmonics.amplitude", "N"),
+    ("load.harmonics.wavelength", "m"),
+    ("load.harmonics.phase", "rad"),
+    ("contact.tolerance", "1"),
+    ("contact.elements_x", "1"),
+    ("contact.elements_y", "1"),
+    ("contact.regularisation", "m/s"),
+    ("contact.dx", "m"),
+    ("contact.dy", "m"),
+    ("contact.profile_grid_scale", "1"),
+    ("contact.profile_from", "m"),
+    ("wear.k_over_h", "m2/N"),
+    ("wear.substeps", "1"),
+    ("passage.start", "m"),
+    ("passage.end", "m"),
+    ("passage.step_length", "m"),
+    ("rail.x_min", "m"),
+    ("rail.x_max", "m"),
+    ("rail.dx", "m"),
+    ("rail.dy", "m"),
+    ("rail.half_width", "m"),
+    ("growth.passes", "1"),
+    ("growth.traffic_scale", "1"),
+    ("growth.traffic_scale_max", "1"),
+    ("growth.max_update_ratio", "1"),
+    ("growth.store_every", "1"),
+    ("growth.checkpoint_every", "1"),
+    ("growth.saturation_rate", "dB/1e5 passages"),
+    ("roughness.seed", "1"),
+    ("roughness.rms", "m"),
+    ("roughness.wavelength_min", "m"),
+    ("roughness.wavelength_max", "m"),
+    ("roughness.harmonics.amplitude", "m"),
+    ("roughness.harmonics.wavelength", "m"),
+    ("roughness.harmonics.phase", "rad"),
+    ("roughness.bands.wavelength", "m"),
+    ("roughness.bands.level", "dB"),
+    ("dynamics.unsprung_mass", "kg"),
+    ("track.rail_bending_stiffness", "N m2"),
+    ("track.rail_mass", "kg/m"),
+    ("track.rail_shear_stiffness", "N"),
+    ("track.rail_rotary_inertia", "kg m"),
+    ("track.sleeper_spacing", "m"),
+    ("track.pad_stiffness", "N/m"),
+    ("track.pad_loss_factor", "1"),
+    ("track.pad_damping", "N s/m"),
+    ("track.sleeper_mass", "kg"),
+    ("track.ballast_stiffness", "N/m"),
+    ("track.ballast_loss_factor", "1"),
+    ("track.ballast_damping", "N s/m"),
+    ("traffic.mix.speed", "m/s"),
+    ("traffic.mix.normal_force", "N"),
+    ("traffic.mix.longitudinal_force", "N"),
+    ("traffic.mix.unsprung_mass", "kg"),
+    ("traffic.mix.share", "1"),
+];
+
+/// The unit of config key `key` (`load.harmonics[0].amplitude` counts as
+/// `load.harmonics.amplitude`); None for keys without a number.
+pub fn key_units(key: &str) -> Option<&'static str> {
+    let mut plain = String::with_capacity(key.len());
+    let mut depth = 0;
+    for c in key.chars() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth -= 1,
+            _ if depth == 0 => plain.push(c),
+            _ => {}
+        }
+    }
+    UNITS.iter().find(|(k, _)| *k == plain).map(|(_, u)| *u)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn units_of_plain_and_indexed_keys() {
+        assert_eq!(key_units("rolling.speed"), Some("m/s"));
+        assert_eq!(key_units("load.harmonics[2].amplitude"), Some("N"));
+        assert_eq!(key_units("roughness.harmonics[0].amplitude"), Some("m"));
+        assert_eq!(key_units("contact.model"), None);
+    }
+}

@@ -1,0 +1,138 @@
+//! A rough cost model of a scene: CPU time per passage on 2 cores, the
+//! set-up of the discrete track's receptances, and memory. `check` prints
+//! it; sweeps use it for their plan and their Slurm time and memory limits.
+//! The times are fitted to measurements (README, Performance); they are
+//! upper estimates on the development machines, not promises.
+
+use crate::contact::transient::StepSolver;
+use crate::loads::LoadQuantity;
+use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
+use crate::run::{derive, fixed_grid_spec, periodic_grid};
+
+/// What a scene is expected to cost.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CostEstimate {
+    /// CPU time of one passage (s, 2 cores).
+    pub per_passage: f64,
+    /// Passages planned.
+    pub passes: usize,
+    /// Time before the first passage: the discrete track's receptance
+    /// tables, one per traffic class (s).
+    pub setup: f64,
+    /// Peak memory (bytes).
+    pub memory: f64,
+}
+
+impl CostEstimate {
+    /// The whole run (s).
+    pub fn total(&self) -> f64 {
+        self.setup + self.per_passage * self.passes as f64
+    }
+}
+
+/// The cost model of `s`.
+pub fn estimate(s: &Scene) -> CostEstimate {
+    let d = derive(s);
+    let p = &d.passage;
+    let g = if s.growth.is_some() { periodic_grid(s) } else { d.grid.clone() };
+    let fixed = match s.contact.grid {
+        ContactGrid::Fixed(f) => Some((f, fixed_grid_spec(s, &d.shape, f))),
+        ContactGrid::Adapted => None,
+    };
+    // Cost model from measurements on 2 cores (README, Performance), per
+    // step: wear ~ 20 ns per node visit; FASTSIM ~ 18 ns per element and
+    // solve, 25 solves; simplified-transient ~ 3 us per element; the exact
+    // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
+    // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
+    // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
+    // solver (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 11.8 ms at
+    // 400 elements (~N^1.15 while C fits in cache), ~N^2.2 beyond. Measured
+    // on the old AMD development machine; the newer Intel one (README,
+    // Performance) takes 0.45-0.6 of these times: an upper estimate.
+    let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
+    let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
+    // The fixed grid (scripts/solver_scaling.sh, paper_normal_30mm on the
+    // new machine): 5.0 ms per step with 478 elements in contact at the mean
+    // load, 35.9 ms with 1912, 106.5 ms with 3902, fitted by N^1.46; the
+    // wear deposit is in it. A scene that is not symmetric about the centre
+    // line (lateral creepage, spin) solves the whole grid: 2.7 times
+    // (scripts/stability_map.sh).
+    let fixed_step = fixed.as_ref().map(|(f, _)| {
+        let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
+        let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
+        // With the profile in the contact: a larger grid, the gap of every
+        // step and the equivalent roughness's normal solves; 2.0 times on
+        // growth_exact.toml (3 passages: 3.6 s with "hertz", 7.3 s).
+        let profile = if matches!(f.normal, NormalContact::Hertz) { 1.0 } else { 2.0 };
+        5.0e-3 * (n_c / 478.0).powf(1.46) * if symmetric { 1.0 } else { 2.7 } * profile
+    });
+    let contact = match s.contact.model {
+        _ if fixed_step.is_some() => fixed_step.unwrap_or_default(),
+        ContactModelKind::Fastsim => 25.0 * 18e-9 * n_el,
+        ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
+        ContactModelKind::ExactTransient if s.contact.solver == StepSolver::GaussSeidel => {
+            if n_el <= 400.0 {
+                2.4e-3 * (n_el / 100.0).powf(1.15)
+            } else {
+                11.8e-3 * (n_el / 400.0).powf(2.2)
+            }
+        }
+        ContactModelKind::ExactTransient => {
+            let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
+                || s.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
+            if varying { 2.7e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
+        }
+    };
+    // With "auto", the map's own measurement of the chosen model.
+    // (per 0.2 mm rolled: per step of the fixed grid in proportion to its element).
+    let contact =
+        s.contact.auto.map_or(contact, |a| a.chosen.cpu_per_step * a.chosen.grid_dx().map_or(1.0, |dx| dx / 2e-4));
+    let deposit = if fixed_step.is_some() { 0.0 } else { p.substeps as f64 * nodes * 20e-9 };
+    let per_passage = p.n_steps() as f64 * (contact + deposit);
+    let passes = s.growth.as_ref().map_or(1, |g| g.passes);
+    // The discrete model tabulates its receptances once per traffic class:
+    // about 1 s per 100 harmonics up to its 5 kHz on 2 cores.
+    let setup: f64 = match &s.growth {
+        Some(gr) if matches!(gr.dynamics, DynamicsKind::Discrete { .. }) => gr
+            .classes
+            .iter()
+            .map(|c| {
+                let n = (crate::dynamics::discrete_dynamics::F_MAX * (g.nx as f64 * g.dx) / c.speed).floor();
+                n.min((g.nx / 2) as f64) * 0.01
+            })
+            .sum(),
+        _ => 0.0,
+    };
+    CostEstimate {
+        per_passage,
+        passes,
+        setup,
+        memory: memory(s, &g, n_el, fixed.as_ref().map(|(_, f)| f.grid().len())),
+    }
+}
+
+/// Peak memory (bytes): a base of 100 MB (program, HDF5, buffers), the
+/// stored rail snapshots (profile and wear) twice (in memory and while the
+/// run file is written), the stored patch histories, and the contact
+/// model's matrices (the adapted exact model's influence matrices and
+/// Newton Jacobian, about 40 N^2 bytes; the fixed grid's FFT tables, about
+/// 2 kB per element); all times 1.5.
+fn memory(s: &Scene, g: &crate::wear::RailGrid, n_el: f64, grid_elements: Option<usize>) -> f64 {
+    let nodes = (g.nx * g.ny) as f64;
+    let (snapshots, histories) = match &s.growth {
+        Some(gr) => {
+            (gr.passes.div_ceil(gr.store_every) + 1, gr.contact_history.iter().filter(|k| **k < gr.passes).count())
+        }
+        None => (1, 1),
+    };
+    let steps = derive(s).passage.n_steps() as f64;
+    let elements = grid_elements.map_or(n_el, |n| n as f64);
+    let fields = if s.output.store_fields { 7.0 * 8.0 * elements } else { 0.0 };
+    let history = histories as f64 * steps * (16.0 * 8.0 + fields);
+    let solver = match grid_elements {
+        Some(n) => 2e3 * n as f64,
+        None if s.contact.model == ContactModelKind::ExactTransient => 40.0 * n_el * n_el,
+        None => 1e3 * n_el,
+    };
+    1.5 * (100e6 + 2.0 * snapshots as f64 * nodes * 16.0 + history + solver)
+}
