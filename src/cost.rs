@@ -111,7 +111,8 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     }
 }
 
-/// Peak memory (bytes): a base of 100 MB (program, HDF5, buffers), the
+/// Peak memory (bytes): a base of 30 MB (program, HDF5, buffers; 20 MB
+/// measured for growth_fastsim.toml, 33 MB for growth_discrete.toml), the
 /// stored rail snapshots (profile and wear) twice (in memory and while the
 /// run file is written), the stored patch histories, and the contact
 /// model's matrices (the adapted exact model's influence matrices and
@@ -134,5 +135,5 @@ fn memory(s: &Scene, g: &crate::wear::RailGrid, n_el: f64, grid_elements: Option
         None if s.contact.model == ContactModelKind::ExactTransient => 40.0 * n_el * n_el,
         None => 1e3 * n_el,
     };
-    1.5 * (100e6 + 2.0 * snapshots as f64 * nodes * 16.0 + history + solver)
+    1.5 * (30e6 + 2.0 * snapshots as f64 * nodes * 16.0 + history + solver)
 }

@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,growth,speeds,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}``.
+"""Command line: ``python -m corrugation_post {figures,compare,growth,speeds,sweep,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}``.
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -59,6 +59,16 @@ def _parser() -> argparse.ArgumentParser:
     spd.add_argument("runs", nargs="+", help="growth-study run files (single speeds, and mixes of them)")
     spd.add_argument("--track", default=None, help="`corrugation track` file whose resonances to mark")
     spd.add_argument("--out", required=True, help="output folder (created if needed)")
+
+    swp = sub.add_parser("sweep", help="growth-rate map of a collected sweep (corrugation sweep collect)")
+    swp.add_argument("file", help="collected sweep (.h5)")
+    swp.add_argument("--x", default=None, help="axis along x (default: the first)")
+    swp.add_argument("--y", default=None, help="axis along y (default: the second, if any; none: against --x alone)")
+    swp.add_argument("--wavelength", type=float, default=None,
+                     help="the rate of this harmonic (m; default: the fastest-growing one of each member)")
+    swp.add_argument("--at", action="append", default=[], metavar="AXIS=INDEX",
+                     help="hold a further axis at this index (default 0; repeatable)")
+    swp.add_argument("--out", required=True, help="output folder (created if needed)")
 
     # The study commands: a manifest CSV from a script in, a table out.
     for name, help_, manifest in MANIFEST_COMMANDS:
@@ -122,6 +132,19 @@ def _speeds(args) -> int:
     from .speeds import format_table, speed_study
 
     return _print_table(speed_study(args.runs, args.out, args.track), format_table)
+
+
+def _sweep(args) -> int:
+    from .sweep import format_table, sweep_map
+
+    at = {}
+    for item in args.at:
+        name, _, index = item.partition("=")
+        if not index.isdigit():
+            print(f"error: --at {item!r}: expected AXIS=INDEX", file=sys.stderr)
+            return EXIT_BAD_INPUT
+        at[name] = int(index)
+    return _print_table(sweep_map(args.file, args.out, args.x, args.y, args.wavelength, at), format_table)
 
 
 def _speed_accuracy(args) -> int:
@@ -188,7 +211,7 @@ def main(argv: list[str] | None = None) -> int:
 
     matplotlib.use("Agg")
     args = _parser().parse_args(argv)
-    handler = {"figures": _figures, "compare": _compare, "growth": _growth, "speeds": _speeds,
+    handler = {"figures": _figures, "compare": _compare, "growth": _growth, "speeds": _speeds, "sweep": _sweep,
                "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "grid-convergence": _grid_convergence,
                "validity-map": _validity_map, "track": _track, "check": _check}[args.command]
     try:

@@ -9,7 +9,8 @@
 //! one real passage removes), and on `wavelength`: `growth_rate` (dB per 1e5
 //! real passages, the mean over the study: `sum_p rate_p m_p / sum_p m_p`,
 //! i.e. the change of the contact-filtered amplitude in dB over the traffic)
-//! and `final_spectrum` (m, the contact-filtered amplitudes at the end).
+//! and `initial_spectrum`, `final_spectrum` (m, the contact-filtered
+//! amplitudes before the first passage and after the last).
 //! A member that is not complete is refused, or with `allow_missing` its
 //! values are NaN (`status` 1, root attribute `missing_members`).
 
@@ -66,6 +67,7 @@ struct Results {
     wear_per_passage: f64,
     growth_rate: Vec<f64>,
     final_spectrum: Vec<f64>,
+    initial_spectrum: Vec<f64>,
     wavelengths: Vec<f64>,
 }
 
@@ -93,7 +95,12 @@ fn read_results(path: &Path) -> Result<Results, NcError> {
     let growth_rate = (0..rate.ncols())
         .map(|k| (0..n).map(|p| rate[[p, k]] * scale[p]).sum::<f64>() / total.max(f64::MIN_POSITIVE))
         .collect();
+    // Before the first passage: growth_rate[0] = 20 log10(A_1 / A_0) 1e5 / m_0
+    // gives A_0 back (where the rate is 0, below the 1 pm floor, A_1).
+    let initial_spectrum =
+        (0..spectrum.ncols()).map(|k| spectrum[[0, k]] / 10f64.powf(rate[[0, k]] * scale[0] / 2e6)).collect();
     Ok(Results {
+        initial_spectrum,
         passes: n as f64,
         traffic: traffic.last().copied().unwrap_or(0.0),
         final_rms: rms.last().copied().unwrap_or(0.0),
@@ -242,6 +249,13 @@ pub fn collect(
             spectral(&|r| &r.growth_rate).view(),
             "dB/1e5 passages",
             "mean growth rate of each harmonic of the contact-filtered profile over the study",
+        )?;
+        root.var_f64(
+            "initial_spectrum",
+            &spectral_dims,
+            spectral(&|r| &r.initial_spectrum).view(),
+            "m",
+            "amplitude spectrum of the contact-filtered profile before the first passage",
         )?;
         root.var_f64(
             "final_spectrum",
