@@ -3,7 +3,7 @@
 # (unit, integration, doc), a compile check of benchmarks and examples, then
 # the Python post-processing tests on a run file produced by the binary, and
 # the sweep commands against a real single-node Slurm cluster
-# (scripts/slurm_test.sh, about 45 s).
+# (scripts/slurm_test.sh, about 40 s).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh

@@ -5,7 +5,7 @@
 use clap::Subcommand;
 use corrugation::config::Resolved;
 use corrugation::sweep::collect::{collect, describe};
-use corrugation::sweep::member::{MemberError, Outcome, run_member, status};
+use corrugation::sweep::member::{MemberError, MemberStatus, Outcome, run_member, status};
 use corrugation::sweep::spec::SweepSpec;
 use corrugation::sweep::{array_job, costs, slurm};
 use std::path::{Path, PathBuf};
@@ -49,6 +49,10 @@ pub enum SweepCommand {
         /// Write the script, do not submit it.
         #[arg(long)]
         no_submit: bool,
+        /// The cluster's MaxArraySize (task ids stay below it; larger sweeps
+        /// are submitted as several arrays).
+        #[arg(long, default_value_t = 1001, value_parser = clap::value_parser!(u32).range(2..))]
+        max_array_size: u32,
     },
     /// Run one member (what an array task, or any scheduler, calls): resumes
     /// its checkpoint, leaves it alone if complete.
@@ -84,13 +88,22 @@ pub fn main(command: SweepCommand) -> ExitCode {
     match command {
         SweepCommand::Plan { spec } => with_members(&spec, plan),
         SweepCommand::Run { spec, jobs } => with_members(&spec, |s, r| run_local(s, r, jobs as usize)),
-        SweepCommand::Slurm { spec, sbatch_args, only_unfinished, max_concurrent, cpus_per_task, no_submit } => {
+        SweepCommand::Slurm {
+            spec,
+            sbatch_args,
+            only_unfinished,
+            max_concurrent,
+            cpus_per_task,
+            no_submit,
+            max_array_size,
+        } => {
             let opts = SlurmOptions {
                 args: sbatch_args,
                 only_unfinished,
                 max_concurrent: max_concurrent as usize,
                 cpus: cpus_per_task as usize,
                 submit: !no_submit,
+                max_array_size: max_array_size as usize,
             };
             with_members(&spec, |s, r| submit(s, r, &opts))
         }
@@ -258,14 +271,40 @@ struct SlurmOptions {
     max_concurrent: usize,
     cpus: usize,
     submit: bool,
+    /// Members per array: Slurm task ids stay below MaxArraySize.
+    max_array_size: usize,
 }
 
 fn submit(spec: &SweepSpec, resolved: &[Resolved], o: &SlurmOptions) -> ExitCode {
     if let Err(code) = prepare_output(spec) {
         return code;
     }
-    let members: Vec<usize> =
-        (0..spec.len()).filter(|i| !o.only_unfinished || !status(spec, *i, &resolved[*i].toml).is_complete()).collect();
+    let mut stale = Vec::new();
+    let members: Vec<usize> = (0..spec.len())
+        .filter(|i| {
+            if !o.only_unfinished {
+                return true;
+            }
+            match status(spec, *i, &resolved[*i].toml) {
+                MemberStatus::Complete { .. } => false,
+                MemberStatus::Running { .. } => {
+                    say!("member {i} is running; not submitted again");
+                    false
+                }
+                MemberStatus::Stale => {
+                    stale.push(*i);
+                    false
+                }
+                _ => true,
+            }
+        })
+        .collect();
+    if !stale.is_empty() {
+        say!(
+            "warning: members {stale:?} hold runs of another config (the spec changed); not submitted: delete their \
+             files to run them anew"
+        );
+    }
     if members.is_empty() {
         say!("all {} members are complete; nothing to submit", spec.len());
         return ExitCode::SUCCESS;
@@ -282,36 +321,44 @@ fn submit(spec: &SweepSpec, resolved: &[Resolved], o: &SlurmOptions) -> ExitCode
     let spec_abs =
         SweepSpec { output: std::path::absolute(&spec.output).unwrap_or(spec.output.clone()), ..spec.clone() };
     let job = array_job(members, &costs(resolved), o.max_concurrent, o.cpus);
-    let text = slurm::script(&spec_abs, &job, &exe, &spec_path);
-    let script_path = spec.output.join("sweep.sbatch");
-    if let Err(e) = std::fs::write(&script_path, &text) {
-        say!("error: cannot write {}: {e}", script_path.display());
-        return ExitCode::from(2);
+    let chunks = slurm::chunks(&job.members, o.max_array_size);
+    let mut scripts = Vec::new();
+    for (k, (offset, ids)) in chunks.iter().enumerate() {
+        let text = slurm::script(&spec_abs, &job, &exe, &spec_path, *offset, ids);
+        let name = if chunks.len() == 1 { "sweep.sbatch".to_string() } else { format!("sweep_{k}.sbatch") };
+        let script_path = spec.output.join(name);
+        if let Err(e) = std::fs::write(&script_path, &text) {
+            say!("error: cannot write {}: {e}", script_path.display());
+            return ExitCode::from(2);
+        }
+        say!(
+            "wrote {}: {} array tasks ({}, member = task + {offset}), at most {} at once, {} CPUs, --time={} --mem={:.0}M",
+            script_path.display(),
+            ids.len(),
+            slurm::array_ranges(ids),
+            job.max_concurrent,
+            job.cpus_per_task,
+            slurm::slurm_time(job.time_limit),
+            (job.memory / (1 << 20) as f64).ceil()
+        );
+        scripts.push(script_path);
     }
-    say!(
-        "wrote {}: {} array tasks ({}), at most {} at once, {} CPUs, --time={} --mem={:.0}M",
-        script_path.display(),
-        job.members.len(),
-        slurm::array_ranges(&job.members),
-        job.max_concurrent,
-        job.cpus_per_task,
-        slurm::slurm_time(job.time_limit),
-        (job.memory / (1 << 20) as f64).ceil()
-    );
     if !o.submit {
         return ExitCode::SUCCESS;
     }
-    match slurm::submit(&script_path, &o.args) {
-        Ok(id) => {
-            say!("submitted job {id}; `corrugation sweep status {}` tells where it stands", spec.path.display());
-            println!("{id}");
-            ExitCode::SUCCESS
-        }
-        Err(e) => {
-            say!("error: {e}");
-            ExitCode::from(1)
+    for script_path in &scripts {
+        match slurm::submit(script_path, &o.args) {
+            Ok(id) => {
+                say!("submitted job {id}; `corrugation sweep status {}` tells where it stands", spec.path.display());
+                println!("{id}");
+            }
+            Err(e) => {
+                say!("error: {e}");
+                return ExitCode::from(1);
+            }
         }
     }
+    ExitCode::SUCCESS
 }
 
 /// Runs the members here, `jobs` at a time, each as its own process
@@ -352,7 +399,10 @@ fn run_local(spec: &SweepSpec, resolved: &[Resolved], jobs: usize) -> ExitCode {
                     let k = next.fetch_add(1, Ordering::SeqCst);
                     let Some(&i) = todo.get(k) else { break };
                     let log = spec.log_file(i);
-                    let ok = std::fs::File::create(&log)
+                    let ok = std::fs::OpenOptions::new()
+                        .create(true)
+                        .append(true)
+                        .open(&log)
                         .and_then(|f| {
                             let err = f.try_clone()?;
                             std::process::Command::new(&exe)

@@ -14,11 +14,15 @@ fn uic60() -> DiscreteTrack {
 }
 
 #[test]
-fn passive_above_a_sleeper_and_at_mid_span() {
+fn passive_at_every_position_and_frequency() {
+    // Im alpha <= 0 (exp(+i w t)): the track only absorbs energy. Every
+    // sixteenth of the bay over the whole bay (both halves, and the next
+    // sleeper), 61 frequencies log-spaced over 20-5000 Hz.
     let t = uic60();
-    for x0 in [0.0, 0.15, 0.3] {
-        for k in 0..30 {
-            let f = 20.0 * 250f64.powf(k as f64 / 29.0);
+    for p in 0..=16 {
+        let x0 = 0.6 * p as f64 / 16.0;
+        for k in 0..61 {
+            let f = 20.0 * 250f64.powf(k as f64 / 60.0);
             let a = t.receptance(x0, 2.0 * PI * f);
             assert!(a.im <= 0.0 && a.norm().is_finite(), "x0 {x0} f {f}: {a}");
         }

@@ -80,6 +80,13 @@ fn bad_specs_get_one_clear_error_each_before_anything_runs() {
         &["member 1 (rolling.speed=22.22, track.pad_stiffness=100000000.0, material.friction_coefficient=1.5) and 3 \
          more members: material.friction_coefficient: = 1.5 is out of range"],
     );
+    // Members on different stretches cannot share a wavelength dimension.
+    check(
+        "stretch",
+        "[[axis]]\nkey = \"rail.x_max\"\nvalues = [0.12, 0.24]\nzip = true\n\n[[axis]]\nkey = \"passage.end\"\n\
+         values = [0.12, 0.24]\nzip = true\n",
+        &["a sweep's members must share the stretch and rail grid"],
+    );
     // An unknown key of the spec itself.
     let top = dir.path().join("top.toml");
     let text = std::fs::read_to_string(write_spec(dir.path(), "top", 2, "")).unwrap();
@@ -241,7 +248,20 @@ fn slurm_script_runs_each_member_as_an_array_task() {
     let script = std::fs::read_to_string(dir.path().join("s/sweep.sbatch")).unwrap();
     assert!(script.contains("#SBATCH --array=0-3%3"), "{script}");
     assert!(script.contains("#SBATCH --cpus-per-task=2"), "{script}");
-    assert!(script.contains("sweep member") && script.contains("--index \"$SLURM_ARRAY_TASK_ID\""), "{script}");
+    assert!(script.contains("index=$((SLURM_ARRAY_TASK_ID + 0))"), "{script}");
+    assert!(script.contains("sweep member") && script.contains("--index \"$index\" >>\"$log\" 2>&1"), "{script}");
+    assert!(script.contains("#SBATCH --open-mode=append"), "{script}");
+    assert!(script.contains("#SBATCH --mem=256M"), "at least 256 MB: {script}");
+    // Beyond the cluster's MaxArraySize: several arrays with offsets.
+    let o = corrugation(&["sweep", "slurm", spec.to_str().unwrap(), "--no-submit", "--max-array-size", "3"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let second = std::fs::read_to_string(dir.path().join("s/sweep_1.sbatch")).unwrap();
+    assert!(
+        second.contains("#SBATCH --array=0%8") && second.contains("index=$((SLURM_ARRAY_TASK_ID + 3))"),
+        "{second}"
+    );
+    let first = std::fs::read_to_string(dir.path().join("s/sweep_0.sbatch")).unwrap();
+    assert!(first.contains("#SBATCH --array=0-2%8"), "{first}");
     assert!(script.contains("export RAYON_NUM_THREADS=\"${SLURM_CPUS_PER_TASK:-1}\""), "{script}");
     assert!(script.lines().any(|l| l.starts_with("#SBATCH --time=0-00:")), "{script}");
     assert!(dir.path().join("s/logs").is_dir(), "Slurm does not create the log folder");

@@ -204,6 +204,8 @@ fn traffic_mix_config_errors() {
     // A heavier class widens the largest patch beyond the rail grid.
     let e = errors(&text, &["traffic.mix[1].normal_force=400e3"]);
     assert!(e.iter().any(|m| m.starts_with("rail.half_width: ")), "{e:?}");
+    let e = errors(&text, &["traffic.mix[0].name=\"base\""]);
+    assert!(e.iter().any(|m| m.starts_with("traffic.mix[0].name: = \"base\" is reserved")), "{e:?}");
     let e = errors(&format!("{GROWTH}\n[traffic]\nmix = []\n"), &[]);
     assert!(e.iter().any(|m| m.starts_with("traffic.mix: must list at least one class")), "{e:?}");
     let single = include_str!("../configs/paper_normal_30mm.toml").to_string() + MIX;

@@ -81,3 +81,47 @@ def test_sweep_map_against_two_and_one_axes(collected, tmp_path):
     assert main(["sweep", str(collected), "--x", "rolling_speed", "--y", "rolling_speed",
                  "--out", str(tmp_path / "bad")]) == 2
     assert main(["sweep", str(collected), "--x", "nope", "--out", str(tmp_path / "bad")]) == 2
+
+
+ZIPPED = """
+base = "{base}"
+output = "zipped"
+set = ["contact.elements_x=6", "contact.elements_y=6", "rail.dx=5e-4", "rail.dy=1e-3", "passage.step_length=5e-4",
+       "growth.passes=2", "growth.contact_history=[]"]
+
+[[axis]]
+key = "contact.fastsim_bound"
+values = ["parabolic", "elliptic"]
+
+[[axis]]
+key = "rolling.speed"
+values = [22.22, 27.78]
+zip = true
+
+[[axis]]
+key = "dynamics.unsprung_mass"
+values = [500, 700]
+zip = true
+"""
+
+
+def test_string_and_zipped_axes(tmp_path):
+    spec = tmp_path / "zipped.toml"
+    spec.write_text(ZIPPED.format(base=REPO / "configs" / "growth_fastsim.toml"))
+    subprocess.run([BIN, "sweep", "run", str(spec), "-j", "2"], check=True, capture_output=True)
+    out = tmp_path / "zipped.h5"
+    subprocess.run([BIN, "sweep", "collect", str(spec), "-o", str(out)], check=True, capture_output=True)
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        # A string axis as a string coordinate; the zipped axes share the
+        # first one's dimension, the second a variable on it.
+        assert ds["growth_rate"].dims == ("contact_fastsim_bound", "rolling_speed", "wavelength")
+        assert list(ds["contact_fastsim_bound"].values) == ["parabolic", "elliptic"]
+        assert ds["dynamics_unsprung_mass"].dims == ("rolling_speed",)
+        np.testing.assert_array_equal(ds["dynamics_unsprung_mass"].values, [500.0, 700.0])
+        assert ds["dynamics_unsprung_mass"].attrs["units"] == "kg"
+        # member = bound index * 2 + speed index (row-major).
+        assert int(ds["member"].sel(contact_fastsim_bound="elliptic", rolling_speed=22.22)) == 2
+        # The bound changes the solution.
+        a = ds["final_rms"].sel(contact_fastsim_bound="parabolic").values
+        b = ds["final_rms"].sel(contact_fastsim_bound="elliptic").values
+        assert np.all(a != b)

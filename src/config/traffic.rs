@@ -92,6 +92,13 @@ fn read_class(s: &mut Section, index: usize, base: BaseClass) -> Option<TrafficC
     let default_name = format!("class{index}");
     let name = s.string("name", &default_name);
     let valid = |n: &str| !n.is_empty() && n.chars().all(|ch| ch.is_ascii_alphanumeric() || ch == '_' || ch == '-');
+    if name.as_deref() == Some(BASE_NAME) {
+        s.error(
+            "name",
+            format!("= \"{BASE_NAME}\" is reserved for the base config's class (a study without [traffic])"),
+        );
+        return None;
+    }
     if let Some(n) = name.as_deref().filter(|n| !valid(n)) {
         s.error(
             "name",

@@ -78,7 +78,10 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             }
             c.mapv(|k| k as usize)
         }
-        Err(_) => ndarray::Array1::zeros(done),
+        // Without the column every passage was of the one class; a mix
+        // cannot be resumed without it (its tallies decide the next class).
+        Err(_) if layout.classes <= 1 => ndarray::Array1::zeros(done),
+        Err(e) => return Err(e),
     };
     let rows = (0..done)
         .map(|k| PassRow {

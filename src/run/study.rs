@@ -296,7 +296,18 @@ fn continue_run(
     let centre = centre_row(&grid);
     let line = |p: &Array2<f64>| p.row(centre).to_vec();
     // What the wheel sees: the profile weighted across the mean patch width.
-    let filtered = |p: &Array2<f64>| contact_filtered_line(p, &grid, d.patch_mean.b);
+    // The mean patch: of the mean load, or under mixed traffic the classes'
+    // patches weighted by their shares (one line for every passage, so that
+    // growth rates compare across passages of different classes).
+    let mean_patch = if classes.is_empty() {
+        (d.patch_mean.a, d.patch_mean.b)
+    } else {
+        classes.iter().fold((0.0, 0.0), |(a, b), c| {
+            let p = d.shape.patch(c.normal_force).expect("validated loads keep N > 0");
+            (a + c.share * p.a, b + c.share * p.b)
+        })
+    };
+    let filtered = |p: &Array2<f64>| contact_filtered_line(p, &grid, mean_patch.1);
     let write = |state: &RunState, stop_reason: Option<&str>| {
         let title = if scene.output.title.is_empty() { "corrugation run" } else { scene.output.title.as_str() };
         let record = RunRecord {
@@ -305,7 +316,7 @@ fn continue_run(
             config: &resolved.toml,
             grid: &grid,
             elements: &elements,
-            mean_patch: (d.patch_mean.a, d.patch_mean.b),
+            mean_patch,
             wavelengths: &waves,
             state,
             passes_planned: passes,

@@ -6,7 +6,9 @@
 //! directory), `status` (0 complete, 1 not: only with `allow_missing`),
 //! `passes`, `traffic`, `final_rms` (m), `max_update_ratio`, `cpu_seconds`
 //! (s, the sum over its passages), `wear_per_passage` (m3, the mean volume
-//! one real passage removes), and on `wavelength`: `growth_rate` (dB per 1e5
+//! one real passage removes: the passages' volumes weighted by the real
+//! passages they stand for; NaN for a study stopped before its first
+//! passage), and on `wavelength`: `growth_rate` (dB per 1e5
 //! real passages, the mean over the study: `sum_p rate_p m_p / sum_p m_p`,
 //! i.e. the change of the contact-filtered amplitude in dB over the traffic)
 //! and `initial_spectrum`, `final_spectrum` (m, the contact-filtered
@@ -90,11 +92,28 @@ fn read_results(path: &Path) -> Result<Results, NcError> {
         col("removed_volume")?,
     );
     let (rate, spectrum) = (table("growth_rate")?, table("filtered_spectrum")?);
-    let total: f64 = scale.iter().sum();
+    let wavelengths = col("wavelength")?;
     let n = traffic.len();
-    let growth_rate = (0..rate.ncols())
-        .map(|k| (0..n).map(|p| rate[[p, k]] * scale[p]).sum::<f64>() / total.max(f64::MIN_POSITIVE))
-        .collect();
+    if n == 0 {
+        // A study that stopped (growth.stop = "saturation") before its first
+        // passage could be recorded: complete, with nothing to report.
+        let nan = vec![f64::NAN; wavelengths.len()];
+        return Ok(Results {
+            passes: 0.0,
+            traffic: 0.0,
+            final_rms: f64::NAN,
+            max_update_ratio: f64::NAN,
+            cpu_seconds: 0.0,
+            wear_per_passage: f64::NAN,
+            growth_rate: nan.clone(),
+            final_spectrum: nan.clone(),
+            initial_spectrum: nan,
+            wavelengths,
+        });
+    }
+    let total: f64 = scale.iter().sum();
+    let per_real = |v: &dyn Fn(usize) -> f64| (0..n).map(|p| v(p) * scale[p]).sum::<f64>() / total;
+    let growth_rate = (0..rate.ncols()).map(|k| per_real(&|p| rate[[p, k]])).collect();
     // Before the first passage: growth_rate[0] = 20 log10(A_1 / A_0) 1e5 / m_0
     // gives A_0 back (where the rate is 0, below the 1 pm floor, A_1).
     let initial_spectrum =
@@ -102,14 +121,16 @@ fn read_results(path: &Path) -> Result<Results, NcError> {
     Ok(Results {
         initial_spectrum,
         passes: n as f64,
-        traffic: traffic.last().copied().unwrap_or(0.0),
-        final_rms: rms.last().copied().unwrap_or(0.0),
+        traffic: traffic[n - 1],
+        final_rms: rms[n - 1],
         max_update_ratio: ratio.iter().copied().fold(0.0, f64::max),
         cpu_seconds: cpu.iter().sum(),
-        wear_per_passage: volume.iter().sum::<f64>() / n.max(1) as f64,
+        // Each simulated passage's volume is one real passage's of its kind;
+        // weighted by the real passages it stands for.
+        wear_per_passage: per_real(&|p| volume[p]),
         growth_rate,
-        final_spectrum: spectrum.row(n.saturating_sub(1)).to_vec(),
-        wavelengths: col("wavelength")?,
+        final_spectrum: spectrum.row(n - 1).to_vec(),
+        wavelengths,
     })
 }
 
@@ -313,6 +334,7 @@ pub fn describe(s: &MemberStatus) -> String {
     match s {
         MemberStatus::Complete { passes } => format!("complete ({passes} passages)"),
         MemberStatus::Checkpoint { done, planned } => format!("checkpoint ({done} of {planned} passages)"),
+        MemberStatus::Running { done, planned } => format!("running (checkpoint {done} of {planned} passages)"),
         MemberStatus::Failed { error } => {
             format!("failed: {}", error.lines().next().unwrap_or(""))
         }

@@ -5,7 +5,10 @@
 //! never stopped) and leaves a complete file alone; a failure leaves its
 //! error in `member_<i>.error`, which a later success removes. A member
 //! file whose stored config is not the member's (the spec changed since) is
-//! never resumed or overwritten: the user must delete it.
+//! never resumed or overwritten: the user must delete it. A member runs in
+//! one process at a time: it holds `member_<i>.lock` (an advisory file
+//! lock, released by the system when the process ends, however it ends);
+//! a second process for the same member refuses to start.
 
 use super::spec::SweepSpec;
 use crate::config::ConfigErrors;
@@ -21,7 +24,14 @@ pub enum MemberStatus {
         /// Passages in the file.
         passes: usize,
     },
-    /// Its file is a checkpoint (a killed or running member).
+    /// Another process runs it now (it holds the member's lock).
+    Running {
+        /// Passages in its last checkpoint (0 before the first).
+        done: usize,
+        /// Passages planned (0 before the first checkpoint).
+        planned: usize,
+    },
+    /// Its file is a checkpoint (a killed member).
     Checkpoint {
         /// Passages done.
         done: usize,
@@ -49,6 +59,7 @@ impl MemberStatus {
     pub fn word(&self) -> &'static str {
         match self {
             MemberStatus::Complete { .. } => "complete",
+            MemberStatus::Running { .. } => "running",
             MemberStatus::Checkpoint { .. } => "checkpoint",
             MemberStatus::Failed { .. } => "failed",
             MemberStatus::Stale => "stale",
@@ -76,21 +87,49 @@ fn file_state(path: &Path) -> Result<(String, usize, usize, String), NcError> {
     Ok((status, attr("passes_done")?, attr("passes_planned")?, config))
 }
 
+/// Whether another process holds member `index`'s lock (it is running).
+fn running(spec: &SweepSpec, index: usize) -> bool {
+    let Ok(f) = std::fs::OpenOptions::new().read(true).open(spec.lock_file(index)) else {
+        return false;
+    };
+    match f.try_lock() {
+        Ok(()) => {
+            let _ = f.unlock();
+            false
+        }
+        Err(std::fs::TryLockError::WouldBlock) => true,
+        Err(_) => false,
+    }
+}
+
 /// Where member `index` of `spec` stands, `config` being its resolved
-/// config (TOML text).
+/// config (TOML text). A complete file of the member's config is complete
+/// whatever else lies around; then a member whose lock is held is running;
+/// then an error file means failed.
 pub fn status(spec: &SweepSpec, index: usize, config: &str) -> MemberStatus {
     let file = spec.member_file(index);
+    let state = file.exists().then(|| file_state(&file));
+    if let Some(Ok((s, done, _, stored))) = &state
+        && s == "complete"
+        && stored == config
+    {
+        return MemberStatus::Complete { passes: *done };
+    }
+    if running(spec, index) {
+        let (done, planned) = match &state {
+            Some(Ok((_, done, planned, _))) => (*done, *planned),
+            _ => (0, 0),
+        };
+        return MemberStatus::Running { done, planned };
+    }
     if let Ok(error) = std::fs::read_to_string(spec.error_file(index)) {
         return MemberStatus::Failed { error: error.trim().to_string() };
     }
-    if !file.exists() {
-        return MemberStatus::Missing;
-    }
-    match file_state(&file) {
-        Ok((_, _, _, stored)) if stored != config => MemberStatus::Stale,
-        Ok((s, done, _, _)) if s == "complete" => MemberStatus::Complete { passes: done },
-        Ok((_, done, planned, _)) => MemberStatus::Checkpoint { done, planned },
-        Err(e) => MemberStatus::Failed { error: format!("unreadable run file: {e}") },
+    match state {
+        None => MemberStatus::Missing,
+        Some(Ok((_, _, _, stored))) if stored != config => MemberStatus::Stale,
+        Some(Ok((_, done, planned, _))) => MemberStatus::Checkpoint { done, planned },
+        Some(Err(e)) => MemberStatus::Failed { error: format!("unreadable run file: {e}") },
     }
 }
 
@@ -141,6 +180,14 @@ pub enum MemberError {
         /// The member.
         index: usize,
     },
+    /// Another process runs the member (holds its lock).
+    #[error("member {index} is running in another process (it holds {lock}); wait for it or stop it (scancel) first")]
+    Running {
+        /// The member.
+        index: usize,
+        /// The lock file.
+        lock: PathBuf,
+    },
     /// The run failed (the error file holds this message).
     #[error("{0}")]
     Run(String),
@@ -149,7 +196,7 @@ pub enum MemberError {
 impl MemberError {
     /// Whether the input was at fault (exit 2) rather than the run (exit 1).
     pub fn is_bad_input(&self) -> bool {
-        !matches!(self, MemberError::Run(_))
+        !matches!(self, MemberError::Run(_) | MemberError::Running { .. })
     }
 }
 
@@ -166,7 +213,28 @@ pub fn run_member(spec: &SweepSpec, index: usize, progress: &mut dyn FnMut(Event
     crate::output::check_writable(&spec.member_file(index)).map_err(output_err)?;
     let file = spec.member_file(index);
     let error_file = spec.error_file(index);
-    // A task killed while writing leaves its temporary file behind.
+    // One process per member: the lock is held until the member ends (and
+    // released by the system if it is killed). A few tries, as `status`
+    // takes the lock for an instant to tell whether the member runs.
+    let lock_path = spec.lock_file(index);
+    let lock =
+        std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&lock_path).map_err(output_err)?;
+    let mut tries = 0;
+    loop {
+        match lock.try_lock() {
+            Ok(()) => break,
+            Err(std::fs::TryLockError::WouldBlock) if tries < 20 => {
+                tries += 1;
+                std::thread::sleep(std::time::Duration::from_millis(50));
+            }
+            Err(std::fs::TryLockError::WouldBlock) => {
+                return Err(MemberError::Running { index, lock: lock_path });
+            }
+            Err(std::fs::TryLockError::Error(e)) => return Err(output_err(e)),
+        }
+    }
+    // A task killed while writing leaves its temporary file behind (no
+    // other process writes this member: we hold its lock).
     crate::output::remove_stale_temporaries(&file);
     let previous = file.exists().then(|| file_state(&file));
     let result = match previous {

@@ -18,6 +18,9 @@ pub mod spec;
 use crate::config::Resolved;
 use crate::cost::{CostEstimate, estimate};
 
+/// The least memory a Slurm task asks for (bytes).
+pub const MIN_MEMORY: f64 = 256.0 * 1048576.0;
+
 /// The cost model's estimate of every member (s, bytes).
 pub fn costs(resolved: &[Resolved]) -> Vec<CostEstimate> {
     resolved.iter().map(|r| estimate(&r.scene)).collect()
@@ -25,11 +28,13 @@ pub fn costs(resolved: &[Resolved]) -> Vec<CostEstimate> {
 
 /// The job of `members` (their costs `costs`): the time limit is the
 /// largest member's estimate times [`slurm::TIME_FACTOR`] plus
-/// [`slurm::TIME_MARGIN`] (at 2 cores; in proportion for fewer), the memory
-/// the largest member's.
+/// [`slurm::TIME_MARGIN`] (the estimates are for 2 cores: times 2 with one
+/// core), the memory the largest member's, at least [`MIN_MEMORY`].
 pub fn array_job(members: Vec<usize>, costs: &[CostEstimate], max_concurrent: usize, cpus: usize) -> slurm::ArrayJob {
     let slowest = members.iter().map(|i| costs[*i].total()).fold(0.0, f64::max);
-    let memory = members.iter().map(|i| costs[*i].memory).fold(0.0, f64::max);
+    // At least MIN_MEMORY: clusters that enforce the limit kill a task
+    // beyond it, and the estimate is rough.
+    let memory = members.iter().map(|i| costs[*i].memory).fold(MIN_MEMORY, f64::max);
     // The estimates are for 2 cores; a task with one core takes up to twice.
     let cores = (2.0 / cpus.max(1) as f64).max(1.0);
     slurm::ArrayJob {

@@ -54,38 +54,66 @@ pub fn slurm_time(seconds: f64) -> String {
     format!("{}-{:02}:{:02}:00", minutes / 1440, (minutes / 60) % 24, minutes % 60)
 }
 
-/// The sbatch script for `job` of `spec`, running `exe`.
-pub fn script(spec: &SweepSpec, job: &ArrayJob, exe: &Path, spec_path: &Path) -> String {
+/// The array task ids of `job` less `offset` (Slurm's task ids stay below
+/// its MaxArraySize: a sweep with more members is submitted as several
+/// arrays, each with its offset).
+pub fn chunks(members: &[usize], max_array_size: usize) -> Vec<(usize, Vec<usize>)> {
+    let size = max_array_size.max(1);
+    let mut out: Vec<(usize, Vec<usize>)> = Vec::new();
+    for &m in members {
+        let offset = m / size * size;
+        match out.last_mut() {
+            Some((o, ids)) if *o == offset => ids.push(m - offset),
+            _ => out.push((offset, vec![m - offset])),
+        }
+    }
+    out
+}
+
+/// The sbatch script for `job` of `spec` running `exe`, for the array task
+/// ids `ids` (member index = task id + `offset`). Each member's output is
+/// appended to its log (a re-run keeps the earlier attempt's), Slurm's own
+/// messages (a time limit, a cancellation) go to `logs/slurm-<job>_<task>.out`.
+pub fn script(spec: &SweepSpec, job: &ArrayJob, exe: &Path, spec_path: &Path, offset: usize, ids: &[usize]) -> String {
     let logs = spec.output.join("logs");
     let width = spec.member_name(0).len() - "member_".len();
     let name = spec.path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "sweep".into());
     let quote = |p: &Path| shell_quote(&p.display().to_string());
+    // In #SBATCH lines `%` starts a file-name pattern, and a value with
+    // blanks must be quoted.
+    let escape = |v: &str| v.replace('%', "%%");
+    let blanks = |v: String| if v.chars().any(char::is_whitespace) { format!("\"{v}\"") } else { v };
     format!(
         "#!/bin/bash\n\
-         # Written by `corrugation sweep slurm` for {spec}: {n} of its {total} members.\n\
-         # Each array task runs one member; a member killed at its time limit or by a\n\
-         # node failure resumes from its checkpoint when submitted again\n\
-         # (`corrugation sweep slurm {spec} --only-unfinished`).\n\
-         #SBATCH --job-name=corrugation-{name}\n\
+         # Written by `corrugation sweep slurm` for {spec}: {n} of its {total} members\n\
+         # (member index = array task id + {offset}). Each array task runs one member;\n\
+         # a member killed at its time limit or by a node failure resumes from its\n\
+         # checkpoint when submitted again (`corrugation sweep slurm {spec} --only-unfinished`).\n\
+         #SBATCH --job-name={job_name}\n\
          #SBATCH --array={array}%{concurrent}\n\
          #SBATCH --ntasks=1\n\
          #SBATCH --cpus-per-task={cpus}\n\
          #SBATCH --time={time}\n\
          #SBATCH --mem={mem}M\n\
-         #SBATCH --output={logs}/member_%{width}a.log\n\
+         #SBATCH --output={slurm_out}\n\
+         #SBATCH --open-mode=append\n\
          set -euo pipefail\n\
+         index=$((SLURM_ARRAY_TASK_ID + {offset}))\n\
+         log={logs_q}/member_$(printf '%0{width}d' \"$index\").log\n\
          # task/none binds no CPUs: keep each member to its own cores.\n\
          export RAYON_NUM_THREADS=\"${{SLURM_CPUS_PER_TASK:-1}}\"\n\
-         exec {exe} sweep member {spec_q} --index \"$SLURM_ARRAY_TASK_ID\"\n",
+         exec {exe} sweep member {spec_q} --index \"$index\" >>\"$log\" 2>&1\n",
         spec = spec_path.display(),
-        n = job.members.len(),
+        n = ids.len(),
         total = spec.len(),
-        array = array_ranges(&job.members),
+        job_name = blanks(escape(&format!("corrugation-{name}"))),
+        array = array_ranges(ids),
         concurrent = job.max_concurrent.max(1),
         cpus = job.cpus_per_task.max(1),
         time = slurm_time(job.time_limit),
         mem = (job.memory / (1 << 20) as f64).ceil() as u64,
-        logs = logs.display(),
+        slurm_out = blanks(format!("{}/slurm-%A_%a.out", escape(&logs.display().to_string()))),
+        logs_q = quote(&logs),
         exe = quote(exe),
         spec_q = quote(spec_path),
     )
@@ -141,7 +169,11 @@ mod tests {
     use super::*;
 
     #[test]
-    fn array_lists_and_times() {
+    fn array_lists_chunks_and_times() {
+        assert_eq!(
+            chunks(&[0, 1, 999, 1000, 1001, 2500], 1000),
+            vec![(0, vec![0, 1, 999]), (1000, vec![0, 1]), (2000, vec![500])]
+        );
         assert_eq!(array_ranges(&[0, 1, 2, 3, 7, 9, 10, 11]), "0-3,7,9-11");
         assert_eq!(array_ranges(&[5]), "5");
         assert_eq!(slurm_time(59.0), "0-00:01:00");

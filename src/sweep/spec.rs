@@ -124,7 +124,9 @@ pub struct Member {
     pub index: usize,
     /// Position along each dimension.
     pub position: Vec<usize>,
-    /// The axes' overrides (`key=value`), in spec order.
+    /// The axes' overrides (`key=value`), by dimension (the zipped keys
+    /// together, at the first one's place), each dimension's keys in spec
+    /// order.
     pub overrides: Vec<String>,
 }
 
@@ -260,6 +262,11 @@ impl SweepSpec {
         self.output.join(format!("{}.error", self.member_name(index)))
     }
 
+    /// The lock a member's process holds while it runs.
+    pub fn lock_file(&self, index: usize) -> PathBuf {
+        self.output.join(format!("{}.lock", self.member_name(index)))
+    }
+
     /// The member's log (local runs and Slurm tasks).
     pub fn log_file(&self, index: usize) -> PathBuf {
         self.output.join("logs").join(format!("{}.log", self.member_name(index)))
@@ -294,7 +301,39 @@ impl SweepSpec {
             }
         }
         if seen.is_empty() {
-            return Ok(ok);
+            // The members' spectra share one wavelength dimension when
+            // collected: the same periodic stretch and rail grid.
+            let grid = |r: &Resolved| {
+                let g = match r.scene.growth {
+                    Some(_) => crate::run::periodic_grid(&r.scene),
+                    None => crate::run::derive(&r.scene).grid,
+                };
+                (g.x_min, g.nx, g.dx)
+            };
+            let first = grid(&ok[0]);
+            let errors: Vec<SpecError> = ok
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| grid(r) != first)
+                .map(|(i, r)| SpecError {
+                    key: self.describe(i),
+                    message: format!(
+                        "rail grid of {} nodes every {} m from {} m, not member 0's {} every {} m from {} m: a sweep's \
+                         members must share the stretch and rail grid (rail.x_min, rail.x_max, rail.dx), or their \
+                         spectra cannot be collected on one wavelength dimension",
+                        grid(r).1,
+                        grid(r).2,
+                        grid(r).0,
+                        first.1,
+                        first.2,
+                        first.0
+                    ),
+                })
+                .collect();
+            if errors.is_empty() {
+                return Ok(ok);
+            }
+            return Err(SpecErrors { path: self.path.clone(), errors });
         }
         let errors = seen
             .into_iter()
