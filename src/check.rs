@@ -194,7 +194,7 @@ pub fn print_check(r: &Resolved) {
             ),
         }
         println!("checkpoints        every {} passages; rail stored every {}", g.checkpoint_every, g.store_every);
-        if !(g.classes.len() == 1 && g.classes[0].name == corrugation::config::traffic::BASE_NAME) {
+        if corrugation::config::traffic::is_mix(&g.classes) {
             for c in &g.classes {
                 println!(
                     "traffic class      {}: {:.1} % of the passages at {:.2} m/s ({:.0} km/h), N = {:.4e} N, F_x = {:.4e} N, \

@@ -96,10 +96,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
         Some(gr) if matches!(gr.dynamics, DynamicsKind::Discrete { .. }) => gr
             .classes
             .iter()
-            .map(|c| {
-                let n = (crate::dynamics::discrete_dynamics::F_MAX * (g.nx as f64 * g.dx) / c.speed).floor();
-                n.min((g.nx / 2) as f64) * 0.01
-            })
+            .map(|c| 0.01 * crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64)
             .sum(),
         _ => 0.0,
     };
@@ -107,7 +104,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
         per_passage,
         passes,
         setup,
-        memory: memory(s, &g, n_el, fixed.as_ref().map(|(_, f)| f.grid().len())),
+        memory: memory(s, &g, p.n_steps(), n_el, fixed.as_ref().map(|(_, f)| f.grid().len())),
     }
 }
 
@@ -118,7 +115,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
 /// model's matrices (the adapted exact model's influence matrices and
 /// Newton Jacobian, about 40 N^2 bytes; the fixed grid's FFT tables, about
 /// 2 kB per element); all times 1.5.
-fn memory(s: &Scene, g: &crate::wear::RailGrid, n_el: f64, grid_elements: Option<usize>) -> f64 {
+fn memory(s: &Scene, g: &crate::wear::RailGrid, steps: usize, n_el: f64, grid_elements: Option<usize>) -> f64 {
     let nodes = (g.nx * g.ny) as f64;
     let (snapshots, histories) = match &s.growth {
         Some(gr) => {
@@ -126,10 +123,9 @@ fn memory(s: &Scene, g: &crate::wear::RailGrid, n_el: f64, grid_elements: Option
         }
         None => (1, 1),
     };
-    let steps = derive(s).passage.n_steps() as f64;
     let elements = grid_elements.map_or(n_el, |n| n as f64);
     let fields = if s.output.store_fields { 7.0 * 8.0 * elements } else { 0.0 };
-    let history = histories as f64 * steps * (16.0 * 8.0 + fields);
+    let history = (histories * steps) as f64 * (16.0 * 8.0 + fields);
     let solver = match grid_elements {
         Some(n) => 2e3 * n as f64,
         None if s.contact.model == ContactModelKind::ExactTransient => 40.0 * n_el * n_el,

@@ -141,11 +141,9 @@ fn main() -> ExitCode {
 /// `corrugation track`: the receptances of the configured track and wheel.
 fn track(resolved: &Resolved, out: &Path) -> ExitCode {
     use corrugation::dynamics::receptance::{WheelParams, hertz_stiffness};
-    // Before computing: the output's folder must exist.
-    let parent = out.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    if !parent.is_dir() {
-        say_raw!("error: cannot write {}: the folder {} does not exist", out.display(), parent.display());
-        return ExitCode::from(2);
+    // Before computing: the output can be written.
+    if let Err(code) = writable(out) {
+        return code;
     }
     let s = &resolved.scene;
     let d = corrugation::run::derive(s);

@@ -232,8 +232,7 @@ impl Scene {
     pub fn for_class(&self, c: &crate::growth::mix::TrafficClass) -> Scene {
         let mut scene = self.clone();
         scene.speed = c.speed;
-        scene.loads.normal_force = c.normal_force;
-        scene.loads.longitudinal_force = c.longitudinal_force;
+        scene.loads = c.loads(&self.loads);
         if let Some(g) = scene.growth.as_mut() {
             g.dynamics = g.dynamics.with_unsprung_mass(c.unsprung_mass);
         }
@@ -244,7 +243,7 @@ impl Scene {
     /// included (N).
     pub fn max_normal_force(&self) -> f64 {
         match &self.growth {
-            Some(g) => g.classes.iter().map(|c| self.for_class(c).loads.max_normal_force()).fold(0.0, f64::max),
+            Some(g) => g.classes.iter().map(|c| c.loads(&self.loads).max_normal_force()).fold(0.0, f64::max),
             None => self.loads.max_normal_force(),
         }
     }

@@ -137,11 +137,18 @@ fn with_members(path: &Path, f: impl FnOnce(&SweepSpec, &[Resolved]) -> ExitCode
 /// Creates the sweep's directory and its `logs` folder (exit 2 naming the
 /// path when it cannot).
 fn prepare_output(spec: &SweepSpec) -> Result<(), ExitCode> {
-    let logs = spec.output.join("logs");
-    let probe = spec.output.join("collect.probe");
-    std::fs::create_dir_all(&logs).and_then(|_| corrugation::output::check_writable(&probe)).map_err(|e| {
+    spec.prepare_output().map_err(|e| {
         say!("error: cannot write the sweep's directory {}: {e}", spec.output.display());
         ExitCode::from(2)
+    })
+}
+
+/// This program's path, which members are run with (exit 1 when the
+/// system cannot tell it).
+fn this_program() -> Result<PathBuf, ExitCode> {
+    std::env::current_exe().map_err(|e| {
+        say!("error: cannot find this program's path to run the members with: {e}");
+        ExitCode::from(1)
     })
 }
 
@@ -309,12 +316,9 @@ fn submit(spec: &SweepSpec, resolved: &[Resolved], o: &SlurmOptions) -> ExitCode
         say!("all {} members are complete; nothing to submit", spec.len());
         return ExitCode::SUCCESS;
     }
-    let exe = match std::env::current_exe() {
+    let exe = match this_program() {
         Ok(e) => e,
-        Err(e) => {
-            say!("error: cannot find this program's path for the job script: {e}");
-            return ExitCode::from(1);
-        }
+        Err(code) => return code,
     };
     let spec_path = std::path::absolute(&spec.path).unwrap_or_else(|_| spec.path.clone());
     // The script runs from the submission folder: absolute paths throughout.
@@ -368,12 +372,9 @@ fn run_local(spec: &SweepSpec, resolved: &[Resolved], jobs: usize) -> ExitCode {
     if let Err(code) = prepare_output(spec) {
         return code;
     }
-    let exe = match std::env::current_exe() {
+    let exe = match this_program() {
         Ok(e) => e,
-        Err(e) => {
-            say!("error: cannot find this program's path: {e}");
-            return ExitCode::from(1);
-        }
+        Err(code) => return code,
     };
     let todo: Vec<usize> = (0..spec.len()).filter(|i| !status(spec, *i, &resolved[*i].toml).is_complete()).collect();
     let skipped = spec.len() - todo.len();

@@ -2,6 +2,7 @@
 //! the sleeper-passing force of a smooth rail against a direct estimate,
 //! the pinned-pinned band in the force transfer, sleeper-bay stretches, and
 //! bit-for-bit resume.
+mod common;
 use corrugation::config::load_str;
 use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::discrete::DiscreteTrack;
@@ -86,23 +87,12 @@ fn the_pinned_pinned_band_shows_in_the_force_transfer() {
 fn growth_with_the_discrete_track_resumes_bit_for_bit() {
     let base = include_str!("../configs/growth_fastsim.toml");
     let set = |extra: &[&str]| -> Vec<String> {
-        [
-            "dynamics.model=discrete",
-            "rail.x_max=0.6",
-            "passage.end=0.6",
-            "rail.dx=1e-3",
-            "rail.dy=1e-3",
-            "passage.step_length=1e-3",
-            "contact.elements_x=6",
-            "contact.elements_y=6",
-            "growth.adaptive=false",
-            "growth.traffic_scale=100",
-            "growth.contact_history=[]",
-        ]
-        .iter()
-        .chain(extra)
-        .map(|s| s.to_string())
-        .collect()
+        common::DISCRETE_BAY
+            .iter()
+            .chain(&["growth.adaptive=false", "growth.traffic_scale=100", "growth.contact_history=[]"])
+            .chain(extra)
+            .map(|s| s.to_string())
+            .collect()
     };
     let dir = tempfile::tempdir().unwrap();
     let full = dir.path().join("full.h5");

@@ -2,6 +2,7 @@
 //! growth, the interleaving by share, the traffic-scaling bound per class
 //! on the discrete track, determinism and bit-for-bit resume, and the
 //! config's errors.
+mod common;
 use corrugation::config::load_str;
 use corrugation::output::netcdf::{read_f64, read_i64};
 use corrugation::run::{resume, run_scene};
@@ -121,24 +122,17 @@ fn mixed_traffic_wears_the_sum_of_its_classes() {
 
 /// The mix on one sleeper bay of the discrete track (coarse).
 fn discrete_mix(extra: &[&str]) -> Vec<String> {
-    [
-        "dynamics.model=discrete",
-        "rail.x_max=0.6",
-        "passage.end=0.6",
-        "rail.dx=1e-3",
-        "rail.dy=1e-3",
-        "passage.step_length=1e-3",
-        "contact.elements_x=6",
-        "contact.elements_y=6",
-        "growth.adaptive=true",
-        "growth.traffic_scale=2e3",
-        "growth.contact_history=[]",
-        "traffic.mix[1].share=2.0",
-    ]
-    .iter()
-    .chain(extra)
-    .map(|s| s.to_string())
-    .collect()
+    common::DISCRETE_BAY
+        .iter()
+        .chain(&[
+            "growth.adaptive=true",
+            "growth.traffic_scale=2e3",
+            "growth.contact_history=[]",
+            "traffic.mix[1].share=2.0",
+        ])
+        .chain(extra)
+        .map(|s| s.to_string())
+        .collect()
 }
 
 #[test]

@@ -25,6 +25,11 @@ CSV_COLUMNS = (
 )
 
 
+# Harmonics whose initial amplitude is below this fraction of the largest
+# have no meaningful rate in dB (they are built up from almost nothing).
+STRONG = 0.1
+
+
 @dataclass
 class GrowthCurves:
     """What the comparison needs from one growth study."""
@@ -72,21 +77,25 @@ def fastest_growing(c: GrowthCurves) -> float:
     the harmonics of the initial roughness (at least 10 % of its largest):
     one built up from nothing has no meaningful rate in dB."""
     end = c.spectrum[-1]
-    strong = c.initial >= 0.1 * np.nanmax(c.initial)
+    strong = c.initial >= STRONG * np.nanmax(c.initial)
     gain = np.where(strong & np.isfinite(c.initial),
                     np.log(np.maximum(end, 1e-300) / np.maximum(np.nan_to_num(c.initial), 1e-300)), -np.inf)
     return float(c.wavelengths[int(np.argmax(gain))])
 
 
+def mean_rates(c: GrowthCurves) -> np.ndarray:
+    """Mean growth rate of every harmonic (dB per 1e5 real passages) from the
+    initial roughness to the end of the run; NaN where it is undefined."""
+    a0, a1, span = c.initial, c.spectrum[-1], c.traffic[-1]
+    ok = (a0 > 0) & (a1 > 0) & (span > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(ok, 20.0 * np.log10(a1 / a0) * 1e5 / span, np.nan)
+
+
 def mean_rate(c: GrowthCurves, wavelength: float) -> float:
-    """Mean growth rate of the harmonic (dB per 1e5 real passages) from the
-    initial roughness to the end of the run."""
-    k = int(np.argmin(np.abs(c.wavelengths - wavelength)))
-    a0, a1 = c.initial[k], c.spectrum[-1, k]
-    span = c.traffic[-1]
-    if span <= 0 or not a0 > 0 or a1 <= 0:
-        return float("nan")
-    return float(20.0 * np.log10(a1 / a0) * 1e5 / span)
+    """Mean growth rate of the harmonic nearest ``wavelength`` (dB per 1e5
+    real passages) from the initial roughness to the end of the run."""
+    return float(mean_rates(c)[int(np.argmin(np.abs(c.wavelengths - wavelength)))])
 
 
 def compare_growth(paths, out_dir, wavelength: float | None = None):

@@ -23,7 +23,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from .figures import DPI
-from .growth import GrowthCurves, load
+from .growth import STRONG, GrowthCurves, load, mean_rates
 from .io import RunFileError, open_group, parse_config, root_attrs, write_csv
 
 CSV_NAME = "speeds.csv"
@@ -33,9 +33,6 @@ SUMMARY_NAME = "speeds_summary.csv"
 SUMMARY_COLUMNS = ("label", "classes", "speed_m_s", "passes", "final_traffic", "final_rms_m",
                    "peak_wavelength_m", "peak_frequency_hz", "peak_rate_db_per_1e5", "rms_rate_diff_to_prediction")
 
-# Harmonics of the initial roughness under this fraction of its largest have
-# no meaningful rate in dB (they are built up from almost nothing).
-STRONG = 0.1
 # Speeds within this (m/s) are the same class speed.
 SPEED_TOL = 0.01
 
@@ -61,12 +58,9 @@ class Study:
         """Mean growth rate per harmonic over the study (dB per 1e5 real
         passages); NaN where the initial amplitude is below STRONG of the
         largest."""
-        c = self.curves
-        a0, a1 = c.initial, c.spectrum[-1]
-        strong = np.isfinite(a0) & (a0 >= STRONG * np.nanmax(a0)) & (a1 > 0)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = 20.0 * np.log10(a1 / a0) * 1e5 / c.traffic[-1]
-        return np.where(strong, r, np.nan)
+        a0 = self.curves.initial
+        strong = np.isfinite(a0) & (a0 >= STRONG * np.nanmax(a0))
+        return np.where(strong, mean_rates(self.curves), np.nan)
 
 
 def load_study(path) -> Study:

@@ -17,12 +17,11 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from .figures import DPI
+from .growth import STRONG
 from .io import RunFileError, write_csv
 
 CSV_NAME = "sweep_map.csv"
-# Harmonics whose initial amplitude is below this fraction of the largest are
-# left out of the peak (as in ``speeds``).
-STRONG = 0.1
+
 
 
 def open_sweep(path) -> xr.Dataset:

@@ -257,7 +257,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let max_normal = match &growth {
         Some(g) => {
             check_classes(&g.classes, &loads, mu, errors);
-            g.classes.iter().map(|c| class_loads(&loads, c).max_normal_force()).fold(0.0, f64::max)
+            g.classes.iter().map(|c| c.loads(&loads).max_normal_force()).fold(0.0, f64::max)
         }
         None => loads.max_normal_force(),
     };
@@ -407,47 +407,68 @@ fn check_growth(
     }
 }
 
-/// The imposed loads as wheels of class `c` see them: the class's means,
-/// the harmonics of `[load]`.
-fn class_loads(loads: &ImposedLoads, c: &crate::growth::mix::TrafficClass) -> ImposedLoads {
-    ImposedLoads { normal_force: c.normal_force, longitudinal_force: c.longitudinal_force, ..loads.clone() }
-}
-
-/// Each traffic class must keep contact where it pulls and stay below full
-/// sliding (the base config's loads are checked by [`check_loads`]).
+/// Each traffic class of a mix must keep contact where it pulls and stay
+/// below full sliding, as [`check_loads`] requires of `[load]` (the one
+/// class of a study without `[traffic]` is `[load]` itself).
 fn check_classes(
     classes: &[crate::growth::mix::TrafficClass],
     loads: &ImposedLoads,
     mu: f64,
     errors: &mut Vec<ConfigError>,
 ) {
-    if let [c] = classes
-        && c.name == traffic::BASE_NAME
-    {
+    if !traffic::is_mix(classes) {
         return;
     }
     for (i, c) in classes.iter().enumerate() {
-        let l = class_loads(loads, c);
-        let (n_min, f_max) = (l.min_normal_force(), l.max_longitudinal_force());
-        if n_min <= 0.0 && f_max > 0.0 {
-            errors.push(ConfigError::new(
-                &format!("traffic.mix[{i}].normal_force"),
+        let (key, message) = match load_problem(&c.loads(loads), mu) {
+            Some(LoadProblem::PullsWithoutContact { n_min, f_max }) => (
+                "normal_force",
                 format!(
-                    "= {:.6e} N: with the load.harmonics the normal force reaches {n_min:.6e} N <= 0 (contact lost) while \
-                     the class pulls with |F_x| up to {f_max:.6e} N; it must stay > 0",
+                    "= {:.6e} N: with the load.harmonics the normal force reaches {n_min:.6e} N <= 0 (contact lost) \
+                     while the class pulls with |F_x| up to {f_max:.6e} N; it must stay > 0",
                     c.normal_force
                 ),
-            ));
-        } else if n_min > 0.0 && f_max >= mu * n_min {
-            errors.push(ConfigError::new(
-                &format!("traffic.mix[{i}].longitudinal_force"),
+            ),
+            Some(LoadProblem::FullSliding { limit, f_max }) => (
+                "longitudinal_force",
                 format!(
-                    "= {:.6e} N: |F_x| reaches {f_max:.6e} N, which must be < mu * min N = {:.6e} N (full sliding)",
-                    c.longitudinal_force,
-                    mu * n_min
+                    "= {:.6e} N: |F_x| reaches {f_max:.6e} N, which must be < mu * min N = {limit:.6e} N (full sliding)",
+                    c.longitudinal_force
                 ),
-            ));
-        }
+            ),
+            None => continue,
+        };
+        errors.push(ConfigError::new(&format!("traffic.mix[{i}].{key}"), message));
+    }
+}
+
+/// Why imposed loads cannot be run.
+enum LoadProblem {
+    /// N reaches `n_min` <= 0 (contact lost) while |F_x| reaches `f_max` > 0.
+    PullsWithoutContact {
+        /// Smallest normal force (N).
+        n_min: f64,
+        /// Largest |F_x| (N).
+        f_max: f64,
+    },
+    /// |F_x| reaches `f_max` >= `limit` = mu min N.
+    FullSliding {
+        /// mu times the smallest normal force (N).
+        limit: f64,
+        /// Largest |F_x| (N).
+        f_max: f64,
+    },
+}
+
+/// What keeps `loads` from being run with friction `mu`, if anything.
+fn load_problem(loads: &ImposedLoads, mu: f64) -> Option<LoadProblem> {
+    let (n_min, f_max) = (loads.min_normal_force(), loads.max_longitudinal_force());
+    if n_min <= 0.0 && f_max > 0.0 {
+        Some(LoadProblem::PullsWithoutContact { n_min, f_max })
+    } else if n_min > 0.0 && f_max >= mu * n_min {
+        Some(LoadProblem::FullSliding { limit: mu * n_min, f_max })
+    } else {
+        None
     }
 }
 
@@ -490,10 +511,8 @@ fn check_geometry(material: &Material, geometry: &Geometry, errors: &mut Vec<Con
 }
 
 fn check_loads(loads: &ImposedLoads, mu: f64, rail_dx: Option<f64>, errors: &mut Vec<ConfigError>) {
-    let n_min = loads.min_normal_force();
-    let f_max = loads.max_longitudinal_force();
-    if n_min <= 0.0 && f_max > 0.0 {
-        errors.push(ConfigError::new(
+    match load_problem(loads, mu) {
+        Some(LoadProblem::PullsWithoutContact { n_min, f_max }) => errors.push(ConfigError::new(
             "load.harmonics",
             format!(
                 "normal-force amplitudes sum to {:.6e} N >= load.normal_force = {:.6e} N: contact is lost where N <= 0, \
@@ -501,12 +520,12 @@ fn check_loads(loads: &ImposedLoads, mu: f64, rail_dx: Option<f64>, errors: &mut
                 loads.normal_force - n_min,
                 loads.normal_force
             ),
-        ));
-    } else if n_min > 0.0 && f_max >= mu * n_min {
-        errors.push(ConfigError::new(
+        )),
+        Some(LoadProblem::FullSliding { limit, f_max }) => errors.push(ConfigError::new(
             "load.longitudinal_force",
-            format!("|F_x| reaches {f_max:.6e} N, which must be < mu * min N = {:.6e} N (full sliding)", mu * n_min),
-        ));
+            format!("|F_x| reaches {f_max:.6e} N, which must be < mu * min N = {limit:.6e} N (full sliding)"),
+        )),
+        None => {}
     }
     if let Some(dx) = rail_dx {
         for (i, h) in loads.harmonics.iter().enumerate() {

@@ -30,6 +30,12 @@ pub struct BaseClass {
 /// Name of the one class of a study without `[traffic]`.
 pub const BASE_NAME: &str = "base";
 
+/// Whether `classes` are a mix from `[traffic]` rather than the one class
+/// of the base config.
+pub fn is_mix(classes: &[TrafficClass]) -> bool {
+    !matches!(classes, [c] if c.name == BASE_NAME)
+}
+
 /// Reads `[traffic]`: the classes with their shares normalised, or one
 /// class of the base values. `None` when a key is invalid (recorded).
 pub fn read(

@@ -21,6 +21,8 @@
 //! `m` for every passage it is smooth weighted round robin: shares 0.7 / 0.3
 //! simulate `A B A A B A A B A A`, 7 to 3 in every ten.
 
+use crate::loads::ImposedLoads;
+
 /// One class of traffic (SI units).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrafficClass {
@@ -36,6 +38,14 @@ pub struct TrafficClass {
     pub unsprung_mass: f64,
     /// Share of the real wheel passages (1; the shares of a mix sum to 1).
     pub share: f64,
+}
+
+impl TrafficClass {
+    /// The imposed loads as wheels of this class see them: the class's mean
+    /// normal and longitudinal force with the harmonics of `base`.
+    pub fn loads(&self, base: &ImposedLoads) -> ImposedLoads {
+        ImposedLoads { normal_force: self.normal_force, longitudinal_force: self.longitudinal_force, ..base.clone() }
+    }
 }
 
 /// The class of the next simulated passage: the one whose real traffic

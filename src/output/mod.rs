@@ -9,14 +9,19 @@ pub mod track_file;
 
 use std::path::Path;
 
+/// The folder a file at `path` is in (`.` for a bare file name).
+pub fn folder_of(path: &Path) -> &Path {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
 /// Checks, before anything is computed, that a file can be written at
 /// `path`: its folder exists and a file can be created in it (a probe file,
 /// removed at once). An existing file at `path` is left untouched.
 pub fn check_writable(path: &Path) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
+    let dir = folder_of(path);
     if !dir.is_dir() {
         return Err(std::io::Error::new(
             std::io::ErrorKind::NotFound,
@@ -36,11 +41,11 @@ pub fn check_writable(path: &Path) -> std::io::Result<()> {
 /// (`<name>.tmp-<pid>`, see [`netcdf::write_atomically`]), except this
 /// process's own.
 pub fn remove_stale_temporaries(path: &Path) {
-    let (Some(dir), Some(name)) = (path.parent(), path.file_name()) else {
+    let Some(name) = path.file_name() else {
         return;
     };
-    let dir = if dir.as_os_str().is_empty() { Path::new(".") } else { dir };
-    let prefix = format!("{}.tmp-", name.to_string_lossy());
+    let dir = folder_of(path);
+    let prefix = format!("{}{}", name.to_string_lossy(), netcdf::TEMPORARY_SUFFIX);
     let own = format!("{prefix}{}", std::process::id());
     let Ok(entries) = std::fs::read_dir(dir) else {
         return;

@@ -473,6 +473,9 @@ fn write_str_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
     write_attr(loc, name, &value)
 }
 
+/// A file being written atomically is `<name><TEMPORARY_SUFFIX><pid>`.
+pub const TEMPORARY_SUFFIX: &str = ".tmp-";
+
 /// Removes the temporary file on drop (error or panic) unless disarmed after the rename.
 struct TempFile {
     path: PathBuf,
@@ -501,12 +504,9 @@ where
         let msg = "not a file path".to_owned();
         return Err(NcError::Invalid { path: path.to_owned(), what: "output path".into(), msg });
     };
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
+    let dir = super::folder_of(path).to_path_buf();
     let mut tmp_name = file_name.to_os_string();
-    tmp_name.push(format!(".tmp-{}", std::process::id()));
+    tmp_name.push(format!("{TEMPORARY_SUFFIX}{}", std::process::id()));
     let tmp = dir.join(tmp_name);
     let ctx = Arc::new(FileCtx { path: path.to_owned(), next_dimid: AtomicI32::new(0) });
     let write_err = |what: &str, source| NcError::Write { path: path.to_owned(), what: what.into(), source };
@@ -571,19 +571,49 @@ pub fn read_i8(path: &Path, group: &str, var: &str) -> Result<ArrayD<i8>, NcErro
     read_var(path, group, var)
 }
 
+/// The attributes of one group of a file, opened once for several reads.
+pub struct Attrs {
+    path: PathBuf,
+    group_name: String,
+    group: Group,
+}
+
+impl Attrs {
+    /// Opens `group` (`""` or `"/"` = root) of the file at `path`.
+    pub fn open(path: &Path, group: &str) -> Result<Attrs, NcError> {
+        Ok(Attrs { path: path.to_owned(), group_name: group.to_owned(), group: open_group(path, group)? })
+    }
+
+    fn read_err(&self, name: &str) -> impl Fn(hdf5::Error) -> NcError {
+        let (path, what) = (self.path.clone(), format!("attribute {name:?} of group {:?}", self.group_name));
+        move |source| NcError::Read { path: path.clone(), what: what.clone(), source }
+    }
+
+    /// The string attribute `name`: variable-length UTF-8 or ASCII (as
+    /// written by [`NcGroup::attr_str`]).
+    pub fn str(&self, name: &str) -> Result<String, NcError> {
+        use hdf5::types::TypeDescriptor as TD;
+        let read_err = self.read_err(name);
+        let attr = self.group.attr(name).map_err(&read_err)?;
+        match attr.dtype().and_then(|t| t.to_descriptor()).map_err(&read_err)? {
+            TD::VarLenUnicode => Ok(attr.read_scalar::<VarLenUnicode>().map_err(&read_err)?.as_str().to_owned()),
+            TD::VarLenAscii => Ok(attr.read_scalar::<VarLenAscii>().map_err(&read_err)?.as_str().to_owned()),
+            other => Err(NcError::Invalid {
+                path: self.path.clone(),
+                what: format!("attribute {name:?} of group {:?}", self.group_name),
+                msg: format!("stored type is {other}, not a variable-length string"),
+            }),
+        }
+    }
+
+    /// The scalar `i64` attribute `name` (as written by [`NcGroup::attr_i64`]).
+    pub fn i64(&self, name: &str) -> Result<i64, NcError> {
+        self.group.attr(name).and_then(|a| a.read_scalar::<i64>()).map_err(self.read_err(name))
+    }
+}
+
 /// Read the string attribute `name` of `group` (`""` or `"/"` = root). Accepts
 /// variable-length UTF-8 or ASCII strings (as written by [`NcGroup::attr_str`]).
 pub fn read_attr_str(path: &Path, group: &str, name: &str) -> Result<String, NcError> {
-    use hdf5::types::TypeDescriptor as TD;
-    let what = || format!("attribute {name:?} of group {group:?}");
-    let read_err = |source| NcError::Read { path: path.to_owned(), what: what(), source };
-    let attr = open_group(path, group)?.attr(name).map_err(read_err)?;
-    match attr.dtype().and_then(|t| t.to_descriptor()).map_err(read_err)? {
-        TD::VarLenUnicode => Ok(attr.read_scalar::<VarLenUnicode>().map_err(read_err)?.as_str().to_owned()),
-        TD::VarLenAscii => Ok(attr.read_scalar::<VarLenAscii>().map_err(read_err)?.as_str().to_owned()),
-        other => {
-            let msg = format!("stored type is {other}, not a variable-length string");
-            Err(NcError::Invalid { path: path.to_owned(), what: what(), msg })
-        }
-    }
+    Attrs::open(path, group)?.str(name)
 }

@@ -197,6 +197,14 @@ pub fn steps_per_passage(scene: &Scene) -> usize {
     derive(scene).passage.n_steps()
 }
 
+/// The rail grid of a scene's run file: periodic for a growth study.
+pub fn study_grid(scene: &Scene) -> RailGrid {
+    match scene.growth {
+        Some(_) => periodic_grid(scene),
+        None => derive(scene).grid,
+    }
+}
+
 /// The periodic grid of a growth study: nodes `x_min + i dx`, `i < nx`,
 /// period `x_max - x_min`.
 pub fn periodic_grid(scene: &Scene) -> RailGrid {

@@ -17,7 +17,7 @@
 //! run computes bit for bit what the uninterrupted run would have.
 
 use super::hertz_check::HertzCheck;
-use super::{build_deposit, build_solver, derive, element_count, normal_contact, periodic_grid, track_dynamics};
+use super::{build_deposit, build_solver, derive, element_count, normal_contact, study_grid, track_dynamics};
 use crate::config::contact::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::config::{ConfigErrors, Resolved, load_str};
 use crate::dynamics::TrackDynamics;
@@ -31,9 +31,8 @@ use crate::output::checkpoint::{StateLayout, read_run_state};
 use crate::output::netcdf::{NcError, read_attr_str, read_f64};
 pub use crate::output::run_file::RunState;
 use crate::output::run_file::{PassRow, RailSnapshot, RunRecord, write_run_file};
-use crate::params::{NormalContact, Scene};
+use crate::params::NormalContact;
 use crate::passage::{PassageError, PassageSpec, run_passage};
-use crate::wear::RailGrid;
 use ndarray::Array2;
 use std::path::{Path, PathBuf};
 
@@ -247,14 +246,6 @@ pub fn resume(
         state.rail.pop();
     }
     Ok(continue_run(&resolved, state, out.unwrap_or(path), progress)?)
-}
-
-/// The rail grid of a scene: periodic for a growth study.
-fn study_grid(scene: &Scene) -> RailGrid {
-    match scene.growth {
-        Some(_) => periodic_grid(scene),
-        None => derive(scene).grid,
-    }
 }
 
 /// Runs the passages from `state.rows.len()` to the planned number, with

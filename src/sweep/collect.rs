@@ -203,35 +203,22 @@ pub fn collect(
             false,
         )?;
         let per_member = |f: &dyn Fn(&Results) -> f64| -> ArrayD<f64> {
-            let v: Vec<f64> = results.iter().map(|r| r.as_ref().map_or(f64::NAN, f)).collect();
-            ArrayD::from_shape_vec(IxDyn(&shape), v).expect("one value per member")
+            on_axes(&shape, results.iter().map(|r| r.as_ref().map_or(f64::NAN, f)).collect())
         };
         let index: Vec<i64> = (0..spec.len() as i64).collect();
-        root.var_i64(
-            "member",
-            &dims,
-            ArrayD::from_shape_vec(IxDyn(&shape), index).expect("shape").view(),
-            "1",
-            "member index (sweep member --index)",
-        )?;
+        root.var_i64("member", &dims, on_axes(&shape, index).view(), "1", "member index (sweep member --index)")?;
         let files: Vec<String> = (0..spec.len())
             .map(|i| spec.member_file(i).file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default())
             .collect();
         root.var_str(
             "member_file",
             &dims,
-            ArrayD::from_shape_vec(IxDyn(&shape), files).expect("shape").view(),
+            on_axes(&shape, files).view(),
             "",
             "the member's run file in the sweep directory",
         )?;
         let flags: Vec<i8> = statuses.iter().map(|s| if s.is_complete() { 0 } else { 1 }).collect();
-        root.var_i8(
-            "status",
-            &dims,
-            ArrayD::from_shape_vec(IxDyn(&shape), flags).expect("shape").view(),
-            "1",
-            "member status when collected",
-        )?;
+        root.var_i8("status", &dims, on_axes(&shape, flags).view(), "1", "member status when collected")?;
         root.var_attr_str("status", "flag_values", "0 1")?;
         root.var_attr_str("status", "flag_meanings", "complete not_complete")?;
         let scalars: [Scalar; 6] = [
@@ -262,7 +249,7 @@ pub fn collect(
                     None => vec![f64::NAN; wavelengths.len()],
                 })
                 .collect();
-            ArrayD::from_shape_vec(IxDyn(&spectral_shape), v).expect("one spectrum per member")
+            on_axes(&spectral_shape, v)
         };
         root.var_f64(
             "growth_rate",
@@ -287,6 +274,11 @@ pub fn collect(
         )
     })?;
     Ok(Collected { members: spec.len(), missing })
+}
+
+/// One value per member (row-major) on the sweep's axes of lengths `shape`.
+fn on_axes<T>(shape: &[usize], values: Vec<T>) -> ArrayD<T> {
+    ArrayD::from_shape_vec(IxDyn(shape), values).expect("one value per member")
 }
 
 /// One sweep dimension: its first key's values as the coordinate (numbers,

@@ -12,7 +12,7 @@
 
 use super::spec::SweepSpec;
 use crate::config::ConfigErrors;
-use crate::output::netcdf::{NcError, read_attr_str};
+use crate::output::netcdf::{Attrs, NcError};
 use crate::run::{Event, ResumeError, RunError, RunSummary, resume, run_scene};
 use std::path::{Path, PathBuf};
 
@@ -71,20 +71,9 @@ impl MemberStatus {
 /// The state of a member's run file: (status attribute, passes done,
 /// passes planned, stored config).
 fn file_state(path: &Path) -> Result<(String, usize, usize, String), NcError> {
-    let status = read_attr_str(path, "", "status")?;
-    let config = read_attr_str(path, "", "config")?;
-    let file = hdf5::File::open(path).map_err(|source| NcError::Read {
-        path: path.to_owned(),
-        what: "file".into(),
-        source,
-    })?;
-    let attr = |name: &str| -> Result<usize, NcError> {
-        file.attr(name)
-            .and_then(|a| a.read_scalar::<i64>())
-            .map(|v| v.max(0) as usize)
-            .map_err(|source| NcError::Read { path: path.to_owned(), what: format!("attribute {name:?}"), source })
-    };
-    Ok((status, attr("passes_done")?, attr("passes_planned")?, config))
+    let root = Attrs::open(path, "")?;
+    let count = |name: &str| root.i64(name).map(|v| v.max(0) as usize);
+    Ok((root.str("status")?, count("passes_done")?, count("passes_planned")?, root.str("config")?))
 }
 
 /// Whether another process holds member `index`'s lock (it is running).
@@ -209,8 +198,7 @@ pub fn run_member(spec: &SweepSpec, index: usize, progress: &mut dyn FnMut(Event
     }
     let resolved = spec.resolve(index).map_err(MemberError::Config)?;
     let output_err = |source| MemberError::Output { path: spec.output.clone(), source };
-    std::fs::create_dir_all(&spec.output).map_err(output_err)?;
-    crate::output::check_writable(&spec.member_file(index)).map_err(output_err)?;
+    spec.prepare_output().map_err(output_err)?;
     let file = spec.member_file(index);
     let error_file = spec.error_file(index);
     // One process per member: the lock is held until the member ends (and
@@ -247,10 +235,7 @@ pub fn run_member(spec: &SweepSpec, index: usize, progress: &mut dyn FnMut(Event
         }
         Some(Ok(_)) => resume(&file, None, None, progress)
             .map(|summary| Outcome::Ran { resumed: true, summary })
-            .map_err(|e| match e {
-                ResumeError::Run(r) => r.to_string(),
-                other => other.to_string(),
-            }),
+            .map_err(|e: ResumeError| e.to_string()),
         // No file, or one that cannot be read (it is then replaced).
         _ => run_scene(&resolved, &file, progress)
             .map(|summary| Outcome::Ran { resumed: false, summary })

@@ -272,6 +272,13 @@ impl SweepSpec {
         self.output.join("logs").join(format!("{}.log", self.member_name(index)))
     }
 
+    /// Creates the sweep's directory and its `logs` folder and checks that
+    /// files can be written there.
+    pub fn prepare_output(&self) -> std::io::Result<()> {
+        std::fs::create_dir_all(self.output.join("logs"))?;
+        crate::output::check_writable(&self.output.join("sweep.probe"))
+    }
+
     /// The validated config of member `index`.
     pub fn resolve(&self, index: usize) -> Result<Resolved, ConfigErrors> {
         let member = self.member(index);
@@ -303,30 +310,25 @@ impl SweepSpec {
         if seen.is_empty() {
             // The members' spectra share one wavelength dimension when
             // collected: the same periodic stretch and rail grid.
-            let grid = |r: &Resolved| {
-                let g = match r.scene.growth {
-                    Some(_) => crate::run::periodic_grid(&r.scene),
-                    None => crate::run::derive(&r.scene).grid,
-                };
-                (g.x_min, g.nx, g.dx)
-            };
-            let first = grid(&ok[0]);
-            let errors: Vec<SpecError> = ok
+            let grids: Vec<(f64, usize, f64)> = ok
+                .iter()
+                .map(|r| {
+                    let g = crate::run::study_grid(&r.scene);
+                    (g.x_min, g.nx, g.dx)
+                })
+                .collect();
+            let first = grids[0];
+            let errors: Vec<SpecError> = grids
                 .iter()
                 .enumerate()
-                .filter(|(_, r)| grid(r) != first)
-                .map(|(i, r)| SpecError {
+                .filter(|(_, g)| **g != first)
+                .map(|(i, (x_min, nx, dx))| SpecError {
                     key: self.describe(i),
                     message: format!(
-                        "rail grid of {} nodes every {} m from {} m, not member 0's {} every {} m from {} m: a sweep's \
-                         members must share the stretch and rail grid (rail.x_min, rail.x_max, rail.dx), or their \
-                         spectra cannot be collected on one wavelength dimension",
-                        grid(r).1,
-                        grid(r).2,
-                        grid(r).0,
-                        first.1,
-                        first.2,
-                        first.0
+                        "rail grid of {nx} nodes every {dx} m from {x_min} m, not member 0's {} every {} m from {} m: \
+                         a sweep's members must share the stretch and rail grid (rail.x_min, rail.x_max, rail.dx), \
+                         or their spectra cannot be collected on one wavelength dimension",
+                        first.1, first.2, first.0
                     ),
                 })
                 .collect();

@@ -41,3 +41,16 @@ pub fn peak(history: &[f64], step: f64) -> (f64, f64) {
         .skip(1)
         .fold((0.0, 0.0), |(m, at), (i, c)| if c.abs() > m { (c.abs(), i as f64 * step) } else { (m, at) })
 }
+
+/// Overrides that put `configs/growth_fastsim.toml` on one 0.6 m sleeper bay
+/// of the discrete track, coarse (1 mm rail grid and step, 6 x 6 mesh).
+pub const DISCRETE_BAY: [&str; 8] = [
+    "dynamics.model=discrete",
+    "rail.x_max=0.6",
+    "passage.end=0.6",
+    "rail.dx=1e-3",
+    "rail.dy=1e-3",
+    "passage.step_length=1e-3",
+    "contact.elements_x=6",
+    "contact.elements_y=6",
+];
