@@ -131,20 +131,6 @@ pub fn print_check(r: &Resolved) {
             f.friction_law.name(),
             f.scheme.name()
         );
-        if let NormalContact::Auto { amplitude, .. } = f.normal {
-            println!(
-                "normal contact     auto: the Hertz contact while the corrugation's dominant harmonic is below \
-                 {:.2} um or inside the Hertz region, the profile from then on (on the profile's grid)",
-                amplitude * 1e6
-            );
-        }
-        if let NormalContact::Profile { grid_scale } | NormalContact::Auto { grid_scale, .. } = f.normal {
-            println!(
-                "normal contact     profile: the rail's corrugation in the gap of every step (the grid {grid_scale} times \
-                 the largest Hertz patch both ways); the dynamics see the equivalent roughness (a normal solve per step \
-                 at the mean load before every passage)"
-            );
-        }
     } else {
         let el = 2.0 * d.patch_mean.a / s.contact.elements_x as f64;
         println!(
@@ -154,6 +140,9 @@ pub fn print_check(r: &Resolved) {
             s.contact.elements_x * s.contact.elements_y,
             mm(el)
         );
+    }
+    if s.growth.is_some() {
+        print_normal_contact(s.contact.normal, fixed.is_some());
     }
     let p = &d.passage;
     let wear = if fixed.is_some() {
@@ -260,4 +249,36 @@ pub fn print_check(r: &Resolved) {
         cost.per_passage * cost.passes as f64,
         cost.memory / 1e6
     );
+}
+
+/// What the normal contact of a growth study sees of the rail.
+fn print_normal_contact(normal: NormalContact, fixed: bool) {
+    let linear = "the linear profile contact (the patch moved and stretched with the contact and the rest of the \
+                  normal problem's linear response to the corrugation under it); the dynamics see its flat-punch \
+                  average of the profile";
+    let profile = |scale: f64| {
+        format!(
+            "the nonlinear profile contact (the rail's corrugation in the gap of every step, the grid {scale} times the \
+             largest Hertz patch both ways); the dynamics see its equivalent roughness (a normal solve per step at the \
+             mean load before every passage)"
+        )
+    };
+    match normal {
+        NormalContact::Hertz => println!(
+            "normal contact     hertz: the paper's chain, no profile in the contact (the dynamics see the profile \
+             weighted across the patch by the Hertz line load); for comparison only"
+        ),
+        NormalContact::Linear => println!("normal contact     linear: {linear}"),
+        NormalContact::Profile { grid_scale } => println!("normal contact     profile: {}", profile(grid_scale)),
+        NormalContact::Auto { grid_scale } if fixed => println!(
+            "normal contact     auto: {}; while the corrugation's curvature is below {:.0} % of the wheel's the \
+             dynamics see the linear contact's flat-punch average instead (no normal solves)",
+            profile(grid_scale),
+            100.0 * corrugation::growth::LINEAR_FILTER_CURVATURE
+        ),
+        NormalContact::Auto { .. } => println!(
+            "normal contact     auto: {linear}; a corrugation that opens the patch inside is reported (the \
+             nonlinear profile contact needs contact.grid = \"fixed\")"
+        ),
+    }
 }

@@ -168,6 +168,16 @@ fn rd(x: f64, y: f64, z: f64) -> f64 {
 }
 
 impl HertzShape {
+    /// The curvature sums A, B (1/m).
+    pub fn curvatures(&self) -> Curvatures {
+        self.curv
+    }
+
+    /// The elastic constants.
+    pub fn elastic(&self) -> Elastic {
+        self.elastic
+    }
+
     /// Solves the shape equation for the given curvatures and materials.
     pub fn new(curv: Curvatures, elastic: Elastic) -> Result<Self, HertzError> {
         curv.validate()?;

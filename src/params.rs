@@ -86,6 +86,8 @@ pub struct ContactParams {
     pub auto: Option<crate::model_choice::AutoChoice>,
     /// The discretisation of the exact-transient model.
     pub grid: ContactGrid,
+    /// What the normal problem sees of the rail.
+    pub normal: NormalContact,
 }
 
 /// How the exact-transient model discretises the contact area.
@@ -111,35 +113,40 @@ pub struct FixedGridParams {
     pub friction_law: FrictionLaw,
     /// Backward difference of the material derivative.
     pub scheme: GridScheme,
-    /// What the normal problem sees of the rail.
-    pub normal: NormalContact,
 }
 
-/// The normal contact of the fixed grid (`contact.normal`).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// What the normal contact sees of the rail (`contact.normal`).
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NormalContact {
-    /// The quadratic gap of the curvatures: Hertz's contact (discretised),
-    /// the profile entering through the dynamic force only.
-    #[default]
+    /// The quadratic gap of the curvatures: Hertz's contact (the paper's
+    /// chain), the profile entering through the dynamic force only
+    /// (weighted across the patch by the Hertz line load, unfiltered along
+    /// it). Kept for comparison: it lacks the contact's own response to
+    /// the corrugation.
     Hertz,
+    /// The linearised profile contact: the Hertz pressure plus the normal
+    /// problem's linear response to the corrugation under the patch
+    /// ([`crate::contact::linear`]); every model. The dynamics see its
+    /// equivalent roughness, the flat-punch average of the profile.
+    Linear,
     /// The quadratic gap less the rail profile under the patch
-    /// (non-Hertzian); the dynamics see the equivalent roughness.
+    /// (non-Hertzian, nonlinear; the fixed grid only); the dynamics see the
+    /// equivalent roughness.
     Profile {
         /// Size of the potential-contact grid along x and y relative to
         /// the largest Hertz patch (1).
         grid_scale: f64,
     },
-    /// A growth study chooses per passage: the Hertz contact while the
-    /// dominant harmonic of the corrugation is below `amplitude` or inside
-    /// the Hertz region ([`crate::model_choice::hertz_validity`]), the
-    /// profile from the first passage beyond (and then on), on one grid
-    /// sized for the profile.
+    /// The consistent chain, the default: on the adapted mesh the linear
+    /// contact; on the fixed grid the nonlinear profile contact, whose
+    /// dynamics see the linear contact's equivalent roughness (the
+    /// flat-punch average, no normal solves) while the corrugation's
+    /// curvature is small against the wheel's, the nonlinear equivalent
+    /// roughness beyond.
     Auto {
-        /// Size of the potential-contact grid (as for `Profile`) (1).
+        /// Size of the potential-contact grid (as for `Profile`; 1 on the
+        /// adapted mesh) (1).
         grid_scale: f64,
-        /// Amplitude of the dominant harmonic (m) from which the profile
-        /// contact can be used: above its noise floor on the grid.
-        amplitude: f64,
     },
 }
 
@@ -148,6 +155,7 @@ impl NormalContact {
     pub fn name(self) -> &'static str {
         match self {
             NormalContact::Hertz => "hertz",
+            NormalContact::Linear => "linear",
             NormalContact::Profile { .. } => "profile",
             NormalContact::Auto { .. } => "auto",
         }
@@ -157,9 +165,14 @@ impl NormalContact {
     /// patch (1).
     pub fn grid_scale(self) -> f64 {
         match self {
-            NormalContact::Hertz => 1.0,
-            NormalContact::Profile { grid_scale } | NormalContact::Auto { grid_scale, .. } => grid_scale,
+            NormalContact::Hertz | NormalContact::Linear => 1.0,
+            NormalContact::Profile { grid_scale } | NormalContact::Auto { grid_scale } => grid_scale,
         }
+    }
+
+    /// Whether the profile is in the contact at all (not Hertz).
+    pub fn sees_profile(self) -> bool {
+        self != NormalContact::Hertz
     }
 }
 

@@ -8,13 +8,11 @@
 //! interpolated sub-steps). The kernel knows nothing of files or terminals:
 //! progress is reported through a callback.
 
-use crate::contact::grid::RailSurface;
-use crate::contact::{ContactError, Elements, PatchSolution, StepInput, TangentialSolver};
+use crate::contact::{ContactError, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::hertz::{HertzError, HertzShape};
 use crate::loads::ImposedLoads;
 use crate::wear::{PatchWear, RailGrid, WearKernel, archard_rates};
 use ndarray::Array2;
-use std::sync::Arc;
 
 /// Kinematics, loads and discretisation of one passage (SI units).
 #[derive(Debug, Clone, PartialEq)]
@@ -45,8 +43,9 @@ pub struct PassageSpec {
     /// Dynamic normal force added to the imposed loads (growth studies).
     pub dynamic_normal_force: Option<PeriodicSignal>,
     /// The rail surface in the normal problem (`contact.normal =
-    /// "profile"`); `None`: the Hertz contact of the curvatures.
-    pub surface: Option<Arc<RailSurface>>,
+    /// "linear"` or `"profile"`); `None`: the Hertz contact of the
+    /// curvatures.
+    pub surface: Option<RailContact>,
 }
 
 /// A periodic signal sampled at `x0 + i dx`, i = 0..n, period n dx,
@@ -96,7 +95,8 @@ impl PassageSpec {
 pub struct PatchHistory {
     /// Time since the start of the passage (s).
     pub time: Vec<f64>,
-    /// Patch centre in rail coordinates (m).
+    /// Patch centre in rail coordinates (m): the wheel's position, or with
+    /// the linear profile contact on the adapted mesh the moved patch's.
     pub x_c: Vec<f64>,
     /// Normal force (N).
     pub normal_force: Vec<f64>,
@@ -215,6 +215,9 @@ pub struct PassageResult {
     pub wear: Array2<f64>,
     /// Per-step history of the patch.
     pub history: PatchHistory,
+    /// Steps at which the linear profile contact set a negative pressure
+    /// to zero (0 for the other normal contacts).
+    pub clipped_steps: usize,
 }
 
 /// Why a passage stopped.
@@ -312,6 +315,7 @@ pub fn run_passage(
     let mut h = PatchHistory { fields: record_fields.then(|| PatchFields::new(steps, n_el)), ..Default::default() };
     // The previous step's patch (x_c, a, b) and wear rates.
     let mut previous: Option<PreviousPatch> = None;
+    let mut clipped_steps = 0;
     solver.reset();
     solver.set_surface(spec.surface.clone()).map_err(PassageError::Surface)?;
     for n in 0..steps {
@@ -347,6 +351,7 @@ pub fn run_passage(
             source,
         })?;
         check_finite(&sol, n, x)?;
+        clipped_steps += usize::from(sol.clipped > 0);
         if let Elements::Grid(g) = &elements {
             let reach = (0..n_el)
                 .filter(|&k| sol.pressure[k] > 0.0)
@@ -359,6 +364,15 @@ pub fn run_passage(
             }
         }
         let rates = archard_rates(spec.k_over_h, &sol);
+        // The patch the solver used (moved with the contact point by the
+        // linear profile contact on the adapted mesh).
+        let (patch_a, patch_b) = sol.semi_axes.unwrap_or((patch.a, patch.b));
+        if let (Elements::Adapted(_), Some(_)) = (&elements, sol.semi_axes) {
+            let edge = grid.half_width + 0.5 * grid.dy;
+            if patch_b > edge * (1.0 + 1e-9) {
+                return Err(PassageError::OffRail { step: n, x, y: patch_b, half_width: edge });
+            }
+        }
         let (w0, w1) = spec.wear_window;
         // The interval from the previous step belongs to the window when its
         // midpoint does: [w0, w1) then holds exactly (w1 - w0) / step of them
@@ -366,38 +380,44 @@ pub fn run_passage(
         // passage).
         if let Some(p) = previous.as_ref().filter(|p| (w0..w1).contains(&(0.5 * (p.x_c + x)))) {
             let from = PatchWear { x_c: p.x_c, a: p.a, b: p.b, rates: &p.rates };
-            let to = PatchWear { x_c: x, a: patch.a, b: patch.b, rates: &rates };
+            let to = PatchWear { x_c: x + sol.offset, a: patch_a, b: patch_b, rates: &rates };
             deposit.accumulate(grid, &mut wear, &from, &to, dt, spec.substeps);
         }
         h.in_contact.push(1.0);
         h.time.push(n as f64 * dt);
-        h.x_c.push(x);
+        // The patch centre: moved with the contact point by the linear
+        // profile contact on the adapted mesh (the elements' xi, eta are
+        // relative to it).
+        h.x_c.push(x + sol.offset);
         h.normal_force.push(normal_force);
         h.longitudinal_force.push(sol.force_x);
         h.creepage_x.push(sol.creepage.x);
         h.creepage_y.push(sol.creepage.y);
         h.spin.push(sol.creepage.spin);
-        h.semi_axis_a.push(patch.a);
-        h.semi_axis_b.push(patch.b);
+        h.semi_axis_a.push(patch_a);
+        h.semi_axis_b.push(patch_b);
         let (max_pressure, contact_area) = match &elements {
             Elements::Grid(g) => (
                 sol.pressure.iter().fold(0.0f64, |m, p| m.max(*p)),
                 sol.pressure.iter().filter(|p| **p > 0.0).count() as f64 * g.area(),
             ),
-            Elements::Adapted(_) => (patch.p0, std::f64::consts::PI * patch.a * patch.b),
+            Elements::Adapted(_) => (
+                sol.pressure.iter().fold(patch.p0, |m, p| if sol.semi_axes.is_some() { m.max(*p) } else { m }),
+                std::f64::consts::PI * patch_a * patch_b,
+            ),
         };
         h.max_pressure.push(max_pressure);
         h.contact_area.push(contact_area);
         h.stick_fraction.push(sol.stick_fraction());
         h.newton_iterations.push(sol.iterations as f64);
-        h.wear_volume_rate.push(deposit.integral(&rates, patch.a, patch.b));
+        h.wear_volume_rate.push(deposit.integral(&rates, patch_a, patch_b));
         if let Some(f) = h.fields.as_mut() {
             f.set(n, &sol, &rates);
         }
-        previous = Some(PreviousPatch { x_c: x, a: patch.a, b: patch.b, rates });
+        previous = Some(PreviousPatch { x_c: x + sol.offset, a: patch_a, b: patch_b, rates });
         progress(n + 1, steps);
     }
-    Ok(PassageResult { wear, history: h })
+    Ok(PassageResult { wear, history: h, clipped_steps })
 }
 
 fn check_finite(sol: &PatchSolution, step: usize, x: f64) -> Result<(), PassageError> {

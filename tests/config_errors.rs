@@ -148,17 +148,22 @@ fn fixed_grid_keys() {
         ),
         (
             &[exact, "contact.normal=profile"],
-            "contact.normal: = \"profile\" solves the discrete normal problem on the rail profile, which needs \
-             contact.grid = \"fixed\"",
+            "contact.normal: = \"profile\" solves the discrete (nonlinear) normal problem on the rail profile, which \
+             needs contact.grid = \"fixed\"; allowed with contact.grid = \"adapted\": auto, linear, hertz",
         ),
         (
             &[exact, "contact.grid=fixed", "contact.normal=elastic"],
-            "contact.normal: = \"elastic\" is not allowed; expected one of \"hertz\", \"profile\", \"auto\"",
+            "contact.normal: = \"elastic\" is not allowed; expected one of \"auto\", \"linear\", \"profile\", \"hertz\"",
         ),
-        (&[exact, "contact.normal=auto"], "contact.normal: = \"auto\" solves the discrete normal problem"),
         (
-            &[exact, "contact.grid=fixed", "contact.normal=auto", "contact.profile_from=0"],
-            "contact.profile_from: = 0 is out of range; expected a number in (0, 0.001]",
+            &[exact, "contact.grid=fixed", "contact.normal=linear"],
+            "contact.normal: = \"linear\" is the adapted mesh's first-order contact (the mesh moved with the \
+             contact); the fixed grid moves the patch over its elements by the nonlinear normal problem itself: \
+             allowed with contact.grid = \"fixed\": auto, profile, hertz",
+        ),
+        (
+            &[exact, "contact.grid=fixed", "contact.normal=auto", "contact.profile_from=5e-6"],
+            "contact.profile_from: unknown key",
         ),
         (
             &[exact, "contact.grid=fixed", "contact.normal=profile", "contact.profile_grid_scale=0.5"],

@@ -21,7 +21,7 @@ use corrugation::config::load_str;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::solver::FixedGridSpec;
 use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, RailSurface};
-use corrugation::contact::{StepInput, TangentialSolver};
+use corrugation::contact::{RailContact, StepInput, TangentialSolver};
 use corrugation::growth::equivalent_roughness;
 use corrugation::hertz::Curvatures;
 use corrugation::passage::{PassageError, run_passage};
@@ -105,7 +105,7 @@ fn flat_rail_gives_the_hertz_solution_of_the_grid() {
     };
     let mut hertz = solver(dx, 1e-3, 1.0);
     let mut flat = solver(dx, 1e-3, 1.0);
-    flat.set_surface(Some(Arc::new(RailSurface::line(0.0, 1e-3, &[0.0; 50], true)))).unwrap();
+    flat.set_surface(Some(RailContact::Profile(Arc::new(RailSurface::line(0.0, 1e-3, &[0.0; 50], true))))).unwrap();
     for step in 0..5 {
         let x = 0.013 + step as f64 * dx;
         let a = hertz.step(&StepInput { position: x, ..input }).unwrap();
@@ -123,7 +123,7 @@ fn small_wave_gives_westergaards_linear_pressure_perturbation() {
     let (dx, lambda, delta) = (1e-4, 1.5e-3, 5e-8);
     let mut flat = solver(dx, 2.5e-4, 1.0);
     let mut wavy = solver(dx, 2.5e-4, 1.0);
-    wavy.set_surface(Some(wave(delta, lambda))).unwrap();
+    wavy.set_surface(Some(RailContact::Profile(wave(delta, lambda)))).unwrap();
     let p_flat = flat.normal_solution(0.0, N).unwrap().pressure;
     let p_wavy = wavy.normal_solution(0.0, N).unwrap().pressure;
     let g = flat.grid().clone();
@@ -150,7 +150,7 @@ fn small_wave_gives_westergaards_linear_pressure_perturbation() {
 /// separate contact strips along the centre line, for a wave of amplitude
 /// `delta` with its trough at the patch centre.
 fn trough(s: &mut FixedGrid, delta: f64, lambda: f64) -> (bool, usize) {
-    s.set_surface(Some(wave(delta, lambda))).unwrap();
+    s.set_surface(Some(RailContact::Profile(wave(delta, lambda)))).unwrap();
     let p = s.normal_solution(0.5 * lambda, N).unwrap().pressure;
     let g = s.grid();
     let row = &p[(g.ny / 2) * g.nx..(g.ny / 2 + 1) * g.nx];
@@ -193,7 +193,7 @@ fn equivalent_roughness_of_a_small_wave_is_its_mean_over_the_patch_length() {
     let a = paper_shape(true).patch(N).unwrap().a;
     for lambda in [0.016, 0.024, 0.04, 0.1] {
         let mut s = solver(dx, 5e-4, 1.0);
-        s.set_surface(Some(wave(delta, lambda))).unwrap();
+        s.set_surface(Some(RailContact::Profile(wave(delta, lambda)))).unwrap();
         let n = (lambda / dx).round() as usize;
         let r = equivalent_roughness(&mut s, 0.0, dx, n, N).unwrap();
         let xs: Vec<f64> = (0..n).map(|j| j as f64 * dx).collect();
@@ -221,7 +221,7 @@ fn force_balance_and_complementarity_at_every_step_over_a_corrugated_rail() {
     let (dx, dy) = (4e-4, 1e-3);
     let mut s = sized(dx, dy, 2.0, 1.3 * N);
     let (lambda, delta) = (0.015, 5e-5);
-    s.set_surface(Some(wave(delta, lambda))).unwrap();
+    s.set_surface(Some(RailContact::Profile(wave(delta, lambda)))).unwrap();
     let shape = paper_shape(true);
     let g = s.grid().clone();
     let kernel = ToeplitzKernel::normal(&g, STEEL.shear_modulus(), STEEL.poisson_ratio);
@@ -292,4 +292,36 @@ fn wear_off_the_rail_grid_stops_the_passage() {
         run_passage(&d.passage, &d.shape, solver.as_mut(), dep.as_ref(), &narrow, false, &mut |_, _| {}).unwrap_err();
     assert!(matches!(e, PassageError::OffRail { step: 0, .. }), "{e}");
     assert!(e.to_string().contains("raise rail.half_width"), "{e}");
+}
+
+#[test]
+fn linear_contact_on_a_flat_rail_is_the_hertz_chain_bit_for_bit() {
+    // FASTSIM in a growth study without roughness: the linear profile
+    // contact sees a flat rail in the first passage and leaves the Hertz
+    // chain's wear bit for bit (later passages see the rounding of the
+    // uniform wear along the rail, which the two chains filter differently).
+    let dir = tempfile::tempdir().unwrap();
+    let run = |normal: &str| {
+        let set: Vec<String> = [
+            "contact.elements_x=8",
+            "contact.elements_y=8",
+            "rail.dx=5e-4",
+            "rail.dy=1e-3",
+            "passage.step_length=5e-4",
+            "roughness.kind=none",
+            "growth.passes=1",
+            "growth.contact_history=[]",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .chain([format!("contact.normal={normal}")])
+        .collect();
+        let r = load_str(include_str!("../configs/growth_fastsim.toml"), "flat", &set).unwrap();
+        let out = dir.path().join(format!("{normal}.h5"));
+        corrugation::run::run_scene(&r, &out, &mut |_| {}).unwrap();
+        corrugation::output::netcdf::read_f64(&out, "rail", "state").unwrap()
+    };
+    let (linear, hertz) = (run("linear"), run("hertz"));
+    assert!(linear.iter().zip(hertz.iter()).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert!(hertz.iter().any(|v| *v != 0.0), "the passages wear the rail");
 }

@@ -22,8 +22,8 @@ pub const DEFAULT_GRID_DY: f64 = 5e-4;
 /// the wheel's curvature.
 pub const DEFAULT_PROFILE_GRID_SCALE: f64 = 1.5;
 
-/// Default `contact.profile_from` at [`PROFILE_NOISE_ELEMENT`]: twice the
-/// profile contact's noise floor there. The floor is the corrugation
+/// Twice the nonlinear profile contact's noise floor at
+/// [`PROFILE_NOISE_ELEMENT`]. The floor is the corrugation
 /// amplitude whose wear harmonic the sub-element wandering of the patch
 /// over the grid drowns (the contact point moves by R dr/dX; elements enter
 /// and leave contact whole): about 2.5 um at 0.4 mm elements (60 mm
@@ -44,6 +44,11 @@ pub(super) struct ContactKeys {
     pub eps: Option<f64>,
     pub bound: Option<String>,
     pub solver: Option<String>,
+    /// `contact.normal` as read.
+    pub normal: Option<String>,
+    /// `contact.profile_grid_scale` (read for the nonlinear profile contact
+    /// on the fixed grid).
+    pub grid_scale: Option<f64>,
     /// `Some` for `grid = "fixed"`.
     pub fixed: Option<FixedKeys>,
 }
@@ -56,12 +61,6 @@ pub(super) struct FixedKeys {
     pub dy: Option<f64>,
     pub law: Option<String>,
     pub scheme: Option<String>,
-    /// `contact.normal` as read.
-    pub normal: Option<String>,
-    /// `contact.profile_grid_scale` (read for `normal = "profile"`).
-    pub grid_scale: Option<f64>,
-    /// `contact.profile_from` (m) as given (`Some(None)`: the default).
-    pub from: Option<Option<f64>>,
 }
 
 /// Reads `[contact]` from `root` into `resolved`.
@@ -94,29 +93,18 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
     let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
     let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
-    let normal = s.choice("normal", Some("hertz"), &["hertz", "profile", "auto"]);
+    let normal = s.choice("normal", Some("auto"), &["auto", "linear", "profile", "hertz"]);
     let profile = matches!(normal.as_deref(), Some("profile" | "auto"));
-    if profile && !fixed {
+    if normal.as_deref() == Some("profile") && !fixed && !auto {
         s.error(
             "normal",
-            format!(
-                "= \"{}\" solves the discrete normal problem on the rail profile, which needs contact.grid = \"fixed\"; \
-                 allowed with contact.grid = \"adapted\": hertz",
-                normal.as_deref().unwrap_or_default()
-            ),
+            "= \"profile\" solves the discrete (nonlinear) normal problem on the rail profile, which needs \
+             contact.grid = \"fixed\"; allowed with contact.grid = \"adapted\": auto, linear, hertz"
+                .into(),
         );
     }
-    let from_range = Range::OpenClosed(0.0, 1e-3);
-    let from = if normal.as_deref() == Some("auto") && fixed {
-        if s.has("profile_from") { s.f64("profile_from", None, from_range).map(Some) } else { Some(None) }
-    } else {
-        if s.has("profile_from") {
-            s.f64("profile_from", None, from_range);
-        }
-        Some(None)
-    };
     let length_range = Range::Closed(1.0, 4.0);
-    let grid_scale = if profile && fixed {
+    let grid_scale = if profile && (fixed || auto) {
         s.f64("profile_grid_scale", Some(DEFAULT_PROFILE_GRID_SCALE), length_range)
     } else {
         if s.has("profile_grid_scale") {
@@ -130,7 +118,7 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         let dy = s.f64("dy", Some(DEFAULT_GRID_DY), Range::OpenClosed(0.0, 0.01));
         let law = s.choice("friction_law", Some("regularised"), &["regularised", "coulomb"]);
         let scheme = s.choice("scheme", Some("second-order"), &["second-order", "first-order", "third-order"]);
-        Some(FixedKeys { dx, dx_given: given, dy, law, scheme, normal, grid_scale, from })
+        Some(FixedKeys { dx, dx_given: given, dy, law, scheme })
     } else {
         // The fixed grid's keys on the adapted mesh: checked, kept in the
         // resolved config, unused (so that `--set contact.grid=adapted`
@@ -149,7 +137,38 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         None
     };
     resolved.insert("contact".into(), Value::Table(s.finish()));
-    ContactKeys { model, nx, ny, tolerance, eps, bound, solver, fixed: fixed_keys }
+    ContactKeys { model, nx, ny, tolerance, eps, bound, solver, normal, grid_scale, fixed: fixed_keys }
+}
+
+/// The normal contact named by `contact.normal` (None when invalid), for a
+/// scene on `grid`.
+pub(super) fn normal_contact(
+    normal: Option<&str>,
+    grid_scale: Option<f64>,
+    grid: &ContactGrid,
+    errors: &mut Vec<ConfigError>,
+) -> Option<NormalContact> {
+    let grid_scale = match grid {
+        ContactGrid::Fixed(_) => grid_scale?,
+        ContactGrid::Adapted => 1.0,
+    };
+    let fixed = matches!(grid, ContactGrid::Fixed(_));
+    Some(match normal? {
+        "hertz" => NormalContact::Hertz,
+        "linear" if fixed => {
+            errors.push(ConfigError::new(
+                "contact.normal",
+                "= \"linear\" is the adapted mesh's first-order contact (the mesh moved with the contact); the fixed \
+                 grid moves the patch over its elements by the nonlinear normal problem itself: allowed with \
+                 contact.grid = \"fixed\": auto, profile, hertz"
+                    .into(),
+            ));
+            return None;
+        }
+        "linear" => NormalContact::Linear,
+        "profile" => NormalContact::Profile { grid_scale },
+        _ => NormalContact::Auto { grid_scale },
+    })
 }
 
 /// The step length of a fixed-grid passage: `passage.step_length` and
@@ -167,14 +186,6 @@ pub(super) fn reconcile_step(
         return Some(ContactGrid::Adapted);
     };
     let (dx, dy, law, scheme) = (f.dx?, f.dy?, f.law.as_deref()?, f.scheme.as_deref()?);
-    let normal = match f.normal.as_deref()? {
-        "profile" => NormalContact::Profile { grid_scale: f.grid_scale? },
-        "auto" => NormalContact::Auto {
-            grid_scale: f.grid_scale?,
-            amplitude: f.from?.unwrap_or(PROFILE_NOISE_AMPLITUDE * dx / PROFILE_NOISE_ELEMENT),
-        },
-        _ => NormalContact::Hertz,
-    };
     let dx = match (f.dx_given, step_given, step_length) {
         (true, true, Some(h)) if (h - dx).abs() > 1e-9 * dx => {
             errors.push(ConfigError::new(
@@ -203,7 +214,6 @@ pub(super) fn reconcile_step(
             "third-order" => GridScheme::ThirdOrder,
             _ => GridScheme::SecondOrder,
         },
-        normal,
     }))
 }
 

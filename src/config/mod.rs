@@ -214,7 +214,8 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         ContactGrid::Fixed(f) => Some(f.dx),
         ContactGrid::Adapted => step_length,
     };
-    let contact::ContactKeys { model, nx, ny, tolerance, eps, bound, solver, .. } = contact;
+    let contact::ContactKeys { model, nx, ny, tolerance, eps, bound, solver, normal: normal_key, grid_scale, .. } =
+        contact;
     let (Some(model), Some(nx), Some(ny), Some(eps), Some(bound), Some(solver), Some(tolerance)) =
         (model, nx, ny, eps, bound, solver, tolerance)
     else {
@@ -307,17 +308,6 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
                     dy: FIXED_ASPECT * dx,
                     friction_law: FrictionLaw::Regularised,
                     scheme: GridScheme::SecondOrder,
-                    // A growth study with track dynamics switches to the
-                    // profile in the normal contact once its corrugation
-                    // leaves the Hertz region (and the profile contact
-                    // resolves it on this grid).
-                    normal: match choice.hertz_difference {
-                        Some(_) => crate::params::NormalContact::Auto {
-                            grid_scale: contact::DEFAULT_PROFILE_GRID_SCALE,
-                            amplitude: contact::PROFILE_NOISE_AMPLITUDE * dx / contact::PROFILE_NOISE_ELEMENT,
-                        },
-                        None => crate::params::NormalContact::Hertz,
-                    },
                 });
                 step_length = dx;
                 nx
@@ -327,6 +317,9 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         (chosen.model, mesh, mesh, Some(choice))
     } else {
         (ContactModelKind::ALL.into_iter().find(|m| m.name() == model).expect("validated choice"), nx, ny, None)
+    };
+    let Some(normal_contact) = contact::normal_contact(normal_key.as_deref(), grid_scale, &contact_grid, errors) else {
+        return (None, resolved);
     };
     let scene = Scene {
         material,
@@ -344,6 +337,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             solver: step_solver,
             auto,
             grid: contact_grid,
+            normal: normal_contact,
         },
         k_over_h,
         wear_substeps: substeps,

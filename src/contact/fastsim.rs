@@ -26,8 +26,9 @@
 //! Brent's method on a bracket grown from the linear-theory estimate
 //! `xi = -F_x / (G a b C11)`.
 
+use super::linear::{LinearPatch, MeshResponse};
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
-use super::{ContactError, Creepage, Elements, PatchSolution, StepInput, TangentialSolver};
+use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::creep_coefficients::CreepCoefficients;
 use crate::hertz::HertzPatch;
 use crate::numerics::{Tolerance, brent};
@@ -40,6 +41,10 @@ pub struct Fastsim {
     shape: PressureShape,
     coefficients: CreepCoefficients,
     shear_modulus: f64,
+    /// The linear normal response on the mesh (the linear profile contact).
+    linear: Option<MeshResponse>,
+    /// The rail surface in the normal contact.
+    rail: Option<RailContact>,
 }
 
 /// The three flexibilities (m/Pa).
@@ -68,7 +73,16 @@ impl Fastsim {
         coefficients: CreepCoefficients,
         shear_modulus: f64,
     ) -> Self {
-        Fastsim { mesh: EllipseMesh::new(nx, ny), shape, coefficients, shear_modulus }
+        Fastsim { mesh: EllipseMesh::new(nx, ny), shape, coefficients, shear_modulus, linear: None, rail: None }
+    }
+
+    /// Lets the model take the rail surface into its traction bound by the
+    /// linear profile contact ([`super::linear`]): the bound is `mu (p + dp)`
+    /// with `p` the model's pressure shape and `dp` the exact elastic
+    /// response to the surface. `shape` is the Hertz contact's.
+    pub fn with_linear_contact(mut self, shape: &crate::hertz::HertzShape) -> Self {
+        self.linear = Some(MeshResponse::new(&self.mesh, shape));
+        self
     }
 
     /// Flexibilities for the patch semi-axes (m).
@@ -82,8 +96,38 @@ impl Fastsim {
         }
     }
 
-    /// Solves the steady problem with all creepages prescribed.
+    /// Solves the steady problem with all creepages prescribed (the
+    /// model's pressure shape on the Hertz patch).
     pub fn solve_creepage(&self, patch: &HertzPatch, creepage: Creepage, friction: f64, speed: f64) -> PatchSolution {
+        let pressure = pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b);
+        self.solve_with_pressure(patch, pressure, creepage, friction, speed)
+    }
+
+    /// The patch and pressure of a step: the Hertz patch and the shape's
+    /// pressure, or with the rail surface in the linear profile contact the
+    /// patch moved with it and its first-order pressure
+    /// ([`MeshResponse::linear_patch`]).
+    fn step_patch(&self, input: &StepInput) -> (HertzPatch, Vec<f64>, Option<LinearPatch>) {
+        let patch = input.patch;
+        if let (Some(response), Some(RailContact::Linear(surface))) = (&self.linear, &self.rail) {
+            let lp = response.linear_patch(surface, input.position, &patch, self.shape, &self.mesh, false);
+            let moved = HertzPatch { a: lp.a, b: lp.b, ..patch };
+            return (moved, lp.pressure.clone(), Some(lp));
+        }
+        (patch, pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b), None)
+    }
+
+    /// Solves the steady problem with all creepages prescribed and the
+    /// pressure `pressure` (Pa, at the element centres) as the traction
+    /// bound's.
+    fn solve_with_pressure(
+        &self,
+        patch: &HertzPatch,
+        pressure: Vec<f64>,
+        creepage: Creepage,
+        friction: f64,
+        speed: f64,
+    ) -> PatchSolution {
         let m = &self.mesh;
         let (a, b) = (patch.a, patch.b);
         let flex = self.flexibilities(a, b);
@@ -94,7 +138,6 @@ impl Fastsim {
         } else {
             flex.l1
         };
-        let pressure = pressure_on_mesh(m, self.shape, patch.normal_force, a, b);
         let n = m.len();
         let mut sol = PatchSolution {
             creepage,
@@ -145,12 +188,19 @@ impl Fastsim {
     /// spin prescribed), finding xi_x.
     pub fn solve_force(&self, input: &StepInput) -> Result<PatchSolution, ContactError> {
         input.check_friction_limit()?;
-        let patch = &input.patch;
+        let (moved, pressure, linear) = self.step_patch(input);
+        let patch = &moved;
         let limit = input.friction * patch.normal_force;
         let force = input.force_x;
         let at = |xi: f64| {
             let cr = Creepage { x: xi, y: input.creepage_y, spin: input.spin };
-            self.solve_creepage(patch, cr, input.friction, input.speed)
+            let mut s = self.solve_with_pressure(patch, pressure.clone(), cr, input.friction, input.speed);
+            if let Some(lp) = &linear {
+                s.clipped = lp.clipped;
+                s.offset = lp.offset;
+                s.semi_axes = Some((lp.a, lp.b));
+            }
+            s
         };
         let residual = |xi: f64| (at(xi).force_x - force) / limit;
         let g = self.shear_modulus;
@@ -187,5 +237,20 @@ impl TangentialSolver for Fastsim {
 
     fn elements(&self) -> Elements {
         Elements::Adapted(self.mesh.clone())
+    }
+
+    fn linear_resolution(&self, a: f64) -> Option<f64> {
+        self.linear.as_ref().map(|r| r.resolution(a))
+    }
+
+    fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), ContactError> {
+        match surface {
+            Some(RailContact::Linear(_)) if self.linear.is_none() => Err(ContactError::NoSurface),
+            Some(RailContact::Profile(_)) => Err(ContactError::NoSurface),
+            s => {
+                self.rail = s;
+                Ok(())
+            }
+        }
     }
 }

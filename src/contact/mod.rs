@@ -12,6 +12,7 @@
 pub mod fastsim;
 pub mod grid;
 pub mod influence;
+pub mod linear;
 pub mod mesh;
 pub mod transient;
 
@@ -124,6 +125,17 @@ pub struct PatchSolution {
     pub stick: Vec<bool>,
     /// Newton-Raphson iterations of the solve (0 for FASTSIM).
     pub iterations: usize,
+    /// Elements where the linear contact's pressure `p_H + dp` came out
+    /// negative and was set to zero (the linearisation beyond its range;
+    /// 0 for the other normal contacts).
+    pub clipped: usize,
+    /// Offset of the patch centre from the wheel's `X_c` along x (m): the
+    /// adapted mesh moved with the contact point by the linear profile
+    /// contact (0 otherwise; the fixed grid's patch moves on the grid).
+    pub offset: f64,
+    /// The semi-axes (a, b) of the adapted mesh when the linear profile
+    /// contact moved its edges (m); `None`: the step's Hertz patch.
+    pub semi_axes: Option<(f64, f64)>,
 }
 
 impl PatchSolution {
@@ -146,7 +158,7 @@ pub enum ContactError {
     },
     /// The model takes the Hertz contact only, not a rail surface.
     #[error(
-        "this contact model solves the Hertz normal contact and cannot take the rail profile (contact.normal = \"profile\" needs contact.grid = \"fixed\")"
+        "this contact model cannot take the rail profile this way (contact.normal = \"profile\" needs contact.grid = \"fixed\")"
     )]
     NoSurface,
     /// The creepage search did not converge.
@@ -157,6 +169,28 @@ pub enum ContactError {
         /// What went wrong.
         reason: String,
     },
+}
+
+/// How the rail surface under the patch enters the normal problem.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RailContact {
+    /// Linearised about the Hertz contact of the step: `p = p_H + dp`, with
+    /// `dp` the normal problem's linear response to the surface on the
+    /// Hertz contact area at the step's normal force ([`linear`]). Every
+    /// model takes it.
+    Linear(Arc<RailSurface>),
+    /// The full (nonlinear) normal problem of the gap less the surface: the
+    /// fixed grid only.
+    Profile(Arc<RailSurface>),
+}
+
+impl RailContact {
+    /// The surface.
+    pub fn surface(&self) -> &Arc<RailSurface> {
+        match self {
+            RailContact::Linear(s) | RailContact::Profile(s) => s,
+        }
+    }
 }
 
 /// A tangential contact model advanced step by step along a passage.
@@ -172,13 +206,20 @@ pub trait TangentialSolver {
     /// The elements the fields are given on.
     fn elements(&self) -> Elements;
     /// Puts the rail surface into the normal problem of the following steps
-    /// (`None`: the Hertz contact of the curvatures). Models that solve the
-    /// Hertz problem only refuse a surface.
-    fn set_surface(&mut self, surface: Option<Arc<RailSurface>>) -> Result<(), ContactError> {
+    /// (`None`: the Hertz contact of the curvatures). Models that cannot
+    /// take it as asked refuse.
+    fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), ContactError> {
         match surface {
             None => Ok(()),
             Some(_) => Err(ContactError::NoSurface),
         }
+    }
+    /// The shortest wavelength (m) of the rail surface the model's linear
+    /// profile contact resolves on a patch of semi-axis `a` (m) along the
+    /// rail: eight elements of its normal mesh. `None`: no linear contact.
+    fn linear_resolution(&self, a: f64) -> Option<f64> {
+        let _ = a;
+        None
     }
     /// The rigid approach (m) of wheel and rail that holds the normal force
     /// `force` (N) with the patch centre at `position` (m) on the surface

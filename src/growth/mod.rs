@@ -18,8 +18,8 @@ pub mod spectrum;
 pub mod stop;
 pub mod traffic;
 
-use crate::contact::TangentialSolver;
 use crate::contact::grid::RailSurface;
+use crate::contact::{RailContact, TangentialSolver};
 use crate::dynamics::TrackDynamics;
 use crate::hertz::HertzShape;
 use crate::metrics::centre_row;
@@ -94,6 +94,49 @@ pub fn equivalent_roughness(
     Ok(approach.iter().map(|d| mean - d).collect())
 }
 
+/// The equivalent roughness of the linear profile contact: the profile
+/// averaged over the Hertz ellipse `a x b` (m) of the mean load with the
+/// weight `dp/dN`, the rigid flat punch's pressure per unit load
+/// `1 / (2 pi a b sqrt(1 - x^2/a^2 - y^2/b^2))`, less its mean
+/// (the linear limit of [`equivalent_roughness`], derived there). Per
+/// harmonic `R_k(y) exp(i k X)` of the rows the average along x over the
+/// chord `2 a c`, `c = sqrt(1 - y^2/b^2)`, is `J0(k a c) / (2 b)` per unit
+/// width, so
+///
+/// ```text
+/// r_eq(X) = sum_k exp(i k X) int_{-b}^{b} J0(k a sqrt(1 - y^2/b^2)) R_k(y) dy / (2 b),
+/// ```
+///
+/// which for a profile uniform across the rail is `sin(k a) / (k a)` per
+/// harmonic (the identity `int_0^1 J0(z sqrt(1 - t^2)) dt = sin z / z`).
+/// Rows enter with the part of their cell inside `|y| < b`.
+pub fn linear_roughness(profile: &Array2<f64>, grid: &RailGrid, a: f64, b: f64) -> Vec<f64> {
+    use num_complex::Complex64;
+    use rustfft::FftPlanner;
+    let n = grid.nx;
+    let mut planner = FftPlanner::new();
+    let (fwd, inv) = (planner.plan_fft_forward(n), planner.plan_fft_inverse(n));
+    let mut total = vec![Complex64::default(); n];
+    for j in 0..grid.ny {
+        let y = grid.y(j);
+        let width = ((y + 0.5 * grid.dy).min(b) - (y - 0.5 * grid.dy).max(-b)).max(0.0);
+        if width == 0.0 {
+            continue;
+        }
+        let c = (1.0 - (y / b).powi(2)).max(0.0).sqrt();
+        let mut row: Vec<Complex64> = profile.row(j).iter().map(|v| Complex64::new(*v, 0.0)).collect();
+        fwd.process(&mut row);
+        for (k, v) in row.iter().enumerate().skip(1) {
+            // Wavenumber of bin k (the upper half are the negative ones).
+            let m = if k <= n / 2 { k as f64 } else { (n - k) as f64 };
+            let wave = 2.0 * std::f64::consts::PI * m / (n as f64 * grid.dx);
+            total[k] += v * (libm::j0(wave * a * c) * width / (2.0 * b));
+        }
+    }
+    inv.process(&mut total);
+    total.iter().map(|v| v.re / n as f64).collect()
+}
+
 /// What one growth passage produced.
 #[derive(Debug, Clone)]
 pub struct GrowthPass {
@@ -106,7 +149,20 @@ pub struct GrowthPass {
     /// Steps inside the stretch where the wheel left the rail (N <= 0):
     /// the linear track model is not valid there.
     pub contact_loss_steps: usize,
+    /// Steps at which the linear profile contact's pressure went negative
+    /// somewhere (set to zero there): the linearisation beyond its range.
+    pub clipped_steps: usize,
+    /// Whether the dynamics saw the linear contact's equivalent roughness.
+    pub linear_filter: bool,
 }
+
+/// The largest curvature of the corrugation, relative to the wheel's
+/// (`R max |r''|`), up to which `contact.normal = "auto"` on the fixed grid
+/// drives the dynamics with the linear contact's equivalent roughness
+/// ([`linear_roughness`]) instead of the nonlinear one's normal solves:
+/// the two agree within 1 % of the profile's amplitude there (the patch
+/// length changes by about a third of it, README).
+pub const LINEAR_FILTER_CURVATURE: f64 = 0.1;
 
 /// Runs one passage over the periodic stretch with the current `profile`:
 /// the dynamic force of the profile as the contact sees it (if `dynamics`)
@@ -116,9 +172,12 @@ pub struct GrowthPass {
 /// What the contact sees (`normal`): with [`NormalContact::Hertz`] the
 /// profile weighted across the mean patch width by the Hertz line load
 /// ([`contact_filtered_line`]), the contact itself Hertzian; with
-/// [`NormalContact::Profile`] the corrugation is in the normal problem of
-/// every step ([`RailSurface::corrugation`]) and the dynamics see its
-/// [`equivalent_roughness`] at the mean load.
+/// [`NormalContact::Linear`] the corrugation ([`RailSurface::corrugation`])
+/// in the linear profile contact of every step and the dynamics see its
+/// [`linear_roughness`]; with [`NormalContact::Profile`] the corrugation is
+/// in the nonlinear normal problem of every step and the dynamics see its
+/// [`equivalent_roughness`] at the mean load. `Auto` must have been
+/// resolved to one of them by the caller.
 #[allow(clippy::too_many_arguments)]
 pub fn growth_passage(
     spec: &PassageSpec,
@@ -134,16 +193,44 @@ pub fn growth_passage(
 ) -> Result<GrowthPass, PassageError> {
     let length = grid.nx as f64 * grid.dx;
     let mut spec = spec.clone();
+    let mut linear_filter = matches!(normal, NormalContact::Linear);
     let seen = match normal {
         NormalContact::Hertz => {
             let b_mean = shape.patch(spec.loads.normal_force).map(|p| p.b).unwrap_or(grid.half_width);
             contact_filtered_line(profile, grid, b_mean)
         }
-        NormalContact::Profile { .. } | NormalContact::Auto { .. } => {
-            let surface = Arc::new(RailSurface::corrugation(profile, grid));
+        NormalContact::Linear => {
+            // The harmonics shorter than the linear contact resolves stay
+            // out of it: aliased on its normal mesh they would drive wear
+            // at the mesh's scale (measured: a 1.5-1.8 mm pattern growing
+            // out of rounding on growth_fastsim.toml's 40 x 40 mesh).
+            let a = shape.patch(spec.loads.normal_force).map(|p| p.a).unwrap_or(0.0);
+            let cut = solver.linear_resolution(a).unwrap_or(0.0);
+            let surface = RailContact::Linear(Arc::new(RailSurface::corrugation_above(profile, grid, cut)));
             solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
             spec.surface = Some(surface);
-            if dynamics.is_some() {
+            match shape.patch(spec.loads.normal_force) {
+                Ok(p) if dynamics.is_some() => linear_roughness(profile, grid, p.a, p.b),
+                _ => vec![0.0; grid.nx],
+            }
+        }
+        NormalContact::Profile { .. } | NormalContact::Auto { .. } => {
+            let corrugation = RailSurface::corrugation(profile, grid);
+            // Auto: while the corrugation's curvature is small against the
+            // wheel's the nonlinear and the linear equivalent roughness agree
+            // (the linear one needs no normal solves).
+            linear_filter = matches!(normal, NormalContact::Auto { .. })
+                && corrugation.max_curvature().max(-corrugation.min_curvature())
+                    < LINEAR_FILTER_CURVATURE * 2.0 * shape.curvatures().a;
+            let surface = RailContact::Profile(Arc::new(corrugation));
+            solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
+            spec.surface = Some(surface);
+            if linear_filter {
+                match shape.patch(spec.loads.normal_force) {
+                    Ok(p) if dynamics.is_some() => linear_roughness(profile, grid, p.a, p.b),
+                    _ => vec![0.0; grid.nx],
+                }
+            } else if dynamics.is_some() {
                 let n = (length / spec.step_length).round().max(1.0) as usize;
                 let step = length / n as f64;
                 let r = equivalent_roughness(solver, grid.x_min, step, n, spec.loads.normal_force)?;
@@ -173,12 +260,46 @@ pub fn growth_passage(
     let h = &passage.history;
     let window = grid.x_min..grid.x_min + length;
     let contact_loss_steps = h.x_c.iter().zip(&h.in_contact).filter(|(x, c)| window.contains(*x) && **c == 0.0).count();
-    Ok(GrowthPass { passage, wear, dynamic_force, contact_loss_steps })
+    let clipped_steps = passage.clipped_steps;
+    Ok(GrowthPass { passage, wear, dynamic_force, contact_loss_steps, clipped_steps, linear_filter })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn linear_roughness_is_the_flat_punch_average_of_the_profile() {
+        // Uniform across the rail: sin(k a) / (k a) per harmonic (closed
+        // form). Varying across: against a direct quadrature of
+        // int r dp/dN dA over the ellipse (rho = sin phi, midpoint rules).
+        let (a, b) = (6e-3, 10e-3);
+        let grid = RailGrid { x_min: 0.0, dx: 2e-4, nx: 600, half_width: 0.012, dy: 1e-4, ny: 241 };
+        for wavelength in [0.015, 0.024, 0.06] {
+            let k = 2.0 * std::f64::consts::PI / wavelength;
+            let uniform = Array2::from_shape_fn((grid.ny, grid.nx), |(_, i)| (k * grid.x(i)).cos());
+            let eq = linear_roughness(&uniform, &grid, a, b);
+            let expected = (k * a).sin() / (k * a);
+            // The rows' cells resolve the weight across to O(dy^1.5).
+            assert!((eq[0] - expected).abs() < 2e-3, "{wavelength}: {} vs {expected}", eq[0]);
+            let shaped = |x: f64, y: f64| (k * x).cos() * (1.0 + 3.0 * (y / b).powi(2));
+            let varying = Array2::from_shape_fn((grid.ny, grid.nx), |(j, i)| shaped(grid.x(i), grid.y(j)));
+            let eq = linear_roughness(&varying, &grid, a, b);
+            let (nphi, ntheta) = (400, 400);
+            let mut direct = 0.0;
+            for p in 0..nphi {
+                let phi = (p as f64 + 0.5) * 0.5 * std::f64::consts::PI / nphi as f64;
+                for t in 0..ntheta {
+                    let theta = (t as f64 + 0.5) * 2.0 * std::f64::consts::PI / ntheta as f64;
+                    let (x, y) = (a * phi.sin() * theta.cos(), b * phi.sin() * theta.sin());
+                    direct += phi.sin() * shaped(x, y);
+                }
+            }
+            direct *= 0.5 * std::f64::consts::PI / nphi as f64 / ntheta as f64;
+            // (The stretch holds whole wavelengths: the profile's mean is 0.)
+            assert!((eq[0] - direct).abs() < 5e-3 * direct.abs(), "{} vs {direct}", eq[0]);
+        }
+    }
 
     #[test]
     fn filtered_line_is_the_line_load_weighted_mean_across_the_patch() {

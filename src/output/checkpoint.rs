@@ -66,6 +66,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         Err(_) => Ok(ndarray::Array1::zeros(done)),
     };
     let (loss, profile) = (optional("contact_loss_steps")?, optional("profile_contact")?);
+    let clipped = optional("clipped_steps")?;
     // Files of a study without classes, or written before the column existed.
     let class = match read_i64(path, "passes", "traffic_class") {
         Ok(c) => {
@@ -94,6 +95,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             update_ratio: ratio[k],
             contact_loss_steps: loss[k],
             profile_contact: profile[k],
+            clipped_steps: clipped[k],
             traffic_class: class[k],
             spectrum: spectrum.row(k).to_vec(),
             filtered_spectrum: filtered.row(k).to_vec(),

@@ -39,8 +39,12 @@ pub struct PassRow {
     pub update_ratio: f64,
     /// Steps of the stretch where the wheel left the rail (N <= 0) (1).
     pub contact_loss_steps: f64,
-    /// 1 when the passage's normal contact took the profile, 0 for Hertz.
+    /// The passage's normal contact: 0 Hertz, 1 the nonlinear profile
+    /// contact, 2 the linear profile contact.
     pub profile_contact: f64,
+    /// Steps at which the linear profile contact set a negative pressure to
+    /// zero (1).
+    pub clipped_steps: f64,
     /// Index of the passage's traffic class (0 without a mix).
     pub traffic_class: usize,
     /// Amplitude spectrum of the centre-line profile after the passage (m),
@@ -209,7 +213,7 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64], classes: &[T
     let idx: Vec<i64> = rows.iter().map(|r| r.index).collect();
     g.coord_i64("pass", &idx, "1", "simulated passage index", true)?;
     let col = |f: fn(&PassRow) -> f64| -> Array1<f64> { rows.iter().map(f).collect() };
-    let vars: [(&str, Array1<f64>, &str, &str); 8] = [
+    let vars: [(&str, Array1<f64>, &str, &str); 9] = [
         ("traffic", col(|r| r.traffic), "1", "real wheel passages represented"),
         ("traffic_scale", col(|r| r.traffic_scale), "1", "real passages per simulated passage"),
         ("rms_corrugation", col(|r| r.rms_corrugation), "m", "rms of the centre-line rail profile minus its mean"),
@@ -236,7 +240,13 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64], classes: &[T
             "profile_contact",
             col(|r| r.profile_contact),
             "1",
-            "1: the rail profile was in the normal contact of the passage; 0: the Hertz contact",
+            "normal contact of the passage: 0 Hertz, 1 the nonlinear profile contact, 2 the linear profile contact",
+        ),
+        (
+            "clipped_steps",
+            col(|r| r.clipped_steps),
+            "1",
+            "steps at which the linear profile contact's pressure went negative (set to zero: beyond its range)",
         ),
     ];
     for (name, v, units, long_name) in vars {

@@ -78,17 +78,21 @@ pub fn derive(scene: &Scene) -> Derived {
 /// The tangential solver a scene asks for.
 pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolver> {
     let c = &scene.contact;
+    // The adapted mesh's linear profile contact: its solution operator, for
+    // the growth studies that may take it.
+    let linear = scene.growth.is_some() && matches!(c.normal, NormalContact::Linear | NormalContact::Auto { .. });
     match c.model {
         ContactModelKind::Fastsim => {
             let coefficients =
                 creep_coefficients(shape.aspect(), scene.material.elastic.poisson_ratio).expect("validated aspect");
-            Box::new(Fastsim::new(
+            let f = Fastsim::new(
                 c.elements_x,
                 c.elements_y,
                 c.fastsim_bound,
                 coefficients,
                 scene.material.elastic.shear_modulus(),
-            ))
+            );
+            Box::new(if linear { f.with_linear_contact(shape) } else { f })
         }
         ContactModelKind::ExactTransient => {
             let el = scene.material.elastic;
@@ -97,10 +101,9 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
             }
             let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
             let exact = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
-            Box::new(
-                Transient::new(mesh, ElasticModel::Exact(Box::new(exact)), PressureShape::Hertz, c.regularisation)
-                    .with_solver(c.solver),
-            )
+            let t = Transient::new(mesh, ElasticModel::Exact(Box::new(exact)), PressureShape::Hertz, c.regularisation)
+                .with_solver(c.solver);
+            Box::new(if linear { t.with_linear_contact(shape) } else { t })
         }
         ContactModelKind::SimplifiedTransient => {
             let el = scene.material.elastic;
@@ -111,7 +114,8 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
                 l2_unit: 8.0 / (3.0 * coefficients.c22 * g),
             };
             let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
-            Box::new(Transient::new(mesh, ElasticModel::Winkler(winkler), c.fastsim_bound, c.regularisation))
+            let t = Transient::new(mesh, ElasticModel::Winkler(winkler), c.fastsim_bound, c.regularisation);
+            Box::new(if linear { t.with_linear_contact(shape) } else { t })
         }
     }
 }
@@ -129,7 +133,7 @@ pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::Fixe
     let largest = shape.patch(fixed_grid_load(scene)).expect("validated loads keep N > 0");
     let rail = if scene.growth.is_some() { periodic_grid(scene) } else { derive_grid(scene) };
     // The profile's troughs lengthen the patch over them, its crests widen it.
-    let scale = f.normal.grid_scale();
+    let scale = scene.contact.normal.grid_scale();
     FixedGridSpec {
         curvatures: scene.geometry.curvatures(),
         elastic: scene.material.elastic,
@@ -151,10 +155,7 @@ pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::Fixe
 
 /// What the normal problem of a scene sees of the rail.
 pub fn normal_contact(scene: &Scene) -> NormalContact {
-    match scene.contact.grid {
-        ContactGrid::Fixed(f) => f.normal,
-        ContactGrid::Adapted => NormalContact::Hertz,
-    }
+    scene.contact.normal
 }
 
 /// The normal force (N) whose Hertz patch the fixed grid is sized for.

@@ -328,6 +328,7 @@ fn continue_run(
         update_bound: scaling.max_update_ratio(),
         stop_reason: None,
     };
+    let fixed_grid = matches!(scene.contact.grid, crate::params::ContactGrid::Fixed(_));
     let mut hertz_check = HertzCheck {
         active: normal_contact(scene) == NormalContact::Hertz && has_dynamics,
         fixed: matches!(scene.contact.grid, crate::params::ContactGrid::Fixed(_)),
@@ -350,33 +351,18 @@ fn continue_run(
         };
         let keep_history = growth.is_none_or(|g| g.contact_history.contains(&pass));
         let record_fields = keep_history && scene.output.store_fields;
-        // What the normal contact of this passage sees of the rail.
+        // What the normal contact of this passage sees of the rail: the
+        // consistent chain's is the linear contact on the adapted mesh and
+        // the nonlinear profile contact on the fixed grid.
         let normal = match normal_contact(scene) {
-            NormalContact::Auto { grid_scale, amplitude } => {
-                // Once taken, the profile stays: the corrugation it wears
-                // down below `from` is still one the Hertz contact gets
-                // wrong (without this, a corrugation that the profile
-                // contact wears and the Hertz contact grows would switch
-                // the contact every passage).
-                let before = state.rows.last().is_some_and(|r| r.profile_contact > 0.0);
-                let spectrum = amplitudes(&filtered(&state.profile));
-                let profile = before || choose_profile(&waves, &spectrum, amplitude);
-                if profile != before {
-                    let which = if profile { "profile" } else { "Hertz" };
-                    progress(Event::Note {
-                        pass,
-                        message: format!("contact.normal = \"auto\": the {which} normal contact from this passage on"),
-                    });
-                }
-                if profile { NormalContact::Profile { grid_scale } } else { NormalContact::Hertz }
-            }
-            fixed => fixed,
+            NormalContact::Auto { .. } if !fixed_grid => NormalContact::Linear,
+            normal => normal,
         };
         let clock = cpu_time::ProcessTime::now();
         let total_steps = (passes - first) * steps;
         let mut report =
             |done: usize, _: usize| progress(Event::Steps { done: (pass - first) * steps + done, total: total_steps });
-        let mut loss = 0;
+        let (mut loss, mut clipped, mut linear_filter) = (0, 0, false);
         let (wear, history) = match growth {
             None => {
                 let r = run_passage(
@@ -418,6 +404,22 @@ fn continue_run(
                     g => g.map_err(|source| RunError::Passage { pass, source })?,
                 };
                 loss = g.contact_loss_steps;
+                clipped = g.clipped_steps;
+                linear_filter = g.linear_filter;
+                if clipped > 0 {
+                    progress(Event::Warning {
+                        pass,
+                        message: format!(
+                            "the linear profile contact's patch opened inside (the pressure vanished well inside \
+                             the patch) at {clipped} steps: the corrugation is beyond the linearisation's range{}",
+                            if fixed_grid {
+                                ""
+                            } else {
+                                " (the nonlinear profile contact needs contact.grid = \"fixed\")"
+                            }
+                        ),
+                    });
+                }
                 if g.contact_loss_steps > 0 {
                     progress(Event::Warning {
                         pass,
@@ -462,7 +464,13 @@ fn continue_run(
             update_ratio: m * rho,
             traffic_class: class,
             contact_loss_steps: loss as f64,
-            profile_contact: if matches!(normal, NormalContact::Profile { .. }) { 1.0 } else { 0.0 },
+            profile_contact: match normal {
+                NormalContact::Hertz => 0.0,
+                NormalContact::Linear => PROFILE_LINEAR,
+                _ if linear_filter => PROFILE_LINEAR_FILTER,
+                _ => PROFILE_NONLINEAR,
+            },
+            clipped_steps: clipped as f64,
             // Below 1e-12 m (1 pm) an amplitude is numerical noise.
             growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
             spectrum,
@@ -526,18 +534,14 @@ fn stop_reason(growth: Option<&crate::params::GrowthParams>, rows: &[PassRow]) -
     crate::growth::stop::saturation(&rms, &traffic, last.contact_loss_steps, rate)
 }
 
-/// Whether `contact.normal = "auto"` takes the profile into the normal
-/// contact for a corrugation of spectrum `amplitudes` (m) at `wavelengths`
-/// (m): its dominant harmonic at least `from` (m, the profile contact's
-/// usable amplitude on the grid) and outside the Hertz region.
-fn choose_profile(wavelengths: &[f64], amplitudes: &[f64], from: f64) -> bool {
-    let Some((i, a)) = amplitudes.iter().copied().enumerate().max_by(|p, q| p.1.total_cmp(&q.1)) else {
-        return false;
-    };
-    a >= from
-        && !crate::model_choice::hertz_validity::HertzValidity::builtin()
-            .hertz_is_valid(wavelengths.get(i).copied().unwrap_or(f64::INFINITY), a)
-}
+/// `passes/profile_contact` of a passage in the nonlinear profile contact
+/// with the dynamics of its nonlinear equivalent roughness.
+const PROFILE_NONLINEAR: f64 = 1.0;
+/// `passes/profile_contact` of a passage in the linear profile contact.
+const PROFILE_LINEAR: f64 = 2.0;
+/// `passes/profile_contact` of a passage in the nonlinear profile contact
+/// with the dynamics of the linear contact's equivalent roughness.
+const PROFILE_LINEAR_FILTER: f64 = 3.0;
 
 /// Whether a passage that failed with `e` ends a study that stops at
 /// saturation: the prescribed longitudinal force reached the friction limit
@@ -549,20 +553,4 @@ fn sliding_stops(growth: Option<&crate::params::GrowthParams>, e: &PassageError)
             e,
             PassageError::Tangential { source: crate::contact::ContactError::ForceExceedsFriction { .. }, .. }
         )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::choose_profile;
-
-    #[test]
-    fn auto_normal_contact_takes_the_profile_above_its_floor_outside_the_hertz_region() {
-        let waves = [0.12, 0.06, 0.04, 0.03, 0.024, 0.02];
-        // Below the usable amplitude: Hertz, wherever the map puts it.
-        assert!(!choose_profile(&waves, &[0.0, 0.0, 0.0, 0.0, 0.0, 1e-6], 5e-6));
-        // 10 um at 20 mm: outside the Hertz region (the map: > 100 %).
-        assert!(choose_profile(&waves, &[0.0, 1e-6, 0.0, 0.0, 0.0, 1e-5], 5e-6));
-        // Nothing: Hertz.
-        assert!(!choose_profile(&[], &[], 5e-6));
-    }
 }

@@ -24,14 +24,12 @@
 use super::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use super::coupling::{Coupling, FoldedKernel};
 use super::normal::{self, NormalError};
-use super::surface::RailSurface;
 use super::tangential::{self, ContactSet, GridStep, Law};
 use super::{Alignment, PotentialGrid};
 use crate::contact::transient::{GS_MAX_SWEEPS, STICK_SLIP_FACTOR, friction};
-use crate::contact::{ContactError, Creepage, Elements, PatchSolution, StepInput, TangentialSolver};
+use crate::contact::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::hertz::{Curvatures, Elastic};
 use std::borrow::Cow;
-use std::sync::Arc;
 
 /// Default tolerance on the kinematic residual of a step, in units of eps:
 /// 1e-7 m/s at eps = 1e-5 m/s. Tighter tolerances change the steady
@@ -181,7 +179,7 @@ pub struct FixedGrid {
     /// The folded coupling of a grid symmetric about y = 0.
     folded: Option<FoldedKernel>,
     /// The rail surface in the gap (`None`: the quadratic gap alone).
-    surface: Option<Arc<RailSurface>>,
+    surface: Option<RailContact>,
     /// Warm start of [`FixedGrid::approach`]'s normal solves (Pa).
     approach_start: Option<Vec<f64>>,
 }
@@ -244,7 +242,7 @@ impl FixedGrid {
     /// the quadratic gap less the rail surface's height (module
     /// [`super::surface`]).
     fn gap_at(&self, position: f64) -> Cow<'_, [f64]> {
-        let Some(surface) = &self.surface else {
+        let Some(RailContact::Profile(surface)) = &self.surface else {
             return Cow::Borrowed(&self.gap);
         };
         let (nx, g) = (self.grid.nx, &self.grid);
@@ -436,7 +434,7 @@ impl FixedGrid {
                  the patch is larger than the grid was sized for{}",
                 k % nx,
                 k / nx,
-                if self.surface.is_some() {
+                if matches!(self.surface, Some(RailContact::Profile(_))) {
                     " (the profile's troughs lengthen it, its crests widen it: raise contact.profile_grid_scale)"
                 } else {
                     ""
@@ -606,7 +604,12 @@ impl TangentialSolver for FixedGrid {
         Elements::Grid(self.grid.clone())
     }
 
-    fn set_surface(&mut self, surface: Option<Arc<RailSurface>>) -> Result<(), ContactError> {
+    fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), ContactError> {
+        // The fixed grid moves the patch over its elements by the
+        // nonlinear normal problem itself; it has no linear contact.
+        if let Some(RailContact::Linear(_)) = surface {
+            return Err(ContactError::NoSurface);
+        }
         self.surface = surface;
         self.approach_start = None;
         Ok(())

@@ -55,6 +55,35 @@ impl RailSurface {
         RailSurface { x0: grid.x_min, dx: grid.dx, y0: grid.y(0), dy: grid.dy, heights, periodic: true }
     }
 
+    /// [`RailSurface::corrugation`] without the harmonics shorter than
+    /// `min_wavelength` (m) along the rail (each row's discrete Fourier
+    /// series cut there): what a contact model that resolves the surface
+    /// on a coarser mesh than the rail grid's may see of it.
+    pub fn corrugation_above(profile: &Array2<f64>, grid: &RailGrid, min_wavelength: f64) -> Self {
+        use num_complex::Complex64;
+        use rustfft::FftPlanner;
+        let mut surface = Self::corrugation(profile, grid);
+        let n = grid.nx;
+        let kmax = (n as f64 * grid.dx / min_wavelength).floor() as usize;
+        if kmax >= n / 2 {
+            return surface;
+        }
+        let mut planner = FftPlanner::new();
+        let (fwd, inv) = (planner.plan_fft_forward(n), planner.plan_fft_inverse(n));
+        for mut row in surface.heights.rows_mut() {
+            let mut buf: Vec<Complex64> = row.iter().map(|v| Complex64::new(*v, 0.0)).collect();
+            fwd.process(&mut buf);
+            for (k, v) in buf.iter_mut().enumerate() {
+                if k.min(n - k) > kmax {
+                    *v = Complex64::default();
+                }
+            }
+            inv.process(&mut buf);
+            row.iter_mut().zip(&buf).for_each(|(r, v)| *r = v.re / n as f64);
+        }
+        surface
+    }
+
     /// A profile uniform across the rail: `line[i]` at `x0 + i dx`.
     pub fn line(x0: f64, dx: f64, line: &[f64], periodic: bool) -> Self {
         let heights = Array2::from_shape_fn((1, line.len()), |(_, i)| line[i]);
@@ -94,6 +123,12 @@ impl RailSurface {
             let i = (u.floor() as usize).min(nx - 2);
             (i, i + 1, u - i as f64)
         }
+    }
+
+    /// The smallest curvature `d^2 r / dX^2` (1/m) of the profile along the
+    /// rail (second differences over all rows): a crest's.
+    pub fn min_curvature(&self) -> f64 {
+        -RailSurface { heights: self.heights.mapv(|v| -v), ..self.clone() }.max_curvature()
     }
 
     /// The largest curvature `d^2 r / dX^2` (1/m) of the profile along the

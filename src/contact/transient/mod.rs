@@ -40,8 +40,9 @@
 pub mod elastic;
 pub mod gauss_seidel;
 
+use super::linear::MeshResponse;
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
-use super::{ContactError, Creepage, Elements, PatchSolution, StepInput, TangentialSolver};
+use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use elastic::{ExactElastic, PatchFrame, WinklerElastic};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
@@ -112,6 +113,9 @@ impl ElasticModel {
 #[derive(Debug, Clone)]
 struct History {
     frame: PatchFrame,
+    /// Offset of the patch centre from the wheel's X_c (m): the linear
+    /// profile contact moves the patch with the contact point.
+    offset: f64,
     /// Tractions, interleaved (Pa).
     p: Vec<f64>,
     /// Slips, interleaved (m/s).
@@ -153,6 +157,15 @@ pub struct Transient {
     /// Factorised Jacobian of the last Newton iteration, reused as the
     /// initial chord matrix of the next step.
     factor: Option<Factor>,
+    /// The linear normal response on the mesh (the linear profile contact).
+    linear: Option<MeshResponse>,
+    /// The rail surface in the normal contact.
+    rail: Option<RailContact>,
+    /// Elements of the current step whose linear pressure was set to zero.
+    clipped: usize,
+    /// The current step's patch offset (m) and whether the linear profile
+    /// contact moved it.
+    moved: Option<f64>,
 }
 
 /// The friction law p = -mu p3 f(|s|) s with f(q) = (2/pi) atan(q/eps) / q,
@@ -243,7 +256,20 @@ impl Transient {
             tolerance: DEFAULT_TOLERANCE,
             fallbacks: 0,
             factor: None,
+            linear: None,
+            rail: None,
+            clipped: 0,
+            moved: None,
         }
+    }
+
+    /// Lets the model take the rail surface into its normal pressure by the
+    /// linear profile contact ([`super::linear`]): `p3 + dp` at the element
+    /// centres, `dp` the exact elastic response to the surface, for the
+    /// Hertz contact `shape`.
+    pub fn with_linear_contact(mut self, shape: &crate::hertz::HertzShape) -> Self {
+        self.linear = Some(MeshResponse::new(&self.mesh, shape));
+        self
     }
 
     /// Caps the Newton-Raphson iterations per attempt (default 60).
@@ -457,13 +483,34 @@ impl Transient {
                 reason: format!("transient models need a time step > 0, got {}", input.dt),
             });
         }
-        let frame = PatchFrame { a: patch.a, b: patch.b };
-        let p3 = pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b);
-        let area: Vec<f64> = (0..n).map(|k| self.mesh.area(k) * patch.a * patch.b).collect();
+        // The patch: Hertz's, or moved with the contact point by the linear
+        // profile contact (uniformly stretched for the exact elastic model,
+        // whose coefficients hold one aspect ratio).
+        let (frame, p3) = match (&self.linear, &self.rail) {
+            (Some(response), Some(RailContact::Linear(surface))) => {
+                let uniform = matches!(self.model, ElasticModel::Exact(_));
+                let lp = response.linear_patch(surface, input.position, patch, self.shape, &self.mesh, uniform);
+                self.clipped = lp.clipped;
+                self.moved = Some(lp.offset);
+                (PatchFrame { a: lp.a, b: lp.b }, lp.pressure)
+            }
+            _ => {
+                self.clipped = 0;
+                self.moved = None;
+                (
+                    PatchFrame { a: patch.a, b: patch.b },
+                    pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b),
+                )
+            }
+        };
+        let offset = self.moved.unwrap_or(0.0);
+        let area: Vec<f64> = (0..n).map(|k| self.mesh.area(k) * frame.a * frame.b).collect();
         let mut u_o = vec![0.0; 2 * n];
         let (mut s, mut xi) = match &self.history {
             Some(h) => {
-                let shift = input.speed * input.dt;
+                // The material now at x was at x + V dt + (offset now -
+                // offset then) in the previous patch's frame.
+                let shift = input.speed * input.dt + offset - h.offset;
                 self.model.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o);
                 (h.s.clone(), h.xi)
             }
@@ -558,7 +605,7 @@ impl Transient {
         iterations: usize,
     ) -> PatchSolution {
         let n = self.mesh.len();
-        let patch = &input.patch;
+        let _ = &input.patch;
         let mut sol = PatchSolution {
             creepage: Creepage { x: xi, y: input.creepage_y, spin: input.spin },
             pressure: p3,
@@ -568,11 +615,14 @@ impl Transient {
             slip_y: (0..n).map(|k| s[2 * k + 1]).collect(),
             stick: (0..n).map(|k| s[2 * k].hypot(s[2 * k + 1]) < STICK_SLIP_FACTOR * self.eps).collect(),
             iterations,
+            clipped: self.clipped,
+            offset: self.moved.unwrap_or(0.0),
+            semi_axes: self.moved.map(|_| (frame.a, frame.b)),
             ..Default::default()
         };
-        sol.force_x = self.mesh.integrate(&sol.traction_x, patch.a, patch.b);
-        sol.force_y = self.mesh.integrate(&sol.traction_y, patch.a, patch.b);
-        self.history = Some(History { frame, p, s, xi });
+        sol.force_x = self.mesh.integrate(&sol.traction_x, frame.a, frame.b);
+        sol.force_y = self.mesh.integrate(&sol.traction_y, frame.a, frame.b);
+        self.history = Some(History { frame, offset: self.moved.unwrap_or(0.0), p, s, xi });
         sol
     }
 }
@@ -595,5 +645,20 @@ impl TangentialSolver for Transient {
 
     fn elements(&self) -> Elements {
         Elements::Adapted(self.mesh.clone())
+    }
+
+    fn linear_resolution(&self, a: f64) -> Option<f64> {
+        self.linear.as_ref().map(|r| r.resolution(a))
+    }
+
+    fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), ContactError> {
+        match surface {
+            Some(RailContact::Linear(_)) if self.linear.is_none() => Err(ContactError::NoSurface),
+            Some(RailContact::Profile(_)) => Err(ContactError::NoSurface),
+            s => {
+                self.rail = s;
+                Ok(())
+            }
+        }
     }
 }
