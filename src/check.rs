@@ -11,7 +11,7 @@ use corrugation::params::{ContactGrid, DynamicsKind, NormalContact};
 use corrugation::run::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics};
 
 /// What contact.model = "auto" chose and why.
-fn print_auto(a: &AutoChoice) {
+fn print_auto(a: &AutoChoice, normal: NormalContact) {
     let ms = |c: &Candidate| c.cpu_per_step * 1e3;
     println!(
         "auto               tolerance {} (relative centre-line wear error); shortest wavelength {:.4} mm, \
@@ -46,14 +46,13 @@ fn print_auto(a: &AutoChoice) {
     println!("auto candidates    (cheapest first) {}", list.join("; "));
     if let Some(d) = a.hertz_difference {
         let limit = corrugation::model_choice::hertz_validity::HERTZ_LIMIT;
-        let verdict = if d <= limit {
-            "inside the Hertz region: the Hertz normal contact".to_string()
-        } else if c.grid_dx().is_some() {
-            "outside the Hertz region: the profile in the normal contact once the corrugation is above the profile \
-             contact's floor (contact.normal = \"auto\")"
-                .to_string()
-        } else {
-            "outside the Hertz region: the chosen model has no profile contact; the run warns".to_string()
+        let verdict = match normal {
+            corrugation::params::NormalContact::Hertz if d > limit => {
+                "outside the Hertz region, and contact.normal = \"hertz\" leaves the corrugation out of the contact; \
+                 the run warns"
+            }
+            corrugation::params::NormalContact::Hertz => "inside the Hertz region",
+            _ => "the corrugation is in the normal contact (see normal contact below)",
         };
         let by = if d.is_finite() { format!("{:.1} %", 100.0 * d) } else { "beyond the map".into() };
         println!(
@@ -73,7 +72,7 @@ pub fn print_check(r: &Resolved) {
     let by = if s.contact.auto.is_some() { " (chosen by contact.model = \"auto\")" } else { "" };
     println!("contact model      {}{by}", s.contact.model.name());
     if let Some(a) = &s.contact.auto {
-        print_auto(a);
+        print_auto(a, s.contact.normal);
         for note in departures(s) {
             println!("note               outside the map's conditions: {note}");
         }

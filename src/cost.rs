@@ -65,8 +65,8 @@ pub fn estimate(s: &Scene) -> CostEstimate {
         // roughness's normal solves; 2.8 times on growth_exact.toml (100
         // passages: 3.3 s per passage, median, against 1.16 s with "hertz").
         let profile = match s.contact.normal {
-            NormalContact::Hertz | NormalContact::Linear => 1.0,
-            NormalContact::Profile { .. } | NormalContact::Auto { .. } => 2.8,
+            NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => 2.8,
+            _ => 1.0,
         };
         5.0e-3 * (n_c / 478.0).powf(1.46) * if symmetric { 1.0 } else { 2.7 } * profile
     });

@@ -124,10 +124,11 @@ pub enum NormalContact {
     /// it). Kept for comparison: it lacks the contact's own response to
     /// the corrugation.
     Hertz,
-    /// The linearised profile contact: the Hertz pressure plus the normal
-    /// problem's linear response to the corrugation under the patch
-    /// ([`crate::contact::linear`]); every model. The dynamics see its
-    /// equivalent roughness, the flat-punch average of the profile.
+    /// The linearised profile contact of the adapted mesh
+    /// ([`crate::contact::linear`]): the patch moved and stretched to first
+    /// order with the corrugation under it, the rest of the normal
+    /// problem's linear response on it. The dynamics see its equivalent
+    /// roughness, the flat-punch average of the profile.
     Linear,
     /// The quadratic gap less the rail profile under the patch
     /// (non-Hertzian, nonlinear; the fixed grid only); the dynamics see the
@@ -168,11 +169,6 @@ impl NormalContact {
             NormalContact::Hertz | NormalContact::Linear => 1.0,
             NormalContact::Profile { grid_scale } | NormalContact::Auto { grid_scale } => grid_scale,
         }
-    }
-
-    /// Whether the profile is in the contact at all (not Hertz).
-    pub fn sees_profile(self) -> bool {
-        self != NormalContact::Hertz
     }
 }
 

@@ -112,7 +112,8 @@ pub struct PatchHistory {
     pub semi_axis_a: Vec<f64>,
     /// Semi-axis across the rail (m).
     pub semi_axis_b: Vec<f64>,
-    /// Maximum pressure (Pa): Hertz's p0 on the adapted mesh, the largest
+    /// Maximum pressure (Pa): Hertz's p0 on the adapted mesh (with the
+    /// linear profile contact the largest element pressure), the largest
     /// element pressure on the fixed grid.
     pub max_pressure: Vec<f64>,
     /// Area in contact (m^2): pi a b of the Hertz patch on the adapted
@@ -215,8 +216,8 @@ pub struct PassageResult {
     pub wear: Array2<f64>,
     /// Per-step history of the patch.
     pub history: PatchHistory,
-    /// Steps at which the linear profile contact set a negative pressure
-    /// to zero (0 for the other normal contacts).
+    /// Steps at which the linear profile contact's pressure vanished well
+    /// inside the patch (0 for the other normal contacts).
     pub clipped_steps: usize,
 }
 
@@ -291,6 +292,9 @@ pub enum PassageError {
 
 /// The previous step's patch, kept for the wear of the interval to the next.
 struct PreviousPatch {
+    /// The wheel's position (m): what the wear window counts.
+    wheel: f64,
+    /// The patch centre (m): where its wear goes.
     x_c: f64,
     a: f64,
     b: f64,
@@ -378,7 +382,7 @@ pub fn run_passage(
         // midpoint does: [w0, w1) then holds exactly (w1 - w0) / step of them
         // whatever the steps' offset (a periodic stretch receives one whole
         // passage).
-        if let Some(p) = previous.as_ref().filter(|p| (w0..w1).contains(&(0.5 * (p.x_c + x)))) {
+        if let Some(p) = previous.as_ref().filter(|p| (w0..w1).contains(&(0.5 * (p.wheel + x)))) {
             let from = PatchWear { x_c: p.x_c, a: p.a, b: p.b, rates: &p.rates };
             let to = PatchWear { x_c: x + sol.offset, a: patch_a, b: patch_b, rates: &rates };
             deposit.accumulate(grid, &mut wear, &from, &to, dt, spec.substeps);
@@ -402,7 +406,11 @@ pub fn run_passage(
                 sol.pressure.iter().filter(|p| **p > 0.0).count() as f64 * g.area(),
             ),
             Elements::Adapted(_) => (
-                sol.pressure.iter().fold(patch.p0, |m, p| if sol.semi_axes.is_some() { m.max(*p) } else { m }),
+                match sol.semi_axes {
+                    // The linear profile contact's pressure is not Hertz's.
+                    Some(_) => sol.pressure.iter().fold(0.0f64, |m, p| m.max(*p)),
+                    None => patch.p0,
+                },
                 std::f64::consts::PI * patch_a * patch_b,
             ),
         };
@@ -414,7 +422,7 @@ pub fn run_passage(
         if let Some(f) = h.fields.as_mut() {
             f.set(n, &sol, &rates);
         }
-        previous = Some(PreviousPatch { x_c: x + sol.offset, a: patch_a, b: patch_b, rates });
+        previous = Some(PreviousPatch { wheel: x, x_c: x + sol.offset, a: patch_a, b: patch_b, rates });
         progress(n + 1, steps);
     }
     Ok(PassageResult { wear, history: h, clipped_steps })

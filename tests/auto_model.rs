@@ -119,7 +119,7 @@ fn auto_refuses_what_it_cannot_promise() {
 }
 
 #[test]
-fn auto_in_a_growth_study_fits_the_stretch_and_switches_the_normal_contact() {
+fn auto_in_a_growth_study_fits_the_stretch_and_takes_the_consistent_chain() {
     // growth_exact.toml's study (10-120 mm roughness on 120 mm, receptance
     // dynamics) with the model chosen: a fixed grid whose element divides
     // the stretch (the map's 0.28 mm is not a divisor of 120 mm), and the

@@ -95,14 +95,6 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
     let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
     let normal = s.choice("normal", Some("auto"), &["auto", "linear", "profile", "hertz"]);
     let profile = matches!(normal.as_deref(), Some("profile" | "auto"));
-    if normal.as_deref() == Some("profile") && !fixed && !auto {
-        s.error(
-            "normal",
-            "= \"profile\" solves the discrete (nonlinear) normal problem on the rail profile, which needs \
-             contact.grid = \"fixed\"; allowed with contact.grid = \"adapted\": auto, linear, hertz"
-                .into(),
-        );
-    }
     let length_range = Range::Closed(1.0, 4.0);
     let grid_scale = if profile && (fixed || auto) {
         s.f64("profile_grid_scale", Some(DEFAULT_PROFILE_GRID_SCALE), length_range)
@@ -141,11 +133,12 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
 }
 
 /// The normal contact named by `contact.normal` (None when invalid), for a
-/// scene on `grid`.
+/// scene on `grid` (`chosen` by `contact.model = "auto"`).
 pub(super) fn normal_contact(
     normal: Option<&str>,
     grid_scale: Option<f64>,
     grid: &ContactGrid,
+    chosen: bool,
     errors: &mut Vec<ConfigError>,
 ) -> Option<NormalContact> {
     let grid_scale = match grid {
@@ -153,15 +146,28 @@ pub(super) fn normal_contact(
         ContactGrid::Adapted => 1.0,
     };
     let fixed = matches!(grid, ContactGrid::Fixed(_));
+    // With contact.model = "auto" the grid is the choice's, not the key's.
+    let by_auto = if chosen { " (contact.model = \"auto\" chose it)" } else { "" };
     Some(match normal? {
         "hertz" => NormalContact::Hertz,
         "linear" if fixed => {
             errors.push(ConfigError::new(
                 "contact.normal",
-                "= \"linear\" is the adapted mesh's first-order contact (the mesh moved with the contact); the fixed \
-                 grid moves the patch over its elements by the nonlinear normal problem itself: allowed with \
-                 contact.grid = \"fixed\": auto, profile, hertz"
-                    .into(),
+                format!(
+                    "= \"linear\" is the adapted mesh's first-order contact (the mesh moved with the contact); the \
+                     fixed grid{by_auto} moves the patch over its elements by the nonlinear normal problem itself: \
+                     allowed with contact.grid = \"fixed\": auto, profile, hertz"
+                ),
+            ));
+            return None;
+        }
+        "profile" if !fixed => {
+            errors.push(ConfigError::new(
+                "contact.normal",
+                format!(
+                    "= \"profile\" solves the discrete (nonlinear) normal problem on the rail profile, which needs \
+                     contact.grid = \"fixed\"; allowed with contact.grid = \"adapted\"{by_auto}: auto, linear, hertz"
+                ),
             ));
             return None;
         }

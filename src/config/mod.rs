@@ -318,7 +318,9 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     } else {
         (ContactModelKind::ALL.into_iter().find(|m| m.name() == model).expect("validated choice"), nx, ny, None)
     };
-    let Some(normal_contact) = contact::normal_contact(normal_key.as_deref(), grid_scale, &contact_grid, errors) else {
+    let Some(normal_contact) =
+        contact::normal_contact(normal_key.as_deref(), grid_scale, &contact_grid, auto.is_some(), errors)
+    else {
         return (None, resolved);
     };
     let scene = Scene {

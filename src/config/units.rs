@@ -24,7 +24,6 @@ const UNITS: &[(&str, &str)] = &[
     ("contact.dx", "m"),
     ("contact.dy", "m"),
     ("contact.profile_grid_scale", "1"),
-    ("contact.profile_from", "m"),
     ("wear.k_over_h", "m2/N"),
     ("wear.substeps", "1"),
     ("passage.start", "m"),

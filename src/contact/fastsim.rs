@@ -77,9 +77,9 @@ impl Fastsim {
     }
 
     /// Lets the model take the rail surface into its traction bound by the
-    /// linear profile contact ([`super::linear`]): the bound is `mu (p + dp)`
-    /// with `p` the model's pressure shape and `dp` the exact elastic
-    /// response to the surface. `shape` is the Hertz contact's.
+    /// linear profile contact ([`super::linear`]): the patch moved and
+    /// stretched with the surface, the bound `mu p` with `p` the model's
+    /// pressure shape on it plus the rest of the exact elastic response. `shape` is the Hertz contact's.
     pub fn with_linear_contact(mut self, shape: &crate::hertz::HertzShape) -> Self {
         self.linear = Some(MeshResponse::new(&self.mesh, shape));
         self
@@ -107,14 +107,14 @@ impl Fastsim {
     /// pressure, or with the rail surface in the linear profile contact the
     /// patch moved with it and its first-order pressure
     /// ([`MeshResponse::linear_patch`]).
-    fn step_patch(&self, input: &StepInput) -> (HertzPatch, Vec<f64>, Option<LinearPatch>) {
+    fn step_patch(&self, input: &StepInput) -> Result<(HertzPatch, Vec<f64>, Option<LinearPatch>), ContactError> {
         let patch = input.patch;
         if let (Some(response), Some(RailContact::Linear(surface))) = (&self.linear, &self.rail) {
-            let lp = response.linear_patch(surface, input.position, &patch, self.shape, &self.mesh, false);
+            let lp = response.linear_patch(surface, input.position, &patch, self.shape, &self.mesh, false)?;
             let moved = HertzPatch { a: lp.a, b: lp.b, ..patch };
-            return (moved, lp.pressure.clone(), Some(lp));
+            return Ok((moved, lp.pressure.clone(), Some(lp)));
         }
-        (patch, pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b), None)
+        Ok((patch, pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b), None))
     }
 
     /// Solves the steady problem with all creepages prescribed and the
@@ -188,14 +188,14 @@ impl Fastsim {
     /// spin prescribed), finding xi_x.
     pub fn solve_force(&self, input: &StepInput) -> Result<PatchSolution, ContactError> {
         input.check_friction_limit()?;
-        let (moved, pressure, linear) = self.step_patch(input);
+        let (moved, pressure, moved_by) = self.step_patch(input)?;
         let patch = &moved;
         let limit = input.friction * patch.normal_force;
         let force = input.force_x;
         let at = |xi: f64| {
             let cr = Creepage { x: xi, y: input.creepage_y, spin: input.spin };
             let mut s = self.solve_with_pressure(patch, pressure.clone(), cr, input.friction, input.speed);
-            if let Some(lp) = &linear {
+            if let Some(lp) = &moved_by {
                 s.clipped = lp.clipped;
                 s.offset = lp.offset;
                 s.semi_axes = Some((lp.a, lp.b));

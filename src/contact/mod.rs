@@ -125,9 +125,9 @@ pub struct PatchSolution {
     pub stick: Vec<bool>,
     /// Newton-Raphson iterations of the solve (0 for FASTSIM).
     pub iterations: usize,
-    /// Elements where the linear contact's pressure `p_H + dp` came out
-    /// negative and was set to zero (the linearisation beyond its range;
-    /// 0 for the other normal contacts).
+    /// Elements well inside the patch where the linear profile contact's
+    /// pressure vanished (the patch splitting: the linearisation beyond its
+    /// range; 0 for the other normal contacts).
     pub clipped: usize,
     /// Offset of the patch centre from the wheel's `X_c` along x (m): the
     /// adapted mesh moved with the contact point by the linear profile
@@ -161,6 +161,19 @@ pub enum ContactError {
         "this contact model cannot take the rail profile this way (contact.normal = \"profile\" needs contact.grid = \"fixed\")"
     )]
     NoSurface,
+    /// The linear profile contact would move or stretch the patch by a
+    /// large part of itself: the corrugation is far beyond its range.
+    #[error(
+        "the linear profile contact would move the patch by {shift:.3e} m and stretch it by {stretch:.0} % (semi-axis a = {a:.3e} m): the corrugation is far beyond the linearisation's range (the nonlinear profile contact needs contact.grid = \"fixed\")"
+    )]
+    LinearRange {
+        /// Shift of the patch centre (m).
+        shift: f64,
+        /// Largest relative change of a semi-axis (%).
+        stretch: f64,
+        /// The Hertz semi-axis along the rail (m).
+        a: f64,
+    },
     /// The creepage search did not converge.
     #[error("creepage search for F_x = {force:.6e} N did not converge: {reason}")]
     NoConvergence {
@@ -174,10 +187,10 @@ pub enum ContactError {
 /// How the rail surface under the patch enters the normal problem.
 #[derive(Debug, Clone, PartialEq)]
 pub enum RailContact {
-    /// Linearised about the Hertz contact of the step: `p = p_H + dp`, with
-    /// `dp` the normal problem's linear response to the surface on the
-    /// Hertz contact area at the step's normal force ([`linear`]). Every
-    /// model takes it.
+    /// Linearised about the Hertz contact of the step ([`linear`]): the
+    /// patch moved and stretched to first order with the surface, the rest
+    /// of the normal problem's linear response on it. The adapted mesh's
+    /// models take it.
     Linear(Arc<RailSurface>),
     /// The full (nonlinear) normal problem of the gap less the surface: the
     /// fixed grid only.

@@ -149,10 +149,11 @@ pub struct GrowthPass {
     /// Steps inside the stretch where the wheel left the rail (N <= 0):
     /// the linear track model is not valid there.
     pub contact_loss_steps: usize,
-    /// Steps at which the linear profile contact's pressure went negative
-    /// somewhere (set to zero there): the linearisation beyond its range.
+    /// Steps at which the linear profile contact's pressure vanished well
+    /// inside the patch: the linearisation beyond its range.
     pub clipped_steps: usize,
-    /// Whether the dynamics saw the linear contact's equivalent roughness.
+    /// Whether the passage took the linear contact's equivalent roughness
+    /// (for its dynamics, if any).
     pub linear_filter: bool,
 }
 
@@ -172,12 +173,16 @@ pub const LINEAR_FILTER_CURVATURE: f64 = 0.1;
 /// What the contact sees (`normal`): with [`NormalContact::Hertz`] the
 /// profile weighted across the mean patch width by the Hertz line load
 /// ([`contact_filtered_line`]), the contact itself Hertzian; with
-/// [`NormalContact::Linear`] the corrugation ([`RailSurface::corrugation`])
-/// in the linear profile contact of every step and the dynamics see its
+/// [`NormalContact::Linear`] the corrugation (less the harmonics the
+/// contact does not resolve, [`RailSurface::corrugation_above`]) in the
+/// linear profile contact of every step and the dynamics see its
 /// [`linear_roughness`]; with [`NormalContact::Profile`] the corrugation is
 /// in the nonlinear normal problem of every step and the dynamics see its
-/// [`equivalent_roughness`] at the mean load. `Auto` must have been
-/// resolved to one of them by the caller.
+/// [`equivalent_roughness`] at the mean load; [`NormalContact::Auto`] (the
+/// fixed grid's: the adapted mesh's is resolved to `Linear` by the
+/// caller) is `Profile` with the dynamics of [`linear_roughness`] while
+/// the corrugation's curvature is below [`LINEAR_FILTER_CURVATURE`] of the
+/// wheel's.
 #[allow(clippy::too_many_arguments)]
 pub fn growth_passage(
     spec: &PassageSpec,

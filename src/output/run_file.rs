@@ -40,10 +40,11 @@ pub struct PassRow {
     /// Steps of the stretch where the wheel left the rail (N <= 0) (1).
     pub contact_loss_steps: f64,
     /// The passage's normal contact: 0 Hertz, 1 the nonlinear profile
-    /// contact, 2 the linear profile contact.
+    /// contact, 2 the linear profile contact, 3 the nonlinear profile
+    /// contact with the linear contact's equivalent roughness.
     pub profile_contact: f64,
-    /// Steps at which the linear profile contact set a negative pressure to
-    /// zero (1).
+    /// Steps at which the linear profile contact's pressure vanished well
+    /// inside the patch (1).
     pub clipped_steps: f64,
     /// Index of the passage's traffic class (0 without a mix).
     pub traffic_class: usize,
@@ -240,13 +241,14 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64], classes: &[T
             "profile_contact",
             col(|r| r.profile_contact),
             "1",
-            "normal contact of the passage: 0 Hertz, 1 the nonlinear profile contact, 2 the linear profile contact",
+            "normal contact of the passage: 0 Hertz, 1 the nonlinear profile contact, 2 the linear profile contact, \
+             3 the nonlinear profile contact with the linear contact's equivalent roughness",
         ),
         (
             "clipped_steps",
             col(|r| r.clipped_steps),
             "1",
-            "steps at which the linear profile contact's pressure went negative (set to zero: beyond its range)",
+            "steps at which the linear profile contact's pressure vanished well inside the patch (beyond its range)",
         ),
     ];
     for (name, v, units, long_name) in vars {
@@ -305,12 +307,21 @@ pub(super) const STEP_VARS: [(&str, &str, &str); 15] = [
     ("creepage_x", "1", "longitudinal creepage (negative for a positive force on the wheel)"),
     ("creepage_y", "1", "lateral creepage"),
     ("spin", "1/m", "spin creepage"),
-    ("semi_axis_a", "m", "Hertz semi-axis along the rail"),
-    ("semi_axis_b", "m", "Hertz semi-axis across the rail"),
+    (
+        "semi_axis_a",
+        "m",
+        "semi-axis along the rail of the Hertz patch (of the moved patch with the linear profile contact)",
+    ),
+    (
+        "semi_axis_b",
+        "m",
+        "semi-axis across the rail of the Hertz patch (of the moved patch with the linear profile contact)",
+    ),
     (
         "max_pressure",
         "Pa",
-        "maximum pressure: Hertz p0 on the adapted mesh, the largest element pressure on the fixed grid",
+        "maximum pressure: Hertz p0 on the adapted mesh (the largest element pressure with the linear profile contact), \
+         the largest element pressure on the fixed grid",
     ),
     ("contact_area", "m2", "area in contact: pi a b on the adapted mesh, the elements with pressure on the fixed grid"),
     ("stick_fraction", "1", "fraction of elements in stick"),

@@ -39,9 +39,9 @@ impl HertzCheck {
         let d = map.difference(wavelength, amplitude);
         let by = if d.is_finite() { format!("by {:.0} %", 100.0 * d) } else { "beyond the map (full sliding)".into() };
         let how = if self.fixed {
-            "set contact.normal = \"auto\" (or \"profile\")"
+            "set contact.normal = \"auto\" (the default; or \"profile\")"
         } else {
-            "set contact.grid = \"fixed\" and contact.normal = \"auto\" (or \"profile\")"
+            "set contact.normal = \"auto\" (the default: the linear profile contact on this mesh)"
         };
         Some(format!(
             "the dominant harmonic of the corrugation ({:.1} mm, {:.3} um) has left the Hertz region: there the Hertz \

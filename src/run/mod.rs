@@ -132,8 +132,9 @@ pub const DYNAMIC_LOAD_FACTOR: f64 = 1.3;
 pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::FixedGridParams) -> FixedGridSpec {
     let largest = shape.patch(fixed_grid_load(scene)).expect("validated loads keep N > 0");
     let rail = if scene.growth.is_some() { periodic_grid(scene) } else { derive_grid(scene) };
-    // The profile's troughs lengthen the patch over them, its crests widen it.
-    let scale = scene.contact.normal.grid_scale();
+    // The profile's troughs lengthen the patch over them, its crests widen
+    // it (a growth study's; a single passage has no profile in its contact).
+    let scale = if scene.growth.is_some() { scene.contact.normal.grid_scale() } else { 1.0 };
     FixedGridSpec {
         curvatures: scene.geometry.curvatures(),
         elastic: scene.material.elastic,

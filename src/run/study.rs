@@ -411,12 +411,8 @@ fn continue_run(
                         pass,
                         message: format!(
                             "the linear profile contact's patch opened inside (the pressure vanished well inside \
-                             the patch) at {clipped} steps: the corrugation is beyond the linearisation's range{}",
-                            if fixed_grid {
-                                ""
-                            } else {
-                                " (the nonlinear profile contact needs contact.grid = \"fixed\")"
-                            }
+                             the patch) at {clipped} steps: the corrugation is beyond the linearisation's range \
+                             (the nonlinear profile contact needs contact.grid = \"fixed\")"
                         ),
                     });
                 }

@@ -173,6 +173,18 @@ mod tests {
         // Row means removed: 1.5 along each row.
         assert!((r.height(0.0, -1.0) + 1.5).abs() < 1e-15);
         assert!((r.height(0.5, 0.5) - (-1.0)).abs() < 1e-15);
+        // Cut above 2 dx: a line of two harmonics keeps the long one.
+        let n = 64;
+        let two = Array2::from_shape_fn((1, n), |(_, i)| {
+            let x = i as f64 / n as f64 * 2.0 * std::f64::consts::PI;
+            x.cos() + 0.5 * (16.0 * x).cos()
+        });
+        let g = RailGrid { x_min: 0.0, dx: 1.0 / n as f64, nx: n, half_width: 0.0, dy: 1.0, ny: 1 };
+        let cut = RailSurface::corrugation_above(&two, &g, 0.1);
+        for i in 0..n {
+            let x = i as f64 / n as f64 * 2.0 * std::f64::consts::PI;
+            assert!((cut.heights[[0, i]] - x.cos()).abs() < 1e-12);
+        }
         // A trough of curvature 2 (r = x^2 near it).
         let t = RailSurface::line(0.0, 0.1, &[0.01, 0.0, 0.01, 0.04], false);
         assert!((t.max_curvature() - 2.0).abs() < 1e-12);

@@ -264,9 +264,11 @@ impl Transient {
     }
 
     /// Lets the model take the rail surface into its normal pressure by the
-    /// linear profile contact ([`super::linear`]): `p3 + dp` at the element
-    /// centres, `dp` the exact elastic response to the surface, for the
-    /// Hertz contact `shape`.
+    /// linear profile contact ([`super::linear`]) of the Hertz contact
+    /// `shape`: the patch moved and stretched with the surface (uniformly
+    /// for the exact elastic model, whose coefficients hold one aspect
+    /// ratio), the model's pressure shape on it plus the rest of the exact
+    /// elastic response.
     pub fn with_linear_contact(mut self, shape: &crate::hertz::HertzShape) -> Self {
         self.linear = Some(MeshResponse::new(&self.mesh, shape));
         self
@@ -489,7 +491,7 @@ impl Transient {
         let (frame, p3) = match (&self.linear, &self.rail) {
             (Some(response), Some(RailContact::Linear(surface))) => {
                 let uniform = matches!(self.model, ElasticModel::Exact(_));
-                let lp = response.linear_patch(surface, input.position, patch, self.shape, &self.mesh, uniform);
+                let lp = response.linear_patch(surface, input.position, patch, self.shape, &self.mesh, uniform)?;
                 self.clipped = lp.clipped;
                 self.moved = Some(lp.offset);
                 (PatchFrame { a: lp.a, b: lp.b }, lp.pressure)
@@ -605,7 +607,6 @@ impl Transient {
         iterations: usize,
     ) -> PatchSolution {
         let n = self.mesh.len();
-        let _ = &input.patch;
         let mut sol = PatchSolution {
             creepage: Creepage { x: xi, y: input.creepage_y, spin: input.spin },
             pressure: p3,
