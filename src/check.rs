@@ -47,11 +47,11 @@ fn print_auto(a: &AutoChoice, normal: NormalContact) {
     if let Some(d) = a.hertz_difference {
         let limit = corrugation::model_choice::hertz_validity::HERTZ_LIMIT;
         let verdict = match normal {
-            corrugation::params::NormalContact::Hertz if d > limit => {
+            NormalContact::Hertz if d > limit => {
                 "outside the Hertz region, and contact.normal = \"hertz\" leaves the corrugation out of the contact; \
                  the run warns"
             }
-            corrugation::params::NormalContact::Hertz => "inside the Hertz region",
+            NormalContact::Hertz => "inside the Hertz region",
             _ => "the corrugation is in the normal contact (see normal contact below)",
         };
         let by = if d.is_finite() { format!("{:.1} %", 100.0 * d) } else { "beyond the map".into() };

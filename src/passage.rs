@@ -356,27 +356,26 @@ pub fn run_passage(
         })?;
         check_finite(&sol, n, x)?;
         clipped_steps += usize::from(sol.clipped > 0);
-        if let Elements::Grid(g) = &elements {
-            let reach = (0..n_el)
-                .filter(|&k| sol.pressure[k] > 0.0)
-                .map(|k| (g.y(k / g.nx) - 0.5 * g.dy).abs().max((g.y(k / g.nx) + 0.5 * g.dy).abs()))
-                .fold(0.0f64, f64::max);
-            // The outermost rail cells reach half a cell beyond the nodes.
-            let edge = grid.half_width + 0.5 * grid.dy;
-            if reach > edge * (1.0 + 1e-9) {
-                return Err(PassageError::OffRail { step: n, x, y: reach, half_width: edge });
-            }
-        }
-        let rates = archard_rates(spec.k_over_h, &sol);
         // The patch the solver used (moved with the contact point by the
         // linear profile contact on the adapted mesh).
         let (patch_a, patch_b) = sol.semi_axes.unwrap_or((patch.a, patch.b));
-        if let (Elements::Adapted(_), Some(_)) = (&elements, sol.semi_axes) {
-            let edge = grid.half_width + 0.5 * grid.dy;
-            if patch_b > edge * (1.0 + 1e-9) {
-                return Err(PassageError::OffRail { step: n, x, y: patch_b, half_width: edge });
-            }
+        // How far across the contact area reaches: the fixed grid's
+        // elements in contact; the adapted mesh's patch where the linear
+        // contact widened it (the Hertz patch is checked by the config).
+        let reach = match &elements {
+            Elements::Grid(g) => (0..n_el)
+                .filter(|&k| sol.pressure[k] > 0.0)
+                .map(|k| (g.y(k / g.nx) - 0.5 * g.dy).abs().max((g.y(k / g.nx) + 0.5 * g.dy).abs()))
+                .fold(0.0f64, f64::max),
+            Elements::Adapted(_) if sol.semi_axes.is_some() => patch_b,
+            Elements::Adapted(_) => 0.0,
+        };
+        // The outermost rail cells reach half a cell beyond the nodes.
+        let edge = grid.half_width + 0.5 * grid.dy;
+        if reach > edge * (1.0 + 1e-9) {
+            return Err(PassageError::OffRail { step: n, x, y: reach, half_width: edge });
         }
+        let rates = archard_rates(spec.k_over_h, &sol);
         let (w0, w1) = spec.wear_window;
         // The interval from the previous step belongs to the window when its
         // midpoint does: [w0, w1) then holds exactly (w1 - w0) / step of them

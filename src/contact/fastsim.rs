@@ -26,7 +26,7 @@
 //! Brent's method on a bracket grown from the linear-theory estimate
 //! `xi = -F_x / (G a b C11)`.
 
-use super::linear::{LinearPatch, MeshResponse};
+use super::linear::{LinearContact, LinearPatch};
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::creep_coefficients::CreepCoefficients;
@@ -41,10 +41,8 @@ pub struct Fastsim {
     shape: PressureShape,
     coefficients: CreepCoefficients,
     shear_modulus: f64,
-    /// The linear normal response on the mesh (the linear profile contact).
-    linear: Option<MeshResponse>,
-    /// The rail surface in the normal contact.
-    rail: Option<RailContact>,
+    /// The linear profile contact (empty unless built with one).
+    linear: LinearContact,
 }
 
 /// The three flexibilities (m/Pa).
@@ -73,7 +71,7 @@ impl Fastsim {
         coefficients: CreepCoefficients,
         shear_modulus: f64,
     ) -> Self {
-        Fastsim { mesh: EllipseMesh::new(nx, ny), shape, coefficients, shear_modulus, linear: None, rail: None }
+        Fastsim { mesh: EllipseMesh::new(nx, ny), shape, coefficients, shear_modulus, linear: LinearContact::default() }
     }
 
     /// Lets the model take the rail surface into its traction bound by the
@@ -81,7 +79,7 @@ impl Fastsim {
     /// stretched with the surface, the bound `mu p` with `p` the model's
     /// pressure shape on it plus the rest of the exact elastic response. `shape` is the Hertz contact's.
     pub fn with_linear_contact(mut self, shape: &crate::hertz::HertzShape) -> Self {
-        self.linear = Some(MeshResponse::new(&self.mesh, shape));
+        self.linear = LinearContact::new(&self.mesh, shape);
         self
     }
 
@@ -109,12 +107,10 @@ impl Fastsim {
     /// ([`MeshResponse::linear_patch`]).
     fn step_patch(&self, input: &StepInput) -> Result<(HertzPatch, Vec<f64>, Option<LinearPatch>), ContactError> {
         let patch = input.patch;
-        if let (Some(response), Some(RailContact::Linear(surface))) = (&self.linear, &self.rail) {
-            let lp = response.linear_patch(surface, input.position, &patch, self.shape, &self.mesh, false)?;
-            let moved = HertzPatch { a: lp.a, b: lp.b, ..patch };
-            return Ok((moved, lp.pressure.clone(), Some(lp)));
-        }
-        Ok((patch, pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b), None))
+        Ok(match self.linear.patch(input.position, &patch, self.shape, &self.mesh, false)? {
+            Some(mut lp) => (HertzPatch { a: lp.a, b: lp.b, ..patch }, std::mem::take(&mut lp.pressure), Some(lp)),
+            None => (patch, pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b), None),
+        })
     }
 
     /// Solves the steady problem with all creepages prescribed and the
@@ -240,17 +236,10 @@ impl TangentialSolver for Fastsim {
     }
 
     fn linear_resolution(&self, a: f64) -> Option<f64> {
-        self.linear.as_ref().map(|r| r.resolution(a))
+        self.linear.resolution(a)
     }
 
     fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), ContactError> {
-        match surface {
-            Some(RailContact::Linear(_)) if self.linear.is_none() => Err(ContactError::NoSurface),
-            Some(RailContact::Profile(_)) => Err(ContactError::NoSurface),
-            s => {
-                self.rail = s;
-                Ok(())
-            }
-        }
+        self.linear.set_surface(surface)
     }
 }

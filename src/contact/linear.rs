@@ -34,6 +34,7 @@
 //! (faer), on the tangential mesh or, beyond [`MAX_NORMAL_ELEMENTS`], on a
 //! coarser Paul-Hashemi mesh of the same ellipse.
 
+use super::RailContact;
 use super::influence::{Rect, normal_influence};
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use crate::contact::grid::RailSurface;
@@ -97,6 +98,43 @@ fn disc_quadrature() -> Vec<(f64, f64, f64)> {
     out
 }
 
+/// The patch of a step on the adapted mesh with the linear profile
+/// contact: the ellipse moved and stretched to first order, the pressure
+/// on it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinearPatch {
+    /// Offset of the patch centre from the wheel's `X_c` along x (m).
+    pub offset: f64,
+    /// Semi-axis along x (m).
+    pub a: f64,
+    /// Semi-axis across (m).
+    pub b: f64,
+    /// Pressure at the element centres of the moved patch (Pa).
+    pub pressure: Vec<f64>,
+    /// Elements well inside the patch (`1 - rho^2 > 1/4`) where the
+    /// first-order pressure vanished: the patch splits there, beyond the
+    /// linearisation's range.
+    pub clipped: usize,
+}
+
+/// Bilinear sample (linear extrapolation beyond the ends) of `q` on a
+/// Paul-Hashemi mesh's tensor coordinates: `t = xi / sqrt(1 - eta^2)` at
+/// `1 - (i + 1/2) 2 / nx` along the strips, `eta` at `-1 + (j + 1/2) 2 / ny`.
+fn sample(q: &[f64], nx: usize, ny: usize, t: f64, eta: f64) -> f64 {
+    let at = |u: f64, n: usize| -> (usize, f64) {
+        if n == 1 {
+            return (0, 0.0);
+        }
+        let i = (u.floor().max(0.0) as usize).min(n - 2);
+        (i, u - i as f64)
+    };
+    let (i, wi) = at((1.0 - t) * nx as f64 / 2.0 - 0.5, nx);
+    let (j, wj) = at((eta + 1.0) * ny as f64 / 2.0 - 0.5, ny);
+    let v = |j: usize, i: usize| q[j * nx + i];
+    let row = |j: usize| if nx == 1 { v(j, 0) } else { (1.0 - wi) * v(j, i) + wi * v(j, i + 1) };
+    if ny == 1 { row(j) } else { (1.0 - wj) * row(j) + wj * row(j + 1) }
+}
+
 impl MeshResponse {
     /// The response for the tangential `mesh` of the Hertz contact `shape`.
     pub fn new(mesh: &EllipseMesh, shape: &HertzShape) -> Self {
@@ -136,46 +174,7 @@ impl MeshResponse {
     pub fn normal_elements(&self) -> usize {
         self.normal_mesh.len()
     }
-}
 
-/// The patch of a step on the adapted mesh with the linear profile
-/// contact: the ellipse moved and stretched to first order, the pressure
-/// on it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LinearPatch {
-    /// Offset of the patch centre from the wheel's `X_c` along x (m).
-    pub offset: f64,
-    /// Semi-axis along x (m).
-    pub a: f64,
-    /// Semi-axis across (m).
-    pub b: f64,
-    /// Pressure at the element centres of the moved patch (Pa).
-    pub pressure: Vec<f64>,
-    /// Elements well inside the patch (`1 - rho^2 > 1/4`) where the
-    /// first-order pressure vanished: the patch splits there, beyond the
-    /// linearisation's range.
-    pub clipped: usize,
-}
-
-/// Bilinear sample (linear extrapolation beyond the ends) of `q` on a
-/// Paul-Hashemi mesh's tensor coordinates: `t = xi / sqrt(1 - eta^2)` at
-/// `1 - (i + 1/2) 2 / nx` along the strips, `eta` at `-1 + (j + 1/2) 2 / ny`.
-fn sample(q: &[f64], nx: usize, ny: usize, t: f64, eta: f64) -> f64 {
-    let at = |u: f64, n: usize| -> (usize, f64) {
-        if n == 1 {
-            return (0, 0.0);
-        }
-        let i = (u.floor().max(0.0) as usize).min(n - 2);
-        (i, u - i as f64)
-    };
-    let (i, wi) = at((1.0 - t) * nx as f64 / 2.0 - 0.5, nx);
-    let (j, wj) = at((eta + 1.0) * ny as f64 / 2.0 - 0.5, ny);
-    let v = |j: usize, i: usize| q[j * nx + i];
-    let row = |j: usize| if nx == 1 { v(j, 0) } else { (1.0 - wi) * v(j, i) + wi * v(j, i + 1) };
-    if ny == 1 { row(j) } else { (1.0 - wj) * row(j) + wj * row(j + 1) }
-}
-
-impl MeshResponse {
     /// The step's patch over `surface` to first order in the surface.
     ///
     /// The linear response `dp = q / sqrt(1 - rho^2)` (rho the Hertz
@@ -219,8 +218,8 @@ impl MeshResponse {
         let (a, b, n_force) = (patch.a, patch.b, patch.normal_force);
         let nm = &self.normal_mesh;
         let r: Vec<f64> = nm.xi.iter().zip(&nm.eta).map(|(x, e)| surface.height(position + x * a, e * b)).collect();
-        let mut pressure = pressure_on_mesh(mesh, shape, n_force, a, b);
         if r.iter().all(|v| *v == 0.0) {
+            let pressure = pressure_on_mesh(mesh, shape, n_force, a, b);
             return Ok(LinearPatch { offset: 0.0, a, b, pressure, clipped: 0 });
         }
         let n = r.len();
@@ -272,7 +271,7 @@ impl MeshResponse {
             .collect();
         let (a2, b2) = (a + da, b + db);
         let p0m = 3.0 * n_force / (2.0 * PI * a2 * b2);
-        pressure = pressure_on_mesh(mesh, shape, n_force, a2, b2);
+        let mut pressure = pressure_on_mesh(mesh, shape, n_force, a2, b2);
         let mut clipped = 0;
         for (p, (&xm, &em)) in pressure.iter_mut().zip(mesh.xi.iter().zip(&mesh.eta)) {
             // The element in the Hertz ellipse's normalised coordinates.
@@ -296,6 +295,60 @@ impl MeshResponse {
         }
         pressure.iter_mut().for_each(|p| *p *= n_force / total);
         Ok(LinearPatch { offset: shift, a: a2, b: b2, pressure, clipped })
+    }
+}
+
+/// A model's linear profile contact: its response on the model's mesh, if
+/// the model was built with one, and the rail surface set for the passage.
+#[derive(Debug, Clone, Default)]
+pub struct LinearContact {
+    response: Option<MeshResponse>,
+    rail: Option<RailContact>,
+}
+
+impl LinearContact {
+    /// The linear contact of the tangential `mesh` of the Hertz contact
+    /// `shape`.
+    pub fn new(mesh: &EllipseMesh, shape: &HertzShape) -> Self {
+        LinearContact { response: Some(MeshResponse::new(mesh, shape)), rail: None }
+    }
+
+    /// The shortest wavelength it resolves on a patch of semi-axis `a` (m)
+    /// ([`MeshResponse::resolution`]); `None` without a response.
+    pub fn resolution(&self, a: f64) -> Option<f64> {
+        self.response.as_ref().map(|r| r.resolution(a))
+    }
+
+    /// Takes the surface of the following steps: a linear one needs the
+    /// response; the nonlinear profile contact is the fixed grid's.
+    pub fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), super::ContactError> {
+        match surface {
+            Some(RailContact::Linear(_)) if self.response.is_none() => Err(super::ContactError::NoSurface),
+            Some(RailContact::Profile(_)) => Err(super::ContactError::NoSurface),
+            s => {
+                self.rail = s;
+                Ok(())
+            }
+        }
+    }
+
+    /// The step's patch moved with the linear surface set
+    /// ([`MeshResponse::linear_patch`]); `None` without one (the Hertz
+    /// patch and the shape's pressure).
+    pub fn patch(
+        &self,
+        position: f64,
+        patch: &HertzPatch,
+        shape: PressureShape,
+        mesh: &EllipseMesh,
+        uniform: bool,
+    ) -> Result<Option<LinearPatch>, super::ContactError> {
+        match (&self.response, &self.rail) {
+            (Some(response), Some(RailContact::Linear(surface))) => {
+                response.linear_patch(surface, position, patch, shape, mesh, uniform).map(Some)
+            }
+            _ => Ok(None),
+        }
     }
 }
 
@@ -345,6 +398,15 @@ mod tests {
         HertzShape::new(Curvatures::wheel_on_rail(0.5, -0.409, 0.3), el).unwrap()
     }
 
+    /// The paper's contact at `n_force` (N) on an `nx x ny` mesh and its
+    /// linear response.
+    fn setup(n_force: f64, nx: usize, ny: usize) -> (HertzShape, HertzPatch, EllipseMesh, MeshResponse) {
+        let shape = paper_shape();
+        let mesh = EllipseMesh::new(nx, ny);
+        let resp = MeshResponse::new(&mesh, &shape);
+        (shape, shape.patch(n_force).unwrap(), mesh, resp)
+    }
+
     /// A line `f(X)` along the rail, uniform across, sampled every 10 um.
     fn line(f: impl Fn(f64) -> f64) -> RailSurface {
         let (x0, dx, n) = (-0.02, 1e-5, 4001);
@@ -357,10 +419,7 @@ mod tests {
         // r = alpha X: the gap A x^2 - alpha x is Hertz's about x = alpha /
         // (2 A): the contact point of a wheel of radius R = 1 / (2 A) moves
         // by R alpha, the patch unchanged.
-        let shape = paper_shape();
-        let patch = shape.patch(1e5).unwrap();
-        let mesh = EllipseMesh::new(16, 12);
-        let resp = MeshResponse::new(&mesh, &shape);
+        let (shape, patch, mesh, resp) = setup(1e5, 16, 12);
         let alpha = 1e-4;
         let lp = resp.linear_patch(&line(|x| alpha * x), 0.0, &patch, PressureShape::Hertz, &mesh, false).unwrap();
         let expected = alpha / (2.0 * shape.curvatures().a);
@@ -379,10 +438,7 @@ mod tests {
         // r = kappa X^2 / 2 changes A to A - kappa / 2: the semi-axes of
         // that Hertz patch, to first order (kappa = 0.2 % of A: second
         // order 1e-3 of the change).
-        let shape = paper_shape();
-        let patch = shape.patch(1e5).unwrap();
-        let mesh = EllipseMesh::new(16, 12);
-        let resp = MeshResponse::new(&mesh, &shape);
+        let (shape, patch, mesh, resp) = setup(1e5, 16, 12);
         let c = shape.curvatures();
         let kappa = 2e-3 * c.a;
         let lp =
@@ -397,10 +453,7 @@ mod tests {
 
     #[test]
     fn flat_rail_is_hertz_bit_for_bit_and_every_step_holds_the_force() {
-        let shape = paper_shape();
-        let patch = shape.patch(1.2e5).unwrap();
-        let mesh = EllipseMesh::new(12, 10);
-        let resp = MeshResponse::new(&mesh, &shape);
+        let (_, patch, mesh, resp) = setup(1.2e5, 12, 10);
         for bound in [PressureShape::Hertz, PressureShape::Parabolic] {
             let flat = resp.linear_patch(&line(|_| 0.0), 0.003, &patch, bound, &mesh, false).unwrap();
             assert_eq!(flat.pressure, pressure_on_mesh(&mesh, bound, 1.2e5, patch.a, patch.b));
@@ -416,10 +469,7 @@ mod tests {
 
     #[test]
     fn the_patch_moves_linearly_with_the_profile() {
-        let shape = paper_shape();
-        let patch = shape.patch(1e5).unwrap();
-        let mesh = EllipseMesh::new(40, 40);
-        let resp = MeshResponse::new(&mesh, &shape);
+        let (shape, patch, mesh, resp) = setup(1e5, 40, 40);
         assert_eq!(resp.normal_elements(), 20 * 20);
         let k = 2.0 * PI / 0.015;
         let at = |amp: f64| {
@@ -440,10 +490,7 @@ mod tests {
     fn a_corrugation_far_beyond_the_linear_range_is_refused() {
         // 50 um at 15 mm: R r'' = 4.4, the patch would move by more than
         // half its length.
-        let shape = paper_shape();
-        let patch = shape.patch(1e5).unwrap();
-        let mesh = EllipseMesh::new(12, 10);
-        let resp = MeshResponse::new(&mesh, &shape);
+        let (_, patch, mesh, resp) = setup(1e5, 12, 10);
         let k = 2.0 * PI / 0.015;
         let e = resp.linear_patch(&line(|x| 5e-5 * (k * x).sin()), 0.0, &patch, PressureShape::Hertz, &mesh, false);
         assert!(matches!(e, Err(crate::contact::ContactError::LinearRange { .. })), "{e:?}");

@@ -199,6 +199,11 @@ pub fn growth_passage(
     let length = grid.nx as f64 * grid.dx;
     let mut spec = spec.clone();
     let mut linear_filter = matches!(normal, NormalContact::Linear);
+    // The linear contact's equivalent roughness at the mean patch.
+    let linear_seen = || match shape.patch(spec.loads.normal_force) {
+        Ok(p) if dynamics.is_some() => linear_roughness(profile, grid, p.a, p.b),
+        _ => vec![0.0; grid.nx],
+    };
     let seen = match normal {
         NormalContact::Hertz => {
             let b_mean = shape.patch(spec.loads.normal_force).map(|p| p.b).unwrap_or(grid.half_width);
@@ -214,27 +219,21 @@ pub fn growth_passage(
             let surface = RailContact::Linear(Arc::new(RailSurface::corrugation_above(profile, grid, cut)));
             solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
             spec.surface = Some(surface);
-            match shape.patch(spec.loads.normal_force) {
-                Ok(p) if dynamics.is_some() => linear_roughness(profile, grid, p.a, p.b),
-                _ => vec![0.0; grid.nx],
-            }
+            linear_seen()
         }
         NormalContact::Profile { .. } | NormalContact::Auto { .. } => {
             let corrugation = RailSurface::corrugation(profile, grid);
             // Auto: while the corrugation's curvature is small against the
             // wheel's the nonlinear and the linear equivalent roughness agree
             // (the linear one needs no normal solves).
+            let (crest, trough) = corrugation.curvature_range();
             linear_filter = matches!(normal, NormalContact::Auto { .. })
-                && corrugation.max_curvature().max(-corrugation.min_curvature())
-                    < LINEAR_FILTER_CURVATURE * 2.0 * shape.curvatures().a;
+                && trough.max(-crest) < LINEAR_FILTER_CURVATURE * 2.0 * shape.curvatures().a;
             let surface = RailContact::Profile(Arc::new(corrugation));
             solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
             spec.surface = Some(surface);
             if linear_filter {
-                match shape.patch(spec.loads.normal_force) {
-                    Ok(p) if dynamics.is_some() => linear_roughness(profile, grid, p.a, p.b),
-                    _ => vec![0.0; grid.nx],
-                }
+                linear_seen()
             } else if dynamics.is_some() {
                 let n = (length / spec.step_length).round().max(1.0) as usize;
                 let step = length / n as f64;

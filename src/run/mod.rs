@@ -154,11 +154,6 @@ pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::Fixe
     }
 }
 
-/// What the normal problem of a scene sees of the rail.
-pub fn normal_contact(scene: &Scene) -> NormalContact {
-    scene.contact.normal
-}
-
 /// The normal force (N) whose Hertz patch the fixed grid is sized for.
 pub fn fixed_grid_load(scene: &Scene) -> f64 {
     let dynamic = scene.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);

@@ -17,7 +17,7 @@
 //! run computes bit for bit what the uninterrupted run would have.
 
 use super::hertz_check::HertzCheck;
-use super::{build_deposit, build_solver, derive, element_count, normal_contact, study_grid, track_dynamics};
+use super::{build_deposit, build_solver, derive, element_count, study_grid, track_dynamics};
 use crate::config::contact::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::config::{ConfigErrors, Resolved, load_str};
 use crate::dynamics::TrackDynamics;
@@ -330,8 +330,8 @@ fn continue_run(
     };
     let fixed_grid = matches!(scene.contact.grid, crate::params::ContactGrid::Fixed(_));
     let mut hertz_check = HertzCheck {
-        active: normal_contact(scene) == NormalContact::Hertz && has_dynamics,
-        fixed: matches!(scene.contact.grid, crate::params::ContactGrid::Fixed(_)),
+        active: scene.contact.normal == NormalContact::Hertz && has_dynamics,
+        fixed: fixed_grid,
         from: match scene.contact.grid {
             crate::params::ContactGrid::Fixed(f) => PROFILE_NOISE_AMPLITUDE * f.dx / PROFILE_NOISE_ELEMENT,
             crate::params::ContactGrid::Adapted => PROFILE_NOISE_AMPLITUDE,
@@ -354,7 +354,7 @@ fn continue_run(
         // What the normal contact of this passage sees of the rail: the
         // consistent chain's is the linear contact on the adapted mesh and
         // the nonlinear profile contact on the fixed grid.
-        let normal = match normal_contact(scene) {
+        let normal = match scene.contact.normal {
             NormalContact::Auto { .. } if !fixed_grid => NormalContact::Linear,
             normal => normal,
         };

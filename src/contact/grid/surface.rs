@@ -125,30 +125,32 @@ impl RailSurface {
         }
     }
 
-    /// The smallest curvature `d^2 r / dX^2` (1/m) of the profile along the
-    /// rail (second differences over all rows): a crest's.
-    pub fn min_curvature(&self) -> f64 {
-        -RailSurface { heights: self.heights.mapv(|v| -v), ..self.clone() }.max_curvature()
-    }
-
     /// The largest curvature `d^2 r / dX^2` (1/m) of the profile along the
     /// rail (second differences over all rows): a trough's, which lengthens
     /// the patch over it.
     pub fn max_curvature(&self) -> f64 {
+        self.curvature_range().1
+    }
+
+    /// The smallest and the largest curvature `d^2 r / dX^2` (1/m) of the
+    /// profile along the rail (second differences over all rows; 0 for a
+    /// flat one): a crest's and a trough's.
+    pub fn curvature_range(&self) -> (f64, f64) {
         let (ny, nx) = self.heights.dim();
         if nx < 3 {
-            return 0.0;
+            return (0.0, 0.0);
         }
         let h = &self.heights;
-        let mut max = 0.0f64;
+        let (mut min, mut max) = (0.0f64, 0.0f64);
         for j in 0..ny {
             let range = if self.periodic { 0..nx } else { 1..nx - 1 };
             for i in range {
                 let (l, r) = ((i + nx - 1) % nx, (i + 1) % nx);
-                max = max.max((h[[j, l]] - 2.0 * h[[j, i]] + h[[j, r]]) / (self.dx * self.dx));
+                let c = (h[[j, l]] - 2.0 * h[[j, i]] + h[[j, r]]) / (self.dx * self.dx);
+                (min, max) = (min.min(c), max.max(c));
             }
         }
-        max
+        (min, max)
     }
 }
 
@@ -188,5 +190,8 @@ mod tests {
         // A trough of curvature 2 (r = x^2 near it).
         let t = RailSurface::line(0.0, 0.1, &[0.01, 0.0, 0.01, 0.04], false);
         assert!((t.max_curvature() - 2.0).abs() < 1e-12);
+        // A crest of curvature -2 and a straight run: the range (-2, 0).
+        let (lo, hi) = RailSurface::line(0.0, 0.1, &[0.0, 0.01, 0.0, -0.01], false).curvature_range();
+        assert!((lo + 2.0).abs() < 1e-12 && hi.abs() < 1e-12, "{lo} {hi}");
     }
 }

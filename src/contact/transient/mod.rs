@@ -40,7 +40,7 @@
 pub mod elastic;
 pub mod gauss_seidel;
 
-use super::linear::MeshResponse;
+use super::linear::LinearContact;
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use elastic::{ExactElastic, PatchFrame, WinklerElastic};
@@ -157,10 +157,8 @@ pub struct Transient {
     /// Factorised Jacobian of the last Newton iteration, reused as the
     /// initial chord matrix of the next step.
     factor: Option<Factor>,
-    /// The linear normal response on the mesh (the linear profile contact).
-    linear: Option<MeshResponse>,
-    /// The rail surface in the normal contact.
-    rail: Option<RailContact>,
+    /// The linear profile contact (empty unless built with one).
+    linear: LinearContact,
     /// Elements of the current step whose linear pressure was set to zero.
     clipped: usize,
     /// The current step's patch offset (m) and whether the linear profile
@@ -256,8 +254,7 @@ impl Transient {
             tolerance: DEFAULT_TOLERANCE,
             fallbacks: 0,
             factor: None,
-            linear: None,
-            rail: None,
+            linear: LinearContact::default(),
             clipped: 0,
             moved: None,
         }
@@ -270,7 +267,7 @@ impl Transient {
     /// ratio), the model's pressure shape on it plus the rest of the exact
     /// elastic response.
     pub fn with_linear_contact(mut self, shape: &crate::hertz::HertzShape) -> Self {
-        self.linear = Some(MeshResponse::new(&self.mesh, shape));
+        self.linear = LinearContact::new(&self.mesh, shape);
         self
     }
 
@@ -488,15 +485,14 @@ impl Transient {
         // The patch: Hertz's, or moved with the contact point by the linear
         // profile contact (uniformly stretched for the exact elastic model,
         // whose coefficients hold one aspect ratio).
-        let (frame, p3) = match (&self.linear, &self.rail) {
-            (Some(response), Some(RailContact::Linear(surface))) => {
-                let uniform = matches!(self.model, ElasticModel::Exact(_));
-                let lp = response.linear_patch(surface, input.position, patch, self.shape, &self.mesh, uniform)?;
+        let uniform = matches!(self.model, ElasticModel::Exact(_));
+        let (frame, p3) = match self.linear.patch(input.position, patch, self.shape, &self.mesh, uniform)? {
+            Some(lp) => {
                 self.clipped = lp.clipped;
                 self.moved = Some(lp.offset);
                 (PatchFrame { a: lp.a, b: lp.b }, lp.pressure)
             }
-            _ => {
+            None => {
                 self.clipped = 0;
                 self.moved = None;
                 (
@@ -649,17 +645,10 @@ impl TangentialSolver for Transient {
     }
 
     fn linear_resolution(&self, a: f64) -> Option<f64> {
-        self.linear.as_ref().map(|r| r.resolution(a))
+        self.linear.resolution(a)
     }
 
     fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), ContactError> {
-        match surface {
-            Some(RailContact::Linear(_)) if self.linear.is_none() => Err(ContactError::NoSurface),
-            Some(RailContact::Profile(_)) => Err(ContactError::NoSurface),
-            s => {
-                self.rail = s;
-                Ok(())
-            }
-        }
+        self.linear.set_surface(surface)
     }
 }
