@@ -5,7 +5,7 @@ use corrugation::config::load_str;
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::solver::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme};
+use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, GridSolver};
 use corrugation::contact::transient::elastic::ExactElastic;
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, TangentialSolver};
@@ -170,6 +170,7 @@ fn fixed_grid(c: &mut Criterion) {
             law: FrictionLaw::Regularised,
             eps: 1e-5,
             scheme: GridScheme::SecondOrder,
+            solver: GridSolver::Auto,
         };
         let mut solver = FixedGrid::new(spec);
         let grid = solver.grid().clone();

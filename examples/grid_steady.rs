@@ -3,12 +3,13 @@
 //! the creepage and the wear integral `INT p3 |s| / V dA` (N) of the last
 //! step, for the grid-convergence study of the README.
 //!
-//! `cargo run --release --example grid_steady -- DX DY [N F_X ROLLED LAW SCHEME TOLERANCE]`
-//! (m, m, N, N, m, regularised|coulomb, first-|second-|third-order, units of eps);
+//! `cargo run --release --example grid_steady -- DX DY [N F_X ROLLED LAW SCHEME TOLERANCE SOLVER]`
+//! (m, m, N, N, m, regularised|coulomb, first-|second-|third-order, units of eps,
+//! auto|cg|gauss-seidel);
 //! with `HISTORY=1` in the environment, every step's creepage and sweeps on stderr.
 
 use corrugation::contact::grid::solver::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme};
+use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, GridSolver};
 use corrugation::contact::{StepInput, TangentialSolver};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use std::time::Instant;
@@ -44,6 +45,11 @@ fn main() {
         law,
         eps: 1e-5,
         scheme,
+        solver: match args.get(8).map(String::as_str) {
+            Some("cg") => GridSolver::Cg,
+            Some("gauss-seidel") => GridSolver::GaussSeidel,
+            _ => GridSolver::Auto,
+        },
     };
     let tolerance = num(7, corrugation::contact::grid::solver::GRID_TOLERANCE);
     let mut solver = FixedGrid::new(spec).with_tolerance(tolerance);
@@ -61,6 +67,7 @@ fn main() {
     let steps = (rolled / dx).round() as usize;
     let clock = Instant::now();
     let mut sweeps = 0;
+    let mut in_contact = 0;
     let mut last = None;
     for n in 0..=steps {
         let sol = solver.step(&input).unwrap_or_else(|e| panic!("{e}"));
@@ -68,6 +75,7 @@ fn main() {
             eprintln!("{:.2} mm {:.6e} sweeps {}", n as f64 * dx * 1e3, -sol.creepage.x, sol.iterations);
         }
         sweeps += sol.iterations;
+        in_contact = sol.pressure.iter().filter(|p| **p > 0.0).count();
         last = Some(sol);
     }
     let sol = last.unwrap();
@@ -77,15 +85,17 @@ fn main() {
         / speed;
     let g = solver.grid();
     println!(
-        "dx {:.4} mm dy {:.4} mm grid {}x{} steps {} creepage {:.6e} wear_int {:.4} N sweeps/step {:.1} ms/step {:.2}",
+        "dx {:.4} mm dy {:.4} mm grid {}x{} in contact {} steps {} creepage {:.6e} wear_int {:.6} N sweeps/step {:.1} ms/step {:.2} fallbacks {}",
         dx * 1e3,
         dy * 1e3,
         g.nx,
         g.ny,
+        in_contact,
         steps + 1,
         -sol.creepage.x,
         wear,
         sweeps as f64 / (steps + 1) as f64,
-        clock.elapsed().as_secs_f64() * 1e3 / (steps + 1) as f64
+        clock.elapsed().as_secs_f64() * 1e3 / (steps + 1) as f64,
+        solver.fallbacks()
     );
 }

@@ -2,7 +2,7 @@
 //! Built from a config by [`crate::config`]; SI units throughout.
 
 use crate::contact::PressureShape;
-use crate::contact::grid::{FrictionLaw, GridScheme};
+use crate::contact::grid::{FrictionLaw, GridScheme, GridSolver};
 use crate::contact::transient::StepSolver;
 use crate::hertz::{Curvatures, Elastic};
 use crate::loads::ImposedLoads;
@@ -113,6 +113,8 @@ pub struct FixedGridParams {
     pub friction_law: FrictionLaw,
     /// Backward difference of the material derivative.
     pub scheme: GridScheme,
+    /// Tangential solver (`contact.solver`).
+    pub solver: GridSolver,
 }
 
 /// What the normal contact sees of the rail (`contact.normal`).

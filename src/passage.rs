@@ -219,6 +219,9 @@ pub struct PassageResult {
     /// Steps at which the linear profile contact's pressure vanished well
     /// inside the patch (0 for the other normal contacts).
     pub clipped_steps: usize,
+    /// Steps the fast tangential solver did not converge and the reference
+    /// solver solved ([`crate::contact::PatchSolution::fallback`]).
+    pub fallback_steps: usize,
 }
 
 /// Why a passage stopped.
@@ -319,7 +322,7 @@ pub fn run_passage(
     let mut h = PatchHistory { fields: record_fields.then(|| PatchFields::new(steps, n_el)), ..Default::default() };
     // The previous step's patch (x_c, a, b) and wear rates.
     let mut previous: Option<PreviousPatch> = None;
-    let mut clipped_steps = 0;
+    let (mut clipped_steps, mut fallback_steps) = (0, 0);
     solver.reset();
     solver.set_surface(spec.surface.clone()).map_err(PassageError::Surface)?;
     for n in 0..steps {
@@ -356,6 +359,7 @@ pub fn run_passage(
         })?;
         check_finite(&sol, n, x)?;
         clipped_steps += usize::from(sol.clipped > 0);
+        fallback_steps += usize::from(sol.fallback);
         // The patch the solver used (moved with the contact point by the
         // linear profile contact on the adapted mesh).
         let (patch_a, patch_b) = sol.semi_axes.unwrap_or((patch.a, patch.b));
@@ -424,7 +428,7 @@ pub fn run_passage(
         previous = Some(PreviousPatch { wheel: x, x_c: x + sol.offset, a: patch_a, b: patch_b, rates });
         progress(n + 1, steps);
     }
-    Ok(PassageResult { wear, history: h, clipped_steps })
+    Ok(PassageResult { wear, history: h, clipped_steps, fallback_steps })
 }
 
 fn check_finite(sol: &PatchSolution, step: usize, x: f64) -> Result<(), PassageError> {

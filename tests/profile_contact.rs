@@ -20,7 +20,7 @@ use common::{STEEL, paper_shape, rel};
 use corrugation::config::load_str;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::solver::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, RailSurface};
+use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, GridSolver, RailSurface};
 use corrugation::contact::{RailContact, StepInput, TangentialSolver};
 use corrugation::growth::equivalent_roughness;
 use corrugation::hertz::Curvatures;
@@ -62,6 +62,7 @@ fn sized(dx: f64, dy: f64, length: f64, n_max: f64) -> FixedGrid {
         law: FrictionLaw::Regularised,
         eps: 1e-5,
         scheme: GridScheme::SecondOrder,
+        solver: GridSolver::Auto,
     })
 }
 

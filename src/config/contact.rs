@@ -4,7 +4,7 @@
 use super::reader::{Range, Section};
 use super::{AUTO, ConfigError};
 use crate::contact::PressureShape;
-use crate::contact::grid::{FrictionLaw, GridScheme};
+use crate::contact::grid::{FrictionLaw, GridScheme, GridSolver};
 use crate::contact::transient::StepSolver;
 use crate::params::{ContactGrid, ContactModelKind, FixedGridParams, NormalContact};
 use toml::{Table, Value};
@@ -92,7 +92,7 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
     };
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
     let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
-    let solver = s.choice("solver", Some("gauss-seidel"), &["gauss-seidel", "newton"]);
+    let solver = s.choice("solver", Some("auto"), &["auto", "gauss-seidel", "newton", "cg"]);
     let normal = s.choice("normal", Some("auto"), &["auto", "linear", "profile", "hertz"]);
     let profile = matches!(normal.as_deref(), Some("profile" | "auto"));
     let length_range = Range::Closed(1.0, 4.0);
@@ -220,12 +220,14 @@ pub(super) fn reconcile_step(
             "third-order" => GridScheme::ThirdOrder,
             _ => GridScheme::SecondOrder,
         },
+        solver: GridSolver::Auto,
     }))
 }
 
 /// Checks that combine the model with its grid and solver.
 pub(super) fn check_model(model: &str, grid: &ContactGrid, solver: &str, errors: &mut Vec<ConfigError>) {
-    if let ContactGrid::Fixed(_) = grid {
+    if let ContactGrid::Fixed(f) = grid {
+        let law = Some(f.friction_law.name());
         if model != ContactModelKind::ExactTransient.name() {
             errors.push(ConfigError::new(
                 "contact.grid",
@@ -238,11 +240,36 @@ pub(super) fn check_model(model: &str, grid: &ContactGrid, solver: &str, errors:
         if solver == "newton" {
             errors.push(ConfigError::new(
                 "contact.solver",
-                "= \"newton\" is the adapted mesh's reference solver; the fixed grid solves by Gauss-Seidel: allowed \
-                 with contact.grid = \"fixed\": gauss-seidel"
+                "= \"newton\" is the adapted mesh's reference solver (dense Jacobian); allowed with contact.grid = \
+                 \"fixed\": auto, cg, gauss-seidel"
                     .into(),
             ));
         }
+        if solver == "cg" && law == Some("coulomb") {
+            errors.push(ConfigError::new(
+                "contact.solver",
+                "= \"cg\" solves the regularised friction law; with contact.friction_law = \"coulomb\" allowed: \
+                 auto, gauss-seidel"
+                    .into(),
+            ));
+        }
+    } else if solver == "cg" {
+        errors.push(ConfigError::new(
+            "contact.solver",
+            "= \"cg\" is the fixed grid's Newton-Krylov solver (FFT products); allowed with contact.grid = \
+             \"adapted\": auto, gauss-seidel, newton"
+                .into(),
+        ));
+    }
+}
+
+/// The fixed grid's tangential solver named by `contact.solver` (`auto`
+/// for a name that belongs to the adapted mesh, refused by [`check_model`]).
+pub(super) fn grid_solver(solver: &str) -> GridSolver {
+    match solver {
+        "cg" => GridSolver::Cg,
+        "gauss-seidel" => GridSolver::GaussSeidel,
+        _ => GridSolver::Auto,
     }
 }
 

@@ -222,6 +222,9 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         return (None, resolved);
     };
     contact::check_model(&model, &contact_grid, &solver, errors);
+    if let ContactGrid::Fixed(f) = &mut contact_grid {
+        f.solver = contact::grid_solver(&solver);
+    }
     let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(mut step_length)) =
         (k_over_h, substeps, start, end, step_length)
     else {
@@ -283,7 +286,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             errors.push(ConfigError::new(
                 "contact.solver",
                 "= \"newton\" cannot go with contact.model = \"auto\": the map's costs are those of the \
-                 gauss-seidel solver (same results, 7x faster at 20 x 20); allowed: gauss-seidel"
+                 gauss-seidel solver (same results, 7x faster at 20 x 20); allowed: auto, gauss-seidel, cg"
                     .into(),
             ));
         }
@@ -308,6 +311,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
                     dy: FIXED_ASPECT * dx,
                     friction_law: FrictionLaw::Regularised,
                     scheme: GridScheme::SecondOrder,
+                    solver: contact::grid_solver(&solver),
                 });
                 step_length = dx;
                 nx

@@ -136,6 +136,10 @@ pub struct PatchSolution {
     /// The semi-axes (a, b) of the adapted mesh when the linear profile
     /// contact moved its edges (m); `None`: the step's Hertz patch.
     pub semi_axes: Option<(f64, f64)>,
+    /// The step's fast solver did not converge and the reference solver
+    /// solved it (the fixed grid's Newton-Krylov solver handing the step to
+    /// Gauss-Seidel).
+    pub fallback: bool,
 }
 
 impl PatchSolution {

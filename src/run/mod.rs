@@ -151,6 +151,7 @@ pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::Fixe
         law: f.friction_law,
         eps: scene.contact.regularisation,
         scheme: f.scheme,
+        solver: f.solver,
     }
 }
 

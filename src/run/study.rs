@@ -363,6 +363,7 @@ fn continue_run(
         let mut report =
             |done: usize, _: usize| progress(Event::Steps { done: (pass - first) * steps + done, total: total_steps });
         let (mut loss, mut clipped, mut linear_filter) = (0, 0, false);
+        let fallbacks;
         let (wear, history) = match growth {
             None => {
                 let r = run_passage(
@@ -375,6 +376,7 @@ fn continue_run(
                     &mut report,
                 )
                 .map_err(|source| RunError::Passage { pass, source })?;
+                fallbacks = r.fallback_steps;
                 (r.wear, r.history)
             }
             Some(_) => {
@@ -426,9 +428,19 @@ fn continue_run(
                         ),
                     });
                 }
+                fallbacks = g.passage.fallback_steps;
                 (g.wear, g.passage.history)
             }
         };
+        if fallbacks > 0 {
+            progress(Event::Warning {
+                pass,
+                message: format!(
+                    "the fixed grid's CG solver did not converge at {fallbacks} steps, which Gauss-Seidel solved \
+                     (same equations; set contact.solver = \"gauss-seidel\" to use it throughout)"
+                ),
+            });
+        }
         let cpu_seconds = clock.elapsed().as_secs_f64();
         // With imposed dynamics the wear does not depend on the profile: the
         // update is exact for any m (growth::traffic).

@@ -26,6 +26,7 @@
 //! (x > 0, where rail material enters) to the trailing edge, as the adapted
 //! mesh's strips.
 
+pub mod cg;
 pub mod convolution;
 pub mod coupling;
 pub mod normal;
@@ -33,7 +34,7 @@ pub mod solver;
 pub mod surface;
 pub mod tangential;
 
-pub use solver::{FixedGrid, FrictionLaw, GridScheme};
+pub use solver::{FixedGrid, FrictionLaw, GridScheme, GridSolver};
 pub use surface::RailSurface;
 
 /// A uniform rectangular grid of elements in the contact frame.

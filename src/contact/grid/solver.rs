@@ -21,6 +21,7 @@
 //! A virgin start (a new passage, or contact regained) is Cattaneo's shift
 //! problem: `u_o = 0`, the rigid shift over the step `V xi dt`.
 
+use super::cg;
 use super::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use super::coupling::{Coupling, FoldedKernel};
 use super::normal::{self, NormalError};
@@ -83,6 +84,33 @@ pub enum GridScheme {
     ThirdOrder,
 }
 
+/// The tangential solver of the fixed grid (`contact.solver`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GridSolver {
+    /// The Newton-Krylov solver for the regularised law, Gauss-Seidel for
+    /// exact Coulomb friction.
+    #[default]
+    Auto,
+    /// Newton with projected CG inner solves, every iteration one FFT
+    /// product ([`super::cg`]); the regularised law (config refuses it with
+    /// exact Coulomb friction).
+    Cg,
+    /// Element-wise nonlinear Gauss-Seidel ([`super::tangential`]), the
+    /// reference.
+    GaussSeidel,
+}
+
+impl GridSolver {
+    /// Config name (`contact.solver`).
+    pub fn name(self) -> &'static str {
+        match self {
+            GridSolver::Auto => "auto",
+            GridSolver::Cg => "cg",
+            GridSolver::GaussSeidel => "gauss-seidel",
+        }
+    }
+}
+
 /// What a fixed-grid model is built from.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FixedGridSpec {
@@ -109,6 +137,8 @@ pub struct FixedGridSpec {
     pub eps: f64,
     /// Difference scheme.
     pub scheme: GridScheme,
+    /// Tangential solver.
+    pub solver: GridSolver,
 }
 
 impl FixedGridSpec {
@@ -147,6 +177,9 @@ struct History {
     p3: Vec<f64>,
     /// Slips of the last step, interleaved (m/s).
     s: Vec<f64>,
+    /// Tractions of the last step, interleaved (Pa).
+    p: Vec<f64>,
+
     /// Creepage.
     xi: f64,
 }
@@ -159,6 +192,8 @@ struct Earlier {
     beta: f64,
     /// Warm-start slips, interleaved (m/s).
     s0: Vec<f64>,
+    /// Warm-start tractions, interleaved (Pa).
+    p0: Vec<f64>,
     /// Warm-start creepage.
     xi0: f64,
 }
@@ -182,6 +217,9 @@ pub struct FixedGrid {
     surface: Option<RailContact>,
     /// Warm start of [`FixedGrid::approach`]'s normal solves (Pa).
     approach_start: Option<Vec<f64>>,
+    /// Steps the Newton-Krylov solver handed to Gauss-Seidel since the last
+    /// reset.
+    fallbacks: usize,
 }
 
 impl FixedGrid {
@@ -207,6 +245,7 @@ impl FixedGrid {
             folded: None,
             surface: None,
             approach_start: None,
+            fallbacks: 0,
         }
         .fold_if_symmetric()
     }
@@ -226,6 +265,12 @@ impl FixedGrid {
     pub fn with_tolerance(mut self, relative: f64) -> Self {
         self.tolerance = relative;
         self
+    }
+
+    /// Steps the Newton-Krylov solver did not converge and Gauss-Seidel
+    /// solved, since the last reset.
+    pub fn fallbacks(&self) -> usize {
+        self.fallbacks
     }
 
     /// The potential-contact grid.
@@ -348,7 +393,7 @@ impl FixedGrid {
                 [-input.spin * y, input.creepage_y + input.spin * x]
             })
             .collect();
-        let Earlier { u_prev, beta, s0, xi0 } = self.earlier(&set);
+        let Earlier { u_prev, beta, s0, p0, xi0 } = self.earlier(&set);
         let law = self.law();
         let mut scratch = std::mem::take(&mut self.scratch);
         let kappa = self.creepage_stiffness(&mut scratch, &set, &weight, &mu_p3, &s0, beta, input);
@@ -397,7 +442,17 @@ impl FixedGrid {
                 u[nc + c] = uy[k];
             }
         };
-        let solved = tangential::solve(&step, &s0, xi0, &mut fresh);
+        let newton_krylov = self.spec.solver != GridSolver::GaussSeidel && matches!(law, Law::Regularised { .. });
+        let mut fell_back = false;
+        let solved = match newton_krylov.then(|| cg::solve(&step, &s0, &p0, xi0, &mut fresh)) {
+            Some(Ok(sol)) => Ok(sol),
+            Some(Err(_)) => {
+                fell_back = true;
+                tangential::solve(&step, &s0, xi0, &mut fresh)
+            }
+            None => tangential::solve(&step, &s0, xi0, &mut fresh),
+        };
+        self.fallbacks += usize::from(fell_back);
         self.scratch = scratch;
         let sol = solved.map_err(|history| {
             let last = history.last().copied().unwrap_or(f64::NAN);
@@ -412,12 +467,14 @@ impl FixedGrid {
                 ),
             }
         })?;
-        let (out, s_grid) = self.expand(input, &set, &weight, &p3, &sol);
+        let (mut out, s_grid) = self.expand(input, &set, &weight, &p3, &sol);
+        out.fallback = fell_back;
         let (older, oldest) = match self.history.take() {
             Some(h) => (Some(h.u), h.older),
             None => (None, None),
         };
-        self.history = Some(History { u: (ux, uy), older, oldest, p3, s: s_grid, xi: sol.xi });
+        let p_grid = out.traction_x.iter().zip(&out.traction_y).flat_map(|(x, y)| [*x, *y]).collect();
+        self.history = Some(History { u: (ux, uy), older, oldest, p3, s: s_grid, p: p_grid, xi: sol.xi });
         Ok(out)
     }
 
@@ -450,7 +507,8 @@ impl FixedGrid {
     /// the same elements, its creepage). A virgin start: zeros, beta = 1.
     fn earlier(&self, set: &ContactSet) -> Earlier {
         let (nx, nc) = (self.grid.nx, set.len());
-        let mut e = Earlier { u_prev: vec![0.0; 2 * nc], beta: 1.0, s0: vec![0.0; 2 * nc], xi0: 0.0 };
+        let mut e =
+            Earlier { u_prev: vec![0.0; 2 * nc], beta: 1.0, s0: vec![0.0; 2 * nc], p0: vec![0.0; 2 * nc], xi0: 0.0 };
         let Some(h) = &self.history else {
             return e;
         };
@@ -484,6 +542,8 @@ impl FixedGrid {
             e.u_prev[2 * c + 1] = uy;
             e.s0[2 * c] = h.s[2 * k];
             e.s0[2 * c + 1] = h.s[2 * k + 1];
+            e.p0[2 * c] = h.p[2 * k];
+            e.p0[2 * c + 1] = h.p[2 * k + 1];
         }
         e.beta = [1.0, 1.5, 11.0 / 6.0][level - 1];
         e.xi0 = h.xi;
@@ -598,6 +658,7 @@ impl TangentialSolver for FixedGrid {
 
     fn reset(&mut self) {
         self.history = None;
+        self.fallbacks = 0;
     }
 
     fn elements(&self) -> Elements {

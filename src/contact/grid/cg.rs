@@ -1,0 +1,342 @@
+//! A Newton-Krylov tangential solver for the fixed grid whose every
+//! iteration costs one FFT product (`contact.solver = "cg"`): the step of
+//! [`super::tangential`] (same equations, same [`GridStep`], same verdict)
+//! solved for the whole contact area at once instead of element by element.
+//!
+//! **Equations.** With `A = (beta/dt) K` on the elements in contact, the
+//! slips `s`, tractions `p` and the creepage `xi` solve
+//!
+//! ```text
+//! G = s - V (w0 + xi e_x) - (beta K p - u~) / dt = 0,   p = law(s),
+//! area sum_I w_I p_x,I = F_x,
+//! ```
+//!
+//! the law the paper's regularised Coulomb law `p = -(2/pi) atan(|s|/eps)
+//! mu p3 s/|s|` (Baeza et al. 2008, Eq. 6). Exact Coulomb friction, with no
+//! compliance in stick, is left to Gauss-Seidel ([`CgFailure::Coulomb`]).
+//!
+//! **Newton step.** Linearised about an iterate that satisfies the law at
+//! every element, with `H = (-dp/ds)^-1` the law's compliance (2 x 2 blocks:
+//! about `pi eps / (2 mu p3)` in stick; in slip `|s|/(mu p3)` along the
+//! traction's tangent and very stiff along it), the step `dp` and the
+//! multiplier `lambda = V dxi` solve the saddle-point system
+//!
+//! ```text
+//! (A + H) dp + e_x lambda = G,    area <e_x, dp>_w = F_x - F,
+//! ```
+//!
+//! symmetric positive definite on the constraint's null space in the inner
+//! product `<a, b>_w = sum_I w_I a_I . b_I` (`w_I` = 2 for an element that
+//! stands for itself and its mirror on a folded grid): the Hessian of the
+//! step's convex complementary energy, the system of Vollebregt's TangCG
+//! (Zhao, Vollebregt & Oosterlee, J. Comput. Phys. 288 (2015) 86-100).
+//!
+//! **Inner solve.** Projected preconditioned conjugate gradients (Gould,
+//! Hribar & Nocedal, SIAM J. Sci. Comput. 23 (2001) 1376-1395): the force
+//! constraint by projecting the preconditioned residual onto its null
+//! space, the multiplier from the residual's component along `e_x`; the
+//! preconditioner each element's own 2 x 2 block of `A + H`, inverted (it
+//! carries the stiff radial direction of the slip elements); every product
+//! `K dp` by the FFT ([`super::convolution`]), O(N log N). Inexact Newton:
+//! each solve to [`FORCING`] of the current largest residual.
+//!
+//! **Update (return mapping).** The law is nearly linear in the traction in
+//! stick and in the slip in slip, so an element whose new traction `p +
+//! dp` lies in the stick regime takes it (and the law's slip of it); one
+//! beyond solves its own element problem `s = s0 + A_II p(s)` exactly for
+//! the law (as a Gauss-Seidel sweep does), `s0` the kinematic slip the
+//! linearised coupling predicts less its own share. Every iterate then
+//! satisfies the law, and only the coupling residual `G` is left to
+//! converge. A step not converged in [`MAX_NEWTON`] iterations is reported
+//! (the caller hands it to Gauss-Seidel).
+
+use super::tangential::{GridSolution, GridStep, Law};
+use crate::contact::transient::gauss_seidel::local_solve;
+use crate::contact::transient::{STICK_SLIP_FACTOR, friction};
+
+/// Largest Newton iterations of a step.
+pub const MAX_NEWTON: usize = 30;
+
+/// Largest CG iterations of one Newton solve.
+const MAX_CG: usize = 200;
+
+/// The inner solve's target: this fraction of the current largest residual
+/// (0.005 to 0.2 take 57 to 73 products per step on paper_normal_30mm at
+/// 0.2 mm; 0.02-0.05 the fewest).
+pub const FORCING: f64 = 0.05;
+
+/// Why the Newton-Krylov solve stopped without a solution.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CgFailure {
+    /// Exact Coulomb friction: the law has no compliance in stick, and the
+    /// return mapping's switching between stick and slip did not converge
+    /// (73 of 75 steps of the paper's Fig. 7 loads on a 0.4 mm grid);
+    /// Gauss-Seidel solves it.
+    Coulomb,
+    /// Not converged: the largest kinematic residual (m/s) after each
+    /// Newton iteration.
+    NoConvergence(Vec<f64>),
+}
+
+/// An iterate: slips and tractions that satisfy the law element by
+/// element, their displacements, and the residuals of the coupling.
+struct State {
+    /// Slips (m/s), interleaved.
+    s: Vec<f64>,
+    /// Tractions (Pa), interleaved.
+    p: Vec<f64>,
+    /// Creepage.
+    xi: f64,
+    /// `K p` (m), x block then y block.
+    u: Vec<f64>,
+    /// Kinematic residual `G = s - s_kin` (m/s), interleaved.
+    g: Vec<f64>,
+    /// Largest |G| (m/s).
+    r_max: f64,
+    /// F - F_x (N).
+    f_res: f64,
+}
+
+/// Solves the step from the warm start (slips `s`, creepage `xi`) as
+/// [`super::tangential::solve`] does, for the regularised law. `fresh(p, u)`
+/// computes `u = K p` at the elements in contact (x block then y block).
+/// The returned solution's `sweeps` counts the products (`K p`) used.
+pub fn solve(
+    st: &GridStep,
+    s: &[f64],
+    p0: &[f64],
+    xi: f64,
+    fresh: &mut dyn FnMut(&[f64], &mut [f64]),
+) -> Result<GridSolution, CgFailure> {
+    let Law::Regularised { eps } = st.law else {
+        return Err(CgFailure::Coulomb);
+    };
+    let n = st.set.len();
+    let mut products = 0;
+    let own: Vec<[f64; 3]> = (0..n).map(|c| st.coupling.own(st.set.iy[c]).map(|v| st.beta / st.dt * v)).collect();
+    // The warm start: a sliding element (|s| >= 10 eps) keeps its slip and
+    // takes the law's traction; one in stick keeps its traction (within
+    // the stick regime of the new bound) and takes the law's slip.
+    let theta = stick_regime();
+    let (mut s, mut p) = (s.to_vec(), vec![0.0; 2 * n]);
+    for c in 0..n {
+        let (i, j) = (2 * c, 2 * c + 1);
+        let g = st.mu_p3[c];
+        let q = s[i].hypot(s[j]);
+        if q >= STICK_SLIP_FACTOR * eps {
+            let pc = friction([s[i], s[j]], g, eps).0;
+            (p[i], p[j]) = (pc[0], pc[1]);
+        } else {
+            let pm = p0[i].hypot(p0[j]);
+            let cut = if pm > theta * g { theta * g / pm } else { 1.0 };
+            let pc = [cut * p0[i], cut * p0[j]];
+            let sc = stick_slip(eps, pc, g);
+            (s[i], s[j], p[i], p[j]) = (sc[0], sc[1], pc[0], pc[1]);
+        }
+    }
+    let mut state = evaluate(st, s, p, xi, fresh, &mut products);
+    let mut history = Vec::new();
+    for _ in 0..MAX_NEWTON {
+        if !state.r_max.is_finite() || !state.f_res.is_finite() {
+            break;
+        }
+        if state.r_max < st.tol && (state.f_res / st.mu_n).abs() < st.force_tol {
+            let State { p, s, xi, u, .. } = state;
+            return Ok(GridSolution { p, s, xi, u, sweeps: products });
+        }
+        // H = (-dp/ds)^-1, the law's compliance.
+        let h: Vec<[f64; 3]> =
+            (0..n).map(|c| inverse(friction([state.s[2 * c], state.s[2 * c + 1]], st.mu_p3[c], eps).1)).collect();
+        let target = (FORCING * state.r_max).max(0.3 * st.tol);
+        let (dp, adp, lambda) = newton_system(st, &own, &h, &state, target, fresh, &mut products);
+        state = correct(st, eps, &own, &state, (&dp, &adp, lambda), fresh, &mut products);
+        history.push(state.r_max);
+    }
+    Err(CgFailure::NoConvergence(history))
+}
+
+/// The next iterate from the Newton step `(dp, A dp, lambda)`: the
+/// kinematic slip the linearised coupling predicts, `s_kin + A dp + e_x
+/// lambda`, then each element's own problem solved exactly for its law
+/// with the others' tractions at their predicted values (the local
+/// correction of a return mapping: `s = s0 + A_II p(s)`, `s0` the
+/// prediction less the element's own share), then one product.
+fn correct(
+    st: &GridStep,
+    eps: f64,
+    own: &[[f64; 3]],
+    x: &State,
+    (dp, adp, lambda): (&[f64], &[f64], f64),
+    fresh: &mut dyn FnMut(&[f64], &mut [f64]),
+    products: &mut usize,
+) -> State {
+    let n = st.set.len();
+    let theta = stick_regime();
+    let mut s = vec![0.0; 2 * n];
+    let mut p = vec![0.0; 2 * n];
+    for (c, &k) in own.iter().enumerate() {
+        let (i, j) = (2 * c, 2 * c + 1);
+        let kin = [x.s[i] - x.g[i] + adp[i] + lambda, x.s[j] - x.g[j] + adp[j]];
+        let pn = [x.p[i] + dp[i], x.p[j] + dp[j]];
+        let g = st.mu_p3[c];
+        let pm = pn[0].hypot(pn[1]);
+        // Within the stick regime the traction is the linear variable.
+        let (sc, pc) = if pm < theta * g {
+            (stick_slip(eps, pn, g), pn)
+        } else {
+            let s0 = [kin[0] - (k[0] * pn[0] + k[1] * pn[1]), kin[1] - (k[1] * pn[0] + k[2] * pn[1])];
+            local_solve(s0, k, g, eps, [x.s[i], x.s[j]])
+        };
+        (s[i], s[j], p[i], p[j]) = (sc[0], sc[1], pc[0], pc[1]);
+    }
+    evaluate(st, s, p, x.xi + lambda / st.speed, fresh, products)
+}
+
+/// The traction's share of its bound below which an element is in the
+/// stick regime: `(2/pi) atan(10)` (slip below 10 eps).
+fn stick_regime() -> f64 {
+    2.0 / std::f64::consts::PI * STICK_SLIP_FACTOR.atan()
+}
+
+/// The slip of a traction `p` inside the stick regime of bound `g`: the
+/// regularised law's inverse `eps tan(pi |p| / (2 g))` against `p`.
+fn stick_slip(eps: f64, p: [f64; 2], g: f64) -> [f64; 2] {
+    let pm = p[0].hypot(p[1]);
+    if pm == 0.0 {
+        return [0.0; 2];
+    }
+    let q = eps * (0.5 * std::f64::consts::PI * pm / g).tan();
+    [-q * p[0] / pm, -q * p[1] / pm]
+}
+
+/// `D^-1` of a symmetric 2 x 2 block `(xx, xy, yy)`.
+fn inverse(d: [f64; 3]) -> [f64; 3] {
+    let det = d[0] * d[2] - d[1] * d[1];
+    [d[2] / det, -d[1] / det, d[0] / det]
+}
+
+/// `<a, b>_w` of two interleaved fields.
+fn dot(w: &[f64], a: &[f64], b: &[f64]) -> f64 {
+    w.iter().enumerate().map(|(c, wc)| wc * (a[2 * c] * b[2 * c] + a[2 * c + 1] * b[2 * c + 1])).sum()
+}
+
+/// One product and the residuals at `(s, p, xi)`.
+fn evaluate(
+    st: &GridStep,
+    s: Vec<f64>,
+    p: Vec<f64>,
+    xi: f64,
+    fresh: &mut dyn FnMut(&[f64], &mut [f64]),
+    products: &mut usize,
+) -> State {
+    let n = st.set.len();
+    let mut u = vec![0.0; 2 * n];
+    fresh(&p, &mut u);
+    *products += 1;
+    let mut g = vec![0.0; 2 * n];
+    let mut r_max = 0.0f64;
+    for c in 0..n {
+        let (i, j) = (2 * c, 2 * c + 1);
+        g[i] = s[i] - st.speed * (st.w0[i] + xi) - (st.beta * u[c] - st.u_prev[i]) / st.dt;
+        g[j] = s[j] - st.speed * st.w0[j] - (st.beta * u[n + c] - st.u_prev[j]) / st.dt;
+        r_max = r_max.max(g[i].abs()).max(g[j].abs());
+    }
+    let force: f64 = (0..n).map(|c| st.weight[c] * p[2 * c]).sum::<f64>() * st.area;
+    State { s, p, xi, u, g, r_max, f_res: force - st.force_x }
+}
+
+/// Solves `(A + H) dp + e_x lambda = G`, `area <e_x, dp>_w = -(F - F_x)` by
+/// projected preconditioned CG to `max |(A + H) dp + e_x lambda - G| <=
+/// target`; returns `dp` (Pa), `A dp` (m/s), both interleaved, and
+/// `lambda` (m/s).
+fn newton_system(
+    st: &GridStep,
+    own: &[[f64; 3]],
+    h: &[[f64; 3]],
+    x: &State,
+    target: f64,
+    fresh: &mut dyn FnMut(&[f64], &mut [f64]),
+    products: &mut usize,
+) -> (Vec<f64>, Vec<f64>, f64) {
+    let n = st.set.len();
+    let w = st.weight;
+    let scale = st.beta / st.dt;
+    // Preconditioner: each element's own block of A + H, inverted.
+    let pre: Vec<[f64; 3]> =
+        (0..n).map(|c| inverse([own[c][0] + h[c][0], own[c][1] + h[c][1], own[c][2] + h[c][2]])).collect();
+    let apply_pre = |v: &[f64], out: &mut [f64]| {
+        for c in 0..n {
+            let (a, b) = (v[2 * c], v[2 * c + 1]);
+            out[2 * c] = pre[c][0] * a + pre[c][1] * b;
+            out[2 * c + 1] = pre[c][1] * a + pre[c][2] * b;
+        }
+    };
+    let mut ku = vec![0.0; 2 * n];
+    // (A v, (A + H) v).
+    let mut apply_m = |v: &[f64], a: &mut [f64], out: &mut [f64], products: &mut usize| {
+        fresh(v, &mut ku);
+        *products += 1;
+        for c in 0..n {
+            let (vx, vy) = (v[2 * c], v[2 * c + 1]);
+            a[2 * c] = scale * ku[c];
+            a[2 * c + 1] = scale * ku[n + c];
+            out[2 * c] = a[2 * c] + h[c][0] * vx + h[c][1] * vy;
+            out[2 * c + 1] = a[2 * c + 1] + h[c][1] * vx + h[c][2] * vy;
+        }
+    };
+    let e: Vec<f64> = (0..n).flat_map(|_| [1.0, 0.0]).collect();
+    let mut pe = vec![0.0; 2 * n];
+    apply_pre(&e, &mut pe);
+    let epe = dot(w, &e, &pe);
+    // A feasible start: dp0 = c P e / <e, P e>.
+    let c0 = -x.f_res / st.area / epe;
+    let mut dp: Vec<f64> = pe.iter().map(|v| c0 * v).collect();
+    let mut adp = vec![0.0; 2 * n];
+    // r = (A + H) dp - G (the gradient).
+    let mut r = vec![0.0; 2 * n];
+    apply_m(&dp, &mut adp, &mut r, products);
+    for (ri, gi) in r.iter_mut().zip(&x.g) {
+        *ri -= gi;
+    }
+    let project = |r: &[f64], z: &mut [f64]| -> f64 {
+        apply_pre(r, z);
+        let k = dot(w, &e, z) / epe;
+        for (zi, pei) in z.iter_mut().zip(&pe) {
+            *zi -= k * pei;
+        }
+        // The multiplier of r: lambda = -<e, P r> / <e, P e>.
+        -k
+    };
+    let off_e = |r: &[f64], lambda: f64| -> f64 {
+        (0..n).map(|c| (r[2 * c] + lambda).abs().max(r[2 * c + 1].abs())).fold(0.0, f64::max)
+    };
+    let mut z = vec![0.0; 2 * n];
+    let mut lambda = project(&r, &mut z);
+    let mut dir: Vec<f64> = z.iter().map(|v| -v).collect();
+    let mut rz = dot(w, &r, &z);
+    let (mut q, mut adir) = (vec![0.0; 2 * n], vec![0.0; 2 * n]);
+    for _ in 0..MAX_CG {
+        if off_e(&r, lambda) <= target || rz <= 0.0 {
+            break;
+        }
+        apply_m(&dir, &mut adir, &mut q, products);
+        let curvature = dot(w, &dir, &q);
+        if curvature <= 0.0 {
+            break;
+        }
+        let alpha = rz / curvature;
+        for k in 0..2 * n {
+            dp[k] += alpha * dir[k];
+            adp[k] += alpha * adir[k];
+            r[k] += alpha * q[k];
+        }
+        lambda = project(&r, &mut z);
+        let rz_next = dot(w, &r, &z);
+        let beta = rz_next / rz;
+        rz = rz_next;
+        for k in 0..2 * n {
+            dir[k] = -z[k] + beta * dir[k];
+        }
+    }
+    (dp, adp, lambda)
+}
