@@ -3,9 +3,10 @@
 //! whole paper_normal_30mm FASTSIM passage. Run: `cargo bench --bench kernels`.
 use corrugation::config::load_str;
 use corrugation::contact::fastsim::Fastsim;
+use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::solver::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, GridSolver};
+use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::transient::elastic::ExactElastic;
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, TangentialSolver};

@@ -8,8 +8,9 @@
 //! auto|cg|gauss-seidel);
 //! with `HISTORY=1` in the environment, every step's creepage and sweeps on stderr.
 
+use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::solver::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, GridSolver};
+use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::{StepInput, TangentialSolver};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use std::time::Instant;

@@ -4,6 +4,8 @@
 //! The times are fitted to measurements (README, Performance); they are
 //! upper estimates on the development machines, not promises.
 
+use crate::contact::friction::FrictionLaw;
+use crate::contact::grid::GridSolver;
 use crate::contact::transient::StepSolver;
 use crate::loads::LoadQuantity;
 use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
@@ -51,12 +53,15 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     // Performance) takes 0.45-0.6 of these times: an upper estimate.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
-    // The fixed grid (scripts/solver_scaling.sh, paper_normal_30mm on the
-    // new machine): 5.0 ms per step with 478 elements in contact at the mean
-    // load, 35.9 ms with 1912, 106.5 ms with 3902, fitted by N^1.46; the
-    // wear deposit is in it. A scene that is not symmetric about the centre
-    // line (lateral creepage, spin) solves the whole grid: 2.7 times
-    // (scripts/stability_map.sh).
+    // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
+    // 2026-11-25): with the CG solver 3.97 ms per step with 478 elements in
+    // contact at the mean load, 17.3 ms with 1912, 42.3 ms with 3902,
+    // fitted by N^1.13; with Gauss-Seidel (its option, and exact Coulomb
+    // friction) 5.39, 38.5 and 115.8 ms, N^1.46; the wear deposit is in it.
+    // A scene that is not symmetric about the centre line (lateral
+    // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
+    // (scripts/stability_map.sh); the CG solver's products cover the whole
+    // grid either way (taken as 1, not measured).
     let fixed_step = fixed.as_ref().map(|(f, _)| {
         let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
         let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
@@ -68,7 +73,9 @@ pub fn estimate(s: &Scene) -> CostEstimate {
             NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => 2.8,
             _ => 1.0,
         };
-        5.0e-3 * (n_c / 478.0).powf(1.46) * if symmetric { 1.0 } else { 2.7 } * profile
+        let cg = f.solver != GridSolver::GaussSeidel && f.friction_law == FrictionLaw::Regularised;
+        let solver = if cg { 3.97e-3 * (n_c / 478.0).powf(1.13) } else { 5.39e-3 * (n_c / 478.0).powf(1.46) };
+        solver * if symmetric || cg { 1.0 } else { 2.7 } * profile
     });
     let contact = match s.contact.model {
         _ if fixed_step.is_some() => fixed_step.unwrap_or_default(),

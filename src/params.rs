@@ -2,7 +2,8 @@
 //! Built from a config by [`crate::config`]; SI units throughout.
 
 use crate::contact::PressureShape;
-use crate::contact::grid::{FrictionLaw, GridScheme, GridSolver};
+use crate::contact::friction::FrictionLaw;
+use crate::contact::grid::{GridScheme, GridSolver};
 use crate::contact::transient::StepSolver;
 use crate::hertz::{Curvatures, Elastic};
 use crate::loads::ImposedLoads;

@@ -6,9 +6,10 @@
 mod common;
 use common::{STEEL, paper_shape, peak, rel};
 use corrugation::config::load_str;
+use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::solver::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, GridSolver, PotentialGrid, normal};
+use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver, PotentialGrid, normal};
 use corrugation::contact::influence::{Rect, influence};
 use corrugation::contact::{StepInput, TangentialSolver};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};

@@ -18,9 +18,10 @@
 mod common;
 use common::{STEEL, paper_shape, rel};
 use corrugation::config::load_str;
+use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::solver::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, FrictionLaw, GridScheme, GridSolver, RailSurface};
+use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver, RailSurface};
 use corrugation::contact::{RailContact, StepInput, TangentialSolver};
 use corrugation::growth::equivalent_roughness;
 use corrugation::hertz::Curvatures;

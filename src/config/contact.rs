@@ -4,7 +4,8 @@
 use super::reader::{Range, Section};
 use super::{AUTO, ConfigError};
 use crate::contact::PressureShape;
-use crate::contact::grid::{FrictionLaw, GridScheme, GridSolver};
+use crate::contact::friction::FrictionLaw;
+use crate::contact::grid::{GridScheme, GridSolver};
 use crate::contact::transient::StepSolver;
 use crate::params::{ContactGrid, ContactModelKind, FixedGridParams, NormalContact};
 use toml::{Table, Value};

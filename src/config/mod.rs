@@ -16,7 +16,8 @@ mod track;
 pub mod traffic;
 pub mod units;
 
-use crate::contact::grid::{FrictionLaw, GridScheme};
+use crate::contact::friction::FrictionLaw;
+use crate::contact::grid::GridScheme;
 use crate::creep_coefficients::creep_coefficients;
 use crate::hertz::{Elastic, HertzShape};
 use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};

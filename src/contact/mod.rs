@@ -10,7 +10,9 @@
 //! force on the wheel comes with a negative creepage.
 
 pub mod fastsim;
+pub mod friction;
 pub mod grid;
+pub mod gs_loop;
 pub mod influence;
 pub mod linear;
 pub mod mesh;

@@ -51,8 +51,7 @@
 //! (the caller hands it to Gauss-Seidel).
 
 use super::tangential::{GridSolution, GridStep, Law};
-use crate::contact::transient::gauss_seidel::local_solve;
-use crate::contact::transient::{STICK_SLIP_FACTOR, friction};
+use crate::contact::friction::{STICK_SLIP_FACTOR, local_solve, regularised as friction};
 
 /// Largest Newton iterations of a step.
 pub const MAX_NEWTON: usize = 30;

@@ -34,7 +34,7 @@ pub mod solver;
 pub mod surface;
 pub mod tangential;
 
-pub use solver::{FixedGrid, FrictionLaw, GridScheme, GridSolver};
+pub use solver::{FixedGrid, GridScheme, GridSolver};
 pub use surface::RailSurface;
 
 /// A uniform rectangular grid of elements in the contact frame.

@@ -27,7 +27,8 @@ use super::coupling::{Coupling, FoldedKernel};
 use super::normal::{self, NormalError};
 use super::tangential::{self, ContactSet, GridStep, Law};
 use super::{Alignment, PotentialGrid};
-use crate::contact::transient::{GS_MAX_SWEEPS, STICK_SLIP_FACTOR, friction};
+use crate::contact::friction::{FrictionLaw, STICK_SLIP_FACTOR, regularised as friction};
+use crate::contact::transient::GS_MAX_SWEEPS;
 use crate::contact::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::hertz::{Curvatures, Elastic};
 use std::borrow::Cow;
@@ -40,26 +41,6 @@ pub const GRID_TOLERANCE: f64 = 1e-2;
 
 /// Default tolerance on the force residual |F - F_x| / (mu N).
 pub const GRID_FORCE_TOLERANCE: f64 = 1e-8;
-
-/// The friction law of the fixed-grid model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum FrictionLaw {
-    /// The paper's regularised Coulomb law (Eq. 6), with `contact.regularisation`.
-    #[default]
-    Regularised,
-    /// Exact Coulomb friction (CONTACT's law).
-    Coulomb,
-}
-
-impl FrictionLaw {
-    /// Config name (`contact.friction_law`).
-    pub fn name(self) -> &'static str {
-        match self {
-            FrictionLaw::Regularised => "regularised",
-            FrictionLaw::Coulomb => "coulomb",
-        }
-    }
-}
 
 impl GridScheme {
     /// Config name (`contact.scheme`).
@@ -324,10 +305,7 @@ impl FixedGrid {
     }
 
     fn law(&self) -> Law {
-        match self.spec.law {
-            FrictionLaw::Regularised => Law::Regularised { eps: self.spec.eps },
-            FrictionLaw::Coulomb => Law::Coulomb,
-        }
+        self.spec.law.with(self.spec.eps)
     }
 
     fn solve_step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
@@ -576,10 +554,7 @@ impl FixedGrid {
         let mut s_grid = vec![0.0; 2 * n];
         for (c, &k) in set.element.iter().enumerate() {
             let (sx, sy) = (sol.s[2 * c], sol.s[2 * c + 1]);
-            let stick = match self.law() {
-                Law::Regularised { eps } => sx.hypot(sy) < STICK_SLIP_FACTOR * eps,
-                Law::Coulomb => sx == 0.0 && sy == 0.0,
-            };
+            let stick = self.law().is_stick([sx, sy]);
             let mirror = (ny - 1 - k / nx) * nx + k % nx;
             let images: &[(usize, f64)] = if weight[c] == 2.0 { &[(k, 1.0), (mirror, -1.0)] } else { &[(k, 1.0)] };
             for &(e, sign) in images {

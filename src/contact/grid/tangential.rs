@@ -11,47 +11,28 @@
 //! `(beta, u~)` the backward difference of the material derivative: first
 //! order `(1, u_o)` or second order `(3/2, 2 u_o - u_oo / 2)` with `u_o`,
 //! `u_oo` the displacements the material had one and two steps earlier
-//! ([`super::solver`]). The friction law is one of [`Law`]:
-//!
-//! * the paper's regularised Coulomb law `p = -(2/pi) atan(|s|/eps) mu p3
-//!   s/|s|` (Eq. 6);
-//! * exact Coulomb friction, CONTACT's law: `|p| <= mu p3`, `s = 0` where
-//!   `|p| < mu p3` (stick), `p = -mu p3 s/|s|` where `s != 0` (slip).
+//! ([`super::solver`]). The friction law is one of [`Law`]
+//! ([`crate::contact::friction`]): the paper's regularised law or exact
+//! Coulomb friction.
 //!
 //! **Solver.** Element-wise nonlinear Gauss-Seidel (Kalker 1990, ch. 5;
 //! Vollebregt's ConvexGS), as the adapted model's solver
 //! ([`crate::contact::transient::gauss_seidel`]): each element's 2 x 2
 //! problem `s = s0 + (beta/dt) K_0 p(s)` solved exactly for its law, rows
 //! from the leading edge, the creepage updated after each sweep from the
-//! force residual, Anderson acceleration of the whole. On the grid the
+//! force residual, Anderson acceleration of the whole (the loop shared with
+//! the adapted mesh, [`crate::contact::gs_loop`]). On the grid the
 //! displacement update of an element is a contiguous run of the
 //! coefficient table per row of the contact area (the table, three
 //! components of `(2 nx - 1)(2 ny - 1)`, stays in cache where the
 //! adapted mesh's 2N x 2N matrix does not).
-//!
-//! Both laws' element problems minimise a strictly convex energy, so each is
-//! solved to rounding: the regularised one by the adapted model's
-//! `local_solve`, the Coulomb one by the stick test and, in slip, a
-//! bracketed root for the slip speed ([`coulomb_local`]).
+//! Both laws' element problems are solved to rounding
+//! ([`Law::element_solve`]).
 
 use super::coupling::Coupling;
-use crate::contact::transient::friction;
-use crate::contact::transient::gauss_seidel::{Anderson, local_solve};
-use crate::numerics::{Tolerance, brent};
+pub use crate::contact::friction::Law;
+use crate::contact::gs_loop::{self, Settings, Sweeper};
 use multiversion::multiversion;
-use nalgebra::DVector;
-
-/// The friction law of the tangential problem.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Law {
-    /// The regularised Coulomb law with velocity `eps` (m/s).
-    Regularised {
-        /// Regularisation velocity (m/s).
-        eps: f64,
-    },
-    /// Exact Coulomb friction.
-    Coulomb,
-}
 
 /// A contiguous run of elements in contact in one grid row.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -177,48 +158,35 @@ pub fn solve(
     fresh: &mut dyn FnMut(&[f64], &mut [f64]),
 ) -> Result<GridSolution, Vec<f64>> {
     let n = st.set.len();
-    let mut s = s.to_vec();
-    let mut p: Vec<f64> = (0..n).flat_map(|c| law_traction(st.law, [s[2 * c], s[2 * c + 1]], st.mu_p3[c])).collect();
-    let mut u = vec![0.0; 2 * n];
-    fresh(&p, &mut u);
+    let p: Vec<f64> = (0..n).flat_map(|c| st.law.traction([s[2 * c], s[2 * c + 1]], st.mu_p3[c])).collect();
     let p_scale = st.mu_p3.iter().fold(0.0f64, |m, v| m.max(*v)).max(f64::MIN_POSITIVE);
-    let xi_scale = (st.kappa.abs() / (n as f64 * st.area * p_scale)).max(f64::MIN_POSITIVE);
-    let pack = |p: &[f64], xi: f64| -> DVector<f64> {
-        DVector::from_iterator(2 * n + 1, p.iter().map(|v| v / p_scale).chain(std::iter::once(xi * xi_scale)))
+    let settings = Settings {
+        depth: GRID_DEPTH,
+        max_sweeps: st.max_sweeps,
+        tol: st.tol,
+        force_tol: st.force_tol,
+        force_x: st.force_x,
+        mu_n: st.mu_n,
+        kappa: st.kappa,
+        p_scale,
+        xi_scale: (st.kappa.abs() / (n as f64 * st.area * p_scale)).max(f64::MIN_POSITIVE),
     };
-    let mut xi = xi;
-    let mut anderson = Anderson::new(GRID_DEPTH);
-    let mut history = Vec::new();
-    for sweep_no in 0..st.max_sweeps {
-        let x = pack(&p, xi);
-        sweep(st, &mut p, &mut s, &mut u, xi);
-        let r_max = residual(st, &s, &u, xi);
-        let force: f64 = (0..n).map(|c| st.weight[c] * p[2 * c]).sum::<f64>() * st.area;
-        let r_force = (force - st.force_x) / st.mu_n;
-        history.push(r_max);
-        if !r_max.is_finite() || !r_force.is_finite() {
-            return Err(history);
-        }
-        if r_max < st.tol && r_force.abs() < st.force_tol {
-            fresh(&p, &mut u);
-            if residual(st, &s, &u, xi) < st.tol {
-                return Ok(GridSolution { p, s, xi, u, sweeps: sweep_no + 1 });
-            }
-        }
-        let xi_next = xi - (force - st.force_x) / st.kappa;
-        let g = pack(&p, xi_next);
-        let (mixed, u_mixed) = anderson.mix(&x, &g, DVector::from_column_slice(&u));
-        for (pk, m) in p.iter_mut().zip(mixed.iter()) {
-            *pk = m * p_scale;
-        }
-        xi = mixed[2 * n] / xi_scale;
-        if (sweep_no + 1) % REFRESH == 0 {
-            fresh(&p, &mut u);
-        } else {
-            u.copy_from_slice(u_mixed.as_slice());
-        }
+    let solved = gs_loop::solve(st, &settings, p, s.to_vec(), xi, fresh)?;
+    Ok(GridSolution { p: solved.p, s: solved.s, xi: solved.xi, u: solved.u, sweeps: solved.sweeps })
+}
+
+impl Sweeper for GridStep<'_> {
+    fn sweep(&self, p: &mut [f64], s: &mut [f64], u: &mut [f64], xi: f64) {
+        sweep(self, p, s, u, xi);
     }
-    Err(history)
+
+    fn residual(&self, s: &[f64], u: &[f64], xi: f64) -> f64 {
+        residual(self, s, u, xi)
+    }
+
+    fn force(&self, p: &[f64]) -> f64 {
+        (0..self.set.len()).map(|c| self.weight[c] * p[2 * c]).sum::<f64>() * self.area
+    }
 }
 
 /// Anderson depth of the grid solver: deeper than the adapted mesh's (6),
@@ -226,21 +194,6 @@ pub fn solve(
 /// grid 6, 10, 15, 20 and 30 pairs need 42, 35, 32, 31 and 30 sweeps per
 /// step, and 16 takes a fifth off the passage's time.
 pub const GRID_DEPTH: usize = 16;
-
-/// Sweeps between fresh products (as the adapted model's solver).
-const REFRESH: usize = 64;
-
-/// The traction of slip `s` under the law (Coulomb: the slip direction's
-/// bound, zero for zero slip).
-fn law_traction(law: Law, s: [f64; 2], mu_p3: f64) -> [f64; 2] {
-    match law {
-        Law::Regularised { eps } => friction(s, mu_p3, eps).0,
-        Law::Coulomb => {
-            let q = s[0].hypot(s[1]);
-            if q == 0.0 { [0.0; 2] } else { [-mu_p3 * s[0] / q, -mu_p3 * s[1] / q] }
-        }
-    }
-}
 
 /// Elements (solved: half the contact area of a folded problem) from which a
 /// sweep runs in two parallel halves. Below, a sweep is too short for the
@@ -290,10 +243,7 @@ fn sweep_block(st: &GridStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mu
             st.speed * (st.w0[i] + xi) + (st.beta * u[c] - st.u_prev[i]) / st.dt - own[0],
             st.speed * st.w0[j] + (st.beta * u[n + c] - st.u_prev[j]) / st.dt - own[1],
         ];
-        let (sk, pk) = match st.law {
-            Law::Regularised { eps } => local_solve(s0, kk, st.mu_p3[c], eps, [s[li], s[lj]]),
-            Law::Coulomb => coulomb_local(s0, kk, st.mu_p3[c]),
-        };
+        let (sk, pk) = st.law.element_solve(s0, kk, st.mu_p3[c], [s[li], s[lj]]);
         s[li] = sk[0];
         s[lj] = sk[1];
         let (dx, dy) = (pk[0] - p[li], pk[1] - p[lj]);
@@ -339,84 +289,9 @@ pub fn residual(st: &GridStep, s: &[f64], u: &[f64], xi: f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// Solves the element problem `s = s0 + K p` under exact Coulomb friction
-/// for the 2 x 2 symmetric positive definite `K = [k0 k1; k1 k2]` and the
-/// bound `mu p3`. Stick (`s = 0`) when the traction that cancels `s0`,
-/// `-K^-1 s0`, lies within the bound; otherwise slip with `p = -mu p3
-/// s/|s|`, so `s = (I + c K)^-1 s0` with `c = mu p3 / q`, `q = |s|`, and `q`
-/// the root of `q - |(I + (mu p3/q) K)^-1 s0|`, which is negative near 0
-/// (the stick traction exceeds the bound) and positive at `|s0|`.
-pub fn coulomb_local(s0: [f64; 2], k: [f64; 3], mu_p3: f64) -> ([f64; 2], [f64; 2]) {
-    let det = k[0] * k[2] - k[1] * k[1];
-    let p_stick = [-(k[2] * s0[0] - k[1] * s0[1]) / det, -(k[0] * s0[1] - k[1] * s0[0]) / det];
-    if p_stick[0].hypot(p_stick[1]) <= mu_p3 {
-        return ([0.0; 2], p_stick);
-    }
-    let shrink = |q: f64| {
-        let c = mu_p3 / q;
-        let m = [1.0 + c * k[0], c * k[1], 1.0 + c * k[2]];
-        let mdet = m[0] * m[2] - m[1] * m[1];
-        [(m[2] * s0[0] - m[1] * s0[1]) / mdet, (m[0] * s0[1] - m[1] * s0[0]) / mdet]
-    };
-    let q0 = s0[0].hypot(s0[1]);
-    // Isotropic K: q = |s0| - mu p3 k exactly.
-    if k[1] == 0.0 && k[0] == k[2] {
-        let q = q0 - mu_p3 * k[0];
-        let s = [s0[0] * q / q0, s0[1] * q / q0];
-        return (s, [-mu_p3 * s0[0] / q0, -mu_p3 * s0[1] / q0]);
-    }
-    let r = |t: f64| {
-        let q = t.exp();
-        let v = shrink(q);
-        1.0 - v[0].hypot(v[1]) / q
-    };
-    let tol = Tolerance { residual: 1e-16, x_rel: 1e-15, x_abs: 1e-15, max_iter: 200 };
-    // The root lies in (0, |s0|): bracket from below by halving.
-    let (mut lo, hi) = ((q0 * 1e-3).ln(), q0.ln());
-    while r(lo) > 0.0 && lo > hi - 200.0 {
-        lo -= 7.0;
-    }
-    let t = brent(lo, hi, r, tol).unwrap_or(hi);
-    let s = shrink(t.exp());
-    let q = s[0].hypot(s[1]);
-    (s, [-mu_p3 * s[0] / q, -mu_p3 * s[1] / q])
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use proptest::prelude::*;
-
-    proptest! {
-        /// The Coulomb element problem: s = s0 + K p with |p| <= mu p3, s = 0
-        /// or p = -mu p3 s/|s|, solved to rounding.
-        #[test]
-        fn coulomb_local_satisfies_the_element_problem(
-            log_s0 in -6.0f64..1.0,
-            angle in 0.0f64..std::f64::consts::TAU,
-            log_k in -11.0f64..-8.0,
-            anisotropy in 0.6f64..1.6,
-            coupling in -0.2f64..0.2,
-            log_mu_p3 in 5.0f64..9.0,
-        ) {
-            let mu_p3 = 10f64.powf(log_mu_p3);
-            let m = 10f64.powf(log_s0);
-            let s0 = [m * angle.cos(), m * angle.sin()];
-            let k0 = 10f64.powf(log_k);
-            let k = [k0, coupling * k0, anisotropy * k0];
-            let (s, p) = coulomb_local(s0, k, mu_p3);
-            let r = [s[0] - s0[0] - (k[0] * p[0] + k[1] * p[1]), s[1] - s0[1] - (k[1] * p[0] + k[2] * p[1])];
-            prop_assert!(r[0].hypot(r[1]) <= 1e-12 * m, "residual {r:?}");
-            let (q, pn) = (s[0].hypot(s[1]), p[0].hypot(p[1]));
-            prop_assert!(pn <= mu_p3 * (1.0 + 1e-12));
-            if q > 0.0 {
-                prop_assert!((pn - mu_p3).abs() <= 1e-12 * mu_p3);
-                // Traction against the slip.
-                prop_assert!((p[0] * s[1] - p[1] * s[0]).abs() <= 1e-9 * pn * q);
-                prop_assert!(p[0] * s[0] + p[1] * s[1] < 0.0);
-            }
-        }
-    }
 
     #[test]
     fn contact_set_runs() {

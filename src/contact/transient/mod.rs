@@ -40,17 +40,13 @@
 pub mod elastic;
 pub mod gauss_seidel;
 
+use super::friction::{STICK_SLIP_FACTOR, regularised as friction};
 use super::linear::LinearContact;
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use elastic::{ExactElastic, PatchFrame, WinklerElastic};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
-use std::f64::consts::PI;
-
-/// An element counts as stick when its slip speed is below this many eps
-/// (its traction is then below (2/pi) atan(10) = 94 % of mu p3).
-pub const STICK_SLIP_FACTOR: f64 = 10.0;
 
 /// Default convergence tolerance on the kinematic residual, in units of eps:
 /// with eps = 1e-5 m/s, |R| < 1e-9 m/s, which leaves the tractions within
@@ -164,26 +160,6 @@ pub struct Transient {
     /// The current step's patch offset (m) and whether the linear profile
     /// contact moved it.
     moved: Option<f64>,
-}
-
-/// The friction law p = -mu p3 f(|s|) s with f(q) = (2/pi) atan(q/eps) / q,
-/// and its Jacobian D = -dp/ds = mu p3 (f I + f'(q)/q s s^T).
-pub(crate) fn friction(s: [f64; 2], mu_p3: f64, eps: f64) -> ([f64; 2], [f64; 3]) {
-    // |s| without hypot's overflow guard (slips stay far from 1e150 m/s).
-    let q = (s[0] * s[0] + s[1] * s[1]).sqrt();
-    let z = q / eps;
-    let (f, fp_over_q) = if z < 1e-4 {
-        // Series: f = 2/(pi eps) (1 - z^2/3), f'/q = -4/(3 pi eps^3).
-        (2.0 / (PI * eps) * (1.0 - z * z / 3.0), -4.0 / (3.0 * PI * eps.powi(3)))
-    } else {
-        let g = 2.0 / PI * z.atan();
-        let gp = 2.0 / (PI * eps) / (1.0 + z * z);
-        (g / q, (gp * q - g) / (q * q * q))
-    };
-    let p = [-mu_p3 * f * s[0], -mu_p3 * f * s[1]];
-    let d =
-        [mu_p3 * (f + fp_over_q * s[0] * s[0]), mu_p3 * fp_over_q * s[0] * s[1], mu_p3 * (f + fp_over_q * s[1] * s[1])];
-    (p, d)
 }
 
 /// A factorised Newton matrix.
