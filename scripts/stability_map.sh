@@ -16,11 +16,14 @@
 # per step, CPU time, and the centre-line wear difference against the
 # variant's baseline go to out/stability_map/<variant>/stability.{csv,md}.
 # About 35 minutes on 2 cores.
+#   VARIANTS="fixed-regularised fixed-third-order" bash scripts/stability_map.sh   # some variants
+# A fixed-grid step the CG solver does not converge goes to Gauss-Seidel with a
+# warning in the run's log (out/stability_map/<variant>/runs/*.log).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cargo build --release --quiet
-for variant in newton gauss-seidel fixed-regularised fixed-coulomb fixed-third-order; do
+for variant in ${VARIANTS:-newton gauss-seidel fixed-regularised fixed-coulomb fixed-third-order}; do
 out=out/stability_map/$variant
 mkdir -p "$out/runs"
 manifest="$out/manifest.csv"
