@@ -3,8 +3,9 @@
 //! and a rough cost estimate.
 
 use corrugation::config::Resolved;
-use corrugation::contact::grid::GRID_MARGIN;
+use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::smooth_padding;
+use corrugation::contact::grid::{GRID_MARGIN, GridSolver};
 use corrugation::growth::traffic::TrafficScaling;
 use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, SAFETY, departures};
 use corrugation::params::{ContactGrid, DynamicsKind, NormalContact};
@@ -122,13 +123,17 @@ pub fn print_check(r: &Resolved) {
         );
         println!(
             "grid contact       about {:.0} elements in contact at mean N ({:.1} x {:.1} elements across the patch), \
-             {:.0} at max N; friction law {}, {} difference",
+             {:.0} at max N; friction law {}, {} difference, tangential solver {}",
             in_contact(d.patch_mean.a, d.patch_mean.b),
             2.0 * d.patch_mean.a / f.dx,
             2.0 * d.patch_mean.b / f.dy,
             in_contact(d.patch_max.a, d.patch_max.b),
             f.friction_law.name(),
-            f.scheme.name()
+            f.scheme.name(),
+            match (f.solver, f.friction_law) {
+                (GridSolver::GaussSeidel, _) | (_, FrictionLaw::Coulomb) => GridSolver::GaussSeidel.name(),
+                _ => GridSolver::Cg.name(),
+            }
         );
     } else {
         let el = 2.0 * d.patch_mean.a / s.contact.elements_x as f64;

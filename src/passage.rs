@@ -123,8 +123,9 @@ pub struct PatchHistory {
     pub stick_fraction: Vec<f64>,
     /// 1 when wheel and rail are in contact (N > 0), 0 otherwise.
     pub in_contact: Vec<f64>,
-    /// Iterations of the contact solve: Newton-Raphson iterations or
-    /// Gauss-Seidel sweeps (0 for FASTSIM).
+    /// Iterations of the contact solve: Newton-Raphson iterations,
+    /// Gauss-Seidel sweeps, or the fixed grid's CG solver's FFT products (0
+    /// for FASTSIM).
     pub newton_iterations: Vec<f64>,
     /// Integral over the patch of the interpolated Archard rate (m^3/s): the
     /// volume the rail loses per second.

@@ -130,11 +130,6 @@ fn fixed_grid_keys() {
             "contact.solver: = \"newton\" is the adapted mesh's reference solver",
         ),
         (
-            &[exact, "contact.solver=cg"],
-            "contact.solver: = \"cg\" is the fixed grid's Newton-Krylov solver (FFT products); allowed with \
-             contact.grid = \"adapted\": auto, gauss-seidel, newton",
-        ),
-        (
             &[exact, "contact.grid=fixed", "contact.friction_law=coulomb", "contact.solver=cg"],
             "contact.solver: = \"cg\" solves the regularised friction law; with contact.friction_law = \"coulomb\" \
              allowed: auto, gauss-seidel",

@@ -125,7 +125,8 @@ pub struct PatchSolution {
     pub slip_y: Vec<f64>,
     /// Element in stick (adhesion).
     pub stick: Vec<bool>,
-    /// Newton-Raphson iterations of the solve (0 for FASTSIM).
+    /// Iterations of the solve: Newton-Raphson iterations, Gauss-Seidel
+    /// sweeps or the CG solver's FFT products (0 for FASTSIM).
     pub iterations: usize,
     /// Elements well inside the patch where the linear profile contact's
     /// pressure vanished (the patch splitting: the linearisation beyond its

@@ -6,7 +6,8 @@
 //! made by `scripts/accuracy_map.sh`) holds, per model and mesh, the relative
 //! L2 error of the centre-line wear profile against the converged exact
 //! transient solution (Richardson extrapolation of 20 x 20 and 28 x 28) and
-//! the CPU time per contact step (Gauss-Seidel solver for the exact model),
+//! the CPU time per contact step (the exact model's Gauss-Seidel solver on
+//! the adapted mesh, its CG solver on the fixed grid),
 //! at load wavelengths of 10 ... 60 mm, `lambda / 2a_max` from 0.74 to 4.45
 //! (paper_normal_30mm: N = 100 kN +/- 45 kN, F_x = 20 kN, eps = 1e-5 m/s,
 //! V dt = 0.2 mm).

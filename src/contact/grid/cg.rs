@@ -11,15 +11,16 @@
 //! area sum_I w_I p_x,I = F_x,
 //! ```
 //!
-//! the law the paper's regularised Coulomb law `p = -(2/pi) atan(|s|/eps)
+//! with the paper's regularised Coulomb law `p = -(2/pi) atan(|s|/eps)
 //! mu p3 s/|s|` (Baeza et al. 2008, Eq. 6). Exact Coulomb friction, with no
 //! compliance in stick, is left to Gauss-Seidel ([`CgFailure::Coulomb`]).
 //!
 //! **Newton step.** Linearised about an iterate that satisfies the law at
 //! every element, with `H = (-dp/ds)^-1` the law's compliance (2 x 2 blocks:
 //! about `pi eps / (2 mu p3)` in stick; in slip `|s|/(mu p3)` along the
-//! traction's tangent and very stiff along it), the step `dp` and the
-//! multiplier `lambda = V dxi` solve the saddle-point system
+//! traction's tangent and very large along the traction, which the law
+//! holds near its bound), the step `dp` and the multiplier `lambda = V
+//! dxi` solve the saddle-point system
 //!
 //! ```text
 //! (A + H) dp + e_x lambda = G,    area <e_x, dp>_w = F_x - F,
@@ -241,6 +242,11 @@ fn evaluate(
         r_max = r_max.max(g[i].abs()).max(g[j].abs());
     }
     let force: f64 = (0..n).map(|c| st.weight[c] * p[2 * c]).sum::<f64>() * st.area;
+    // f64::max passes over NaN: a non-finite iterate never counts as
+    // converged.
+    if !xi.is_finite() || g.iter().any(|v| !v.is_finite()) {
+        r_max = f64::INFINITY;
+    }
     State { s, p, xi, u, g, r_max, f_res: force - st.force_x }
 }
 

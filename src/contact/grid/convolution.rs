@@ -14,7 +14,9 @@
 //! with 2-D FFTs ([`FftConvolution`]; rustfft along rows, then along
 //! columns). The two tangential components travel in one complex transform
 //! (`z = p_x + i p_y`, split by Hermitian symmetry), so a tangential product
-//! costs two complex 2-D FFTs and a normal one two as well.
+//! costs two complex 2-D FFTs; the normal product, of one real field, runs
+//! real-to-complex transforms along x (realfft) and the complex ones along
+//! y on half the spectrum: about half of that.
 
 use crate::contact::influence::{Rect, influence, normal_influence};
 use num_complex::Complex64;
@@ -171,9 +173,9 @@ pub struct FftConvolution {
     real_x: Arc<dyn RealToComplex<f64>>,
     real_inv_x: Arc<dyn ComplexToReal<f64>>,
     /// Kernel spectra, transposed layout `kx my + ky`, including the
-    /// `1/(mx my)` of the inverse transform; for the tangential kernel
-    /// `(xx, xy, yy)` followed by `(xx + yy)/2` and `(xx - yy)/2 + i xy`;
-    /// for the normal kernel followed by its first `mx/2 + 1` columns.
+    /// `1/(mx my)` of the inverse transform: for the tangential kernel
+    /// `(xx + yy)/2` and `(xx - yy)/2 + i xy`; for the normal kernel its
+    /// first `mx/2 + 1` columns (the rest mirror them).
     spectra: Vec<Vec<Complex64>>,
 }
 
@@ -246,19 +248,15 @@ impl FftConvolution {
             conv.forward(&mut scratch, my);
             conv.spectra.push(scratch.cols.clone());
         }
-        if kernel.components() == 1 {
-            let half = conv.spectra[0][..(mx / 2 + 1) * my].to_vec();
-            conv.spectra.push(half);
-        }
-        if kernel.components() == 3 {
+        conv.spectra = if kernel.components() == 3 {
             // The tangential product's combinations (see `tangential`).
             let (xx, xy, yy) = (&conv.spectra[0], &conv.spectra[1], &conv.spectra[2]);
-            let half = 0.5;
-            let sum = xx.iter().zip(yy).map(|(a, b)| (a + b) * half).collect();
-            let diff = xx.iter().zip(yy).zip(xy).map(|((a, b), c)| (a - b) * half + Complex64::i() * c).collect();
-            conv.spectra.push(sum);
-            conv.spectra.push(diff);
-        }
+            let sum = xx.iter().zip(yy).map(|(a, b)| (a + b) * 0.5).collect();
+            let diff = xx.iter().zip(yy).zip(xy).map(|((a, b), c)| (a - b) * 0.5 + Complex64::i() * c).collect();
+            vec![sum, diff]
+        } else {
+            vec![conv.spectra[0][..(mx / 2 + 1) * my].to_vec()]
+        };
         conv
     }
 
@@ -297,16 +295,16 @@ impl FftConvolution {
         batch(&self.inv_x, &mut s.rows[..rows_needed * mx], &mut s.fft);
     }
 
-    /// Loads a field given on the grid into the first `ny` padded rows (`im`
-    /// may be absent).
-    fn load(&self, s: &mut FftScratch, re: &[f64], im: Option<&[f64]>) {
+    /// Loads two real fields given on the grid, as the real and imaginary
+    /// parts, into the first `ny` padded rows.
+    fn load(&self, s: &mut FftScratch, re: &[f64], im: &[f64]) {
         let (nx, mx) = (self.nx, self.mx);
         s.rows.resize(mx * self.my, Complex64::default());
         for r in 0..self.ny {
             let row = &mut s.rows[r * mx..(r + 1) * mx];
             for (c, v) in row[..nx].iter_mut().enumerate() {
                 let k = r * nx + c;
-                *v = Complex64::new(re[k], im.map_or(0.0, |v| v[k]));
+                *v = Complex64::new(re[k], im[k]);
             }
             row[nx..].fill(Complex64::default());
         }
@@ -341,7 +339,7 @@ impl FftConvolution {
             col[ny..].fill(Complex64::default());
         }
         batch(&self.fwd_y, &mut s.cols, &mut s.fft);
-        for (z, k) in s.cols.iter_mut().zip(&self.spectra[1]) {
+        for (z, k) in s.cols.iter_mut().zip(&self.spectra[0]) {
             *z *= k;
         }
         batch(&self.inv_y, &mut s.cols, &mut s.fft);
@@ -365,7 +363,7 @@ impl FftConvolution {
     /// Tangential product `(u_x, u_y) = K (p_x, p_y)` on the whole grid.
     pub fn tangential(&self, s: &mut FftScratch, (px, py): (&[f64], &[f64]), (ux, uy): (&mut [f64], &mut [f64])) {
         let (mx, my) = (self.mx, self.my);
-        self.load(s, px, Some(py));
+        self.load(s, px, py);
         self.forward(s, self.ny);
         // Z = P_x + i P_y; P_x(k) = (Z(k) + conj Z(-k)) / 2,
         // P_y(k) = (Z(k) - conj Z(-k)) / 2i; W = U_x + i U_y
@@ -373,7 +371,7 @@ impl FftConvolution {
         let z = &s.cols;
         let w = &mut s.spectrum;
         w.resize(mx * my, Complex64::default());
-        let (sum, diff) = (&self.spectra[3], &self.spectra[4]);
+        let (sum, diff) = (&self.spectra[0], &self.spectra[1]);
         for cx in 0..mx {
             let mcx = (mx - cx) % mx;
             let (row, mirror) = (&z[cx * my..(cx + 1) * my], &z[mcx * my..(mcx + 1) * my]);

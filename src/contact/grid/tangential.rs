@@ -143,7 +143,7 @@ pub struct GridSolution {
     pub xi: f64,
     /// Displacements `K p` at the elements (m), x then y blocks.
     pub u: Vec<f64>,
-    /// Sweeps done.
+    /// Sweeps done (Gauss-Seidel), or FFT products used ([`super::cg`]).
     pub sweeps: usize,
 }
 
