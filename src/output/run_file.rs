@@ -329,7 +329,7 @@ pub(super) const STEP_VARS: [(&str, &str, &str); 15] = [
     (
         "newton_iterations",
         "1",
-        "iterations of the contact solve: Newton-Raphson iterations or Gauss-Seidel sweeps (exact-transient, adapted mesh), FFT products of the CG solver or Gauss-Seidel sweeps (fixed grid; sweeps on a step CG handed to Gauss-Seidel); 0 for FASTSIM",
+        "iterations of the contact solve: Newton-Raphson iterations or Gauss-Seidel sweeps (exact-transient, adapted mesh), FFT products of the CG solver or Gauss-Seidel sweeps (fixed grid; both, summed, on a step CG handed to Gauss-Seidel); 0 for FASTSIM",
     ),
     ("in_contact", "1", "1 in contact, 0 contact lost (N <= 0: no patch, fields zero)"),
 ];

@@ -73,9 +73,14 @@ pub enum CgFailure {
     /// (73 of 75 steps of the paper's Fig. 7 loads on a 0.4 mm grid);
     /// Gauss-Seidel solves it.
     Coulomb,
-    /// Not converged: the largest kinematic residual (m/s) after each
-    /// Newton iteration.
-    NoConvergence(Vec<f64>),
+    /// Not converged.
+    NoConvergence {
+        /// The largest kinematic residual (m/s) after each Newton
+        /// iteration.
+        history: Vec<f64>,
+        /// FFT products used.
+        products: usize,
+    },
 }
 
 /// An iterate: slips and tractions that satisfy the law element by
@@ -152,7 +157,7 @@ pub fn solve(
         state = correct(st, eps, &own, &state, (&dp, &adp, lambda), fresh, &mut products);
         history.push(state.r_max);
     }
-    Err(CgFailure::NoConvergence(history))
+    Err(CgFailure::NoConvergence { history, products })
 }
 
 /// The next iterate from the Newton step `(dp, A dp, lambda)`: the

@@ -421,23 +421,41 @@ impl FixedGrid {
             }
         };
         let newton_krylov = self.spec.solver != GridSolver::GaussSeidel && matches!(law, Law::Regularised { .. });
-        let mut fell_back = false;
+        // A step CG does not converge goes to Gauss-Seidel; its products
+        // count in the step's iterations, and its failure in the report.
+        let mut cg_failed: Option<(Vec<f64>, usize)> = None;
         let solved = match newton_krylov.then(|| cg::solve(&step, &s0, &p0, xi0, &mut fresh)) {
             Some(Ok(sol)) => Ok(sol),
-            Some(Err(_)) => {
-                fell_back = true;
-                tangential::solve(&step, &s0, xi0, &mut fresh)
+            Some(Err(failure)) => {
+                cg_failed = Some(match failure {
+                    cg::CgFailure::NoConvergence { history, products } => (history, products),
+                    cg::CgFailure::Coulomb => (Vec::new(), 0),
+                });
+                tangential::solve(&step, &s0, xi0, &mut fresh).map(|mut sol| {
+                    sol.sweeps += cg_failed.as_ref().map_or(0, |f| f.1);
+                    sol
+                })
             }
             None => tangential::solve(&step, &s0, xi0, &mut fresh),
         };
+        let fell_back = cg_failed.is_some();
         self.fallbacks += usize::from(fell_back);
         self.scratch = scratch;
         let sol = solved.map_err(|history| {
             let last = history.last().copied().unwrap_or(f64::NAN);
+            let cg = match &cg_failed {
+                Some((h, products)) => format!(
+                    "the CG solver did not converge in {} Newton iterations ({products} products, max |R| {:.3e} -> {:.3e} m/s), then ",
+                    h.len(),
+                    h.first().copied().unwrap_or(f64::NAN),
+                    h.last().copied().unwrap_or(f64::NAN)
+                ),
+                None => String::new(),
+            };
             ContactError::NoConvergence {
                 force,
                 reason: format!(
-                    "Gauss-Seidel on the fixed grid ({nc} elements in contact) did not converge in {} sweeps: max |R| {:.3e} -> {:.3e} m/s (tolerance {:.1e})",
+                    "{cg}Gauss-Seidel on the fixed grid ({nc} elements in contact) did not converge in {} sweeps: max |R| {:.3e} -> {:.3e} m/s (tolerance {:.1e})",
                     history.len(),
                     history.first().copied().unwrap_or(f64::NAN),
                     last,
