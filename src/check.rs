@@ -3,9 +3,8 @@
 //! and a rough cost estimate.
 
 use corrugation::config::Resolved;
-use corrugation::contact::friction::FrictionLaw;
+use corrugation::contact::grid::GRID_MARGIN;
 use corrugation::contact::grid::convolution::smooth_padding;
-use corrugation::contact::grid::{GRID_MARGIN, GridSolver};
 use corrugation::growth::traffic::TrafficScaling;
 use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, SAFETY, departures};
 use corrugation::params::{ContactGrid, DynamicsKind, NormalContact};
@@ -130,10 +129,7 @@ pub fn print_check(r: &Resolved) {
             in_contact(d.patch_max.a, d.patch_max.b),
             f.friction_law.name(),
             f.scheme.name(),
-            match (f.solver, f.friction_law) {
-                (GridSolver::GaussSeidel, _) | (_, FrictionLaw::Coulomb) => GridSolver::GaussSeidel.name(),
-                _ => GridSolver::Cg.name(),
-            }
+            f.solver.resolve(f.friction_law).name()
         );
     } else {
         let el = 2.0 * d.patch_mean.a / s.contact.elements_x as f64;

@@ -4,7 +4,6 @@
 //! The times are fitted to measurements (README, Performance); they are
 //! upper estimates on the development machines, not promises.
 
-use crate::contact::friction::FrictionLaw;
 use crate::contact::grid::GridSolver;
 use crate::contact::transient::StepSolver;
 use crate::loads::LoadQuantity;
@@ -74,7 +73,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
             NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => 2.8,
             _ => 1.0,
         };
-        let cg = f.solver != GridSolver::GaussSeidel && f.friction_law == FrictionLaw::Regularised;
+        let cg = f.solver.resolve(f.friction_law) == GridSolver::Cg;
         let solver = if cg { 3.97e-3 * (n_c / 478.0).powf(1.13) } else { 5.39e-3 * (n_c / 478.0).powf(1.46) };
         let whole = match (symmetric, cg) {
             (true, _) => 1.0,

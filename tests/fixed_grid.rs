@@ -29,6 +29,19 @@ fn grid_solver(
     cell: (f64, f64),
     model: Model,
 ) -> FixedGrid {
+    grid_with(shape, curvatures, elastic, n_max, cell, model, GridSolver::Auto)
+}
+
+/// [`grid_solver`] with the tangential solver named.
+fn grid_with(
+    shape: &HertzShape,
+    curvatures: Curvatures,
+    elastic: Elastic,
+    n_max: f64,
+    cell: (f64, f64),
+    model: Model,
+    solver: GridSolver,
+) -> FixedGrid {
     let patch = shape.patch(n_max).unwrap();
     let (law, scheme, eps) = model;
     FixedGrid::new(FixedGridSpec {
@@ -43,7 +56,7 @@ fn grid_solver(
         law,
         eps,
         scheme,
-        solver: GridSolver::Auto,
+        solver,
     })
 }
 
@@ -369,22 +382,8 @@ fn higher_order_differences_approach_contacts_grid_limit() {
 /// sized for 145 kN, with the given law and tangential solver.
 fn paper_grid(law: FrictionLaw, solver: GridSolver) -> (FixedGrid, HertzShape) {
     let shape = paper_shape(true);
-    let patch = shape.patch(1.45e5).unwrap();
-    let spec = FixedGridSpec {
-        curvatures: paper_curvatures(true),
-        elastic: STEEL,
-        dx: 4e-4,
-        dy: 1e-3,
-        a_max: patch.a,
-        b_max: patch.b,
-        align_x: Alignment::default(),
-        align_y: Alignment::default(),
-        law,
-        eps: 1e-5,
-        scheme: GridScheme::SecondOrder,
-        solver,
-    };
-    (FixedGrid::new(spec), shape)
+    let model = (law, GridScheme::SecondOrder, 1e-5);
+    (grid_with(&shape, paper_curvatures(true), STEEL, 1.45e5, (4e-4, 1e-3), model, solver), shape)
 }
 
 #[test]

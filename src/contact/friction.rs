@@ -119,6 +119,30 @@ pub fn regularised(s: [f64; 2], mu_p3: f64, eps: f64) -> ([f64; 2], [f64; 3]) {
     (p, d)
 }
 
+/// The inverse of a symmetric 2 x 2 block `(xx, xy, yy)`.
+pub fn symmetric_inverse(k: [f64; 3]) -> [f64; 3] {
+    let det = k[0] * k[2] - k[1] * k[1];
+    [k[2] / det, -k[1] / det, k[0] / det]
+}
+
+/// The share of its bound `mu p3` below which the regularised law's
+/// traction is in the stick regime: `(2/pi) atan(10)`, the traction of a
+/// slip of [`STICK_SLIP_FACTOR`] eps.
+pub fn stick_traction_share() -> f64 {
+    2.0 / PI * STICK_SLIP_FACTOR.atan()
+}
+
+/// The regularised law inverted: the slip of traction `p` (|p| < `mu_p3`),
+/// `eps tan(pi |p| / (2 mu p3))` against `p`.
+pub fn regularised_slip(p: [f64; 2], mu_p3: f64, eps: f64) -> [f64; 2] {
+    let pm = p[0].hypot(p[1]);
+    if pm == 0.0 {
+        return [0.0; 2];
+    }
+    let q = eps * (0.5 * PI * pm / mu_p3).tan();
+    [-q * p[0] / pm, -q * p[1] / pm]
+}
+
 /// Solves the element problem `s = s0 + K p(s)` for the 2 x 2 symmetric
 /// positive definite `K = [k0 k1; k1 k2]`. Returns the slip and its traction.
 ///
@@ -135,8 +159,7 @@ pub fn local_solve(s0: [f64; 2], k: [f64; 3], mu_p3: f64, eps: f64, start: [f64;
     if mu_p3 <= 0.0 || q0 == 0.0 {
         return (s0, [0.0; 2]);
     }
-    let det = k[0] * k[2] - k[1] * k[1];
-    let kinv = [k[2] / det, -k[1] / det, k[0] / det];
+    let kinv = symmetric_inverse(k);
     let grad = |s: [f64; 2]| {
         let (p, d) = regularised(s, mu_p3, eps);
         let (dx, dy) = (s[0] - s0[0], s[1] - s0[1]);

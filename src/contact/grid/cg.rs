@@ -51,8 +51,11 @@
 //! converge. A step not converged in [`MAX_NEWTON`] iterations is reported
 //! (the caller hands it to Gauss-Seidel).
 
-use super::tangential::{GridSolution, GridStep, Law};
-use crate::contact::friction::{STICK_SLIP_FACTOR, local_solve, regularised as friction};
+use super::tangential::{GridSolution, GridStep, Law, kinematic_residual};
+use crate::contact::friction::{
+    STICK_SLIP_FACTOR, local_solve, regularised as friction, regularised_slip, stick_traction_share,
+    symmetric_inverse as inverse,
+};
 
 /// Largest Newton iterations of a step.
 pub const MAX_NEWTON: usize = 30;
@@ -122,7 +125,7 @@ pub fn solve(
     // The warm start: a sliding element (|s| >= 10 eps) keeps its slip and
     // takes the law's traction; one in stick keeps its traction (within
     // the stick regime of the new bound) and takes the law's slip.
-    let theta = stick_regime();
+    let theta = stick_traction_share();
     let (mut s, mut p) = (s.to_vec(), vec![0.0; 2 * n]);
     for c in 0..n {
         let (i, j) = (2 * c, 2 * c + 1);
@@ -135,7 +138,7 @@ pub fn solve(
             let pm = p0[i].hypot(p0[j]);
             let cut = if pm > theta * g { theta * g / pm } else { 1.0 };
             let pc = [cut * p0[i], cut * p0[j]];
-            let sc = stick_slip(eps, pc, g);
+            let sc = regularised_slip(pc, g, eps);
             (s[i], s[j], p[i], p[j]) = (sc[0], sc[1], pc[0], pc[1]);
         }
     }
@@ -176,7 +179,7 @@ fn correct(
     products: &mut usize,
 ) -> State {
     let n = st.set.len();
-    let theta = stick_regime();
+    let theta = stick_traction_share();
     let mut s = vec![0.0; 2 * n];
     let mut p = vec![0.0; 2 * n];
     for (c, &k) in own.iter().enumerate() {
@@ -187,7 +190,7 @@ fn correct(
         let pm = pn[0].hypot(pn[1]);
         // Within the stick regime the traction is the linear variable.
         let (sc, pc) = if pm < theta * g {
-            (stick_slip(eps, pn, g), pn)
+            (regularised_slip(pn, g, eps), pn)
         } else {
             let s0 = [kin[0] - (k[0] * pn[0] + k[1] * pn[1]), kin[1] - (k[1] * pn[0] + k[2] * pn[1])];
             local_solve(s0, k, g, eps, [x.s[i], x.s[j]])
@@ -195,29 +198,6 @@ fn correct(
         (s[i], s[j], p[i], p[j]) = (sc[0], sc[1], pc[0], pc[1]);
     }
     evaluate(st, s, p, x.xi + lambda / st.speed, fresh, products)
-}
-
-/// The traction's share of its bound below which an element is in the
-/// stick regime: `(2/pi) atan(10)` (slip below 10 eps).
-fn stick_regime() -> f64 {
-    2.0 / std::f64::consts::PI * STICK_SLIP_FACTOR.atan()
-}
-
-/// The slip of a traction `p` inside the stick regime of bound `g`: the
-/// regularised law's inverse `eps tan(pi |p| / (2 g))` against `p`.
-fn stick_slip(eps: f64, p: [f64; 2], g: f64) -> [f64; 2] {
-    let pm = p[0].hypot(p[1]);
-    if pm == 0.0 {
-        return [0.0; 2];
-    }
-    let q = eps * (0.5 * std::f64::consts::PI * pm / g).tan();
-    [-q * p[0] / pm, -q * p[1] / pm]
-}
-
-/// `D^-1` of a symmetric 2 x 2 block `(xx, xy, yy)`.
-fn inverse(d: [f64; 3]) -> [f64; 3] {
-    let det = d[0] * d[2] - d[1] * d[1];
-    [d[2] / det, -d[1] / det, d[0] / det]
 }
 
 /// `<a, b>_w` of two interleaved fields.
@@ -238,14 +218,8 @@ fn evaluate(
     let mut u = vec![0.0; 2 * n];
     fresh(&p, &mut u);
     *products += 1;
-    let mut g = vec![0.0; 2 * n];
-    let mut r_max = 0.0f64;
-    for c in 0..n {
-        let (i, j) = (2 * c, 2 * c + 1);
-        g[i] = s[i] - st.speed * (st.w0[i] + xi) - (st.beta * u[c] - st.u_prev[i]) / st.dt;
-        g[j] = s[j] - st.speed * st.w0[j] - (st.beta * u[n + c] - st.u_prev[j]) / st.dt;
-        r_max = r_max.max(g[i].abs()).max(g[j].abs());
-    }
+    let g: Vec<f64> = (0..n).flat_map(|c| kinematic_residual(st, &s, &u, xi, c)).collect();
+    let mut r_max = g.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let force: f64 = (0..n).map(|c| st.weight[c] * p[2 * c]).sum::<f64>() * st.area;
     // f64::max passes over NaN: a non-finite iterate never counts as
     // converged.

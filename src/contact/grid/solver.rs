@@ -82,6 +82,16 @@ pub enum GridSolver {
 }
 
 impl GridSolver {
+    /// The solver that runs under friction law `law`: `auto` is `cg` for
+    /// the regularised law and Gauss-Seidel for exact Coulomb (which `cg`
+    /// does not solve).
+    pub fn resolve(self, law: FrictionLaw) -> GridSolver {
+        match (self, law) {
+            (GridSolver::GaussSeidel, _) | (_, FrictionLaw::Coulomb) => GridSolver::GaussSeidel,
+            _ => GridSolver::Cg,
+        }
+    }
+
     /// Config name (`contact.solver`).
     pub fn name(self) -> &'static str {
         match self {
@@ -420,7 +430,7 @@ impl FixedGrid {
                 u[nc + c] = uy[k];
             }
         };
-        let newton_krylov = self.spec.solver != GridSolver::GaussSeidel && matches!(law, Law::Regularised { .. });
+        let newton_krylov = self.spec.solver.resolve(self.spec.law) == GridSolver::Cg;
         // A step CG does not converge goes to Gauss-Seidel; its products
         // count in the step's iterations, and its failure in the report.
         let mut cg_failed: Option<(Vec<f64>, usize)> = None;

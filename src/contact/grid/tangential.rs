@@ -278,15 +278,22 @@ fn add_run((ux, uy): (&mut [f64], &mut [f64]), [fxx, fxy, fyx, fyy]: [&[f64]; 4]
 
 /// Largest kinematic residual (m/s) of slips `s` and displacements `u`.
 pub fn residual(st: &GridStep, s: &[f64], u: &[f64], xi: f64) -> f64 {
-    let n = st.set.len();
-    (0..n)
+    (0..st.set.len())
         .map(|c| {
-            let (i, j) = (2 * c, 2 * c + 1);
-            let rx = s[i] - st.speed * (st.w0[i] + xi) - (st.beta * u[c] - st.u_prev[i]) / st.dt;
-            let ry = s[j] - st.speed * st.w0[j] - (st.beta * u[n + c] - st.u_prev[j]) / st.dt;
+            let [rx, ry] = kinematic_residual(st, s, u, xi, c);
             rx.abs().max(ry.abs())
         })
         .fold(0.0, f64::max)
+}
+
+/// The kinematic residual `s - V w(xi) - (beta u - u~) / dt` (m/s) of
+/// element `c` (contact order), `u` in blocks (x then y).
+pub fn kinematic_residual(st: &GridStep, s: &[f64], u: &[f64], xi: f64, c: usize) -> [f64; 2] {
+    let (n, i, j) = (st.set.len(), 2 * c, 2 * c + 1);
+    [
+        s[i] - st.speed * (st.w0[i] + xi) - (st.beta * u[c] - st.u_prev[i]) / st.dt,
+        s[j] - st.speed * st.w0[j] - (st.beta * u[n + c] - st.u_prev[j]) / st.dt,
+    ]
 }
 
 #[cfg(test)]
