@@ -119,31 +119,46 @@ impl DiscreteTrack {
     /// The point receptance (m/N) at `x0` (m from a support) at angular
     /// frequency `omega` (rad/s), eq. 3.
     pub fn receptance(&self, x0: f64, omega: f64) -> Complex64 {
+        self.receptances(&[x0], omega)[0]
+    }
+
+    /// The point receptances (m/N) at the places `xs` (m from a support) at
+    /// angular frequency `omega` (rad/s), eq. 3: the free rail's spectral
+    /// receptances are evaluated once for all places (they do not depend
+    /// on the place); each place's sums are those of [`Self::receptance`].
+    pub fn receptances(&self, xs: &[f64], omega: f64) -> Vec<Complex64> {
         let d = self.spacing;
         let ks = self.support_stiffness(omega);
         let g = 2.0 * PI / d;
         // Phasors exp(i 2 pi j x0 / d) of the harmonics, j = -J..=J.
         let js: Vec<i64> = (-LATTICE_TERMS..=LATTICE_TERMS).collect();
-        let phase: Vec<Complex64> = js.iter().map(|&j| Complex64::from_polar(1.0, g * j as f64 * x0)).collect();
+        let phases: Vec<Vec<Complex64>> =
+            xs.iter().map(|&x0| js.iter().map(|&j| Complex64::from_polar(1.0, g * j as f64 * x0)).collect()).collect();
         // Tail of T(kappa, 0): alpha^ ~ 1 / (kGA k^2), sum_{|j| > J} of
         // 1 / (kGA (2 pi j / d)^2) ~ d^2 / (2 pi^2 kGA (J + 1/2)).
         let kga = Complex64::new(1.0, self.rail_loss_factor) * self.rail.shear_stiffness;
         let tail = d * d / (2.0 * PI * PI * (LATTICE_TERMS as f64 + 0.5)) / kga;
-        let mut sum = Complex64::new(0.0, 0.0);
+        let mut sums = vec![Complex64::new(0.0, 0.0); xs.len()];
+        let mut a = vec![Complex64::new(0.0, 0.0); js.len()];
         for q in 0..ZONE_POINTS {
             let kappa = -PI / d + (q as f64 + 0.5) * g / ZONE_POINTS as f64;
-            let (mut t0, mut tp, mut tm) = (tail, Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
-            for (i, &j) in js.iter().enumerate() {
-                let a = self.spectral(kappa + g * j as f64, omega);
-                t0 += a;
-                tp += a * phase[i];
-                tm += a * phase[i].conj();
+            let mut t0 = tail;
+            for (ai, &j) in a.iter_mut().zip(&js) {
+                *ai = self.spectral(kappa + g * j as f64, omega);
+                t0 += *ai;
             }
-            let shift = Complex64::from_polar(1.0, kappa * x0);
-            let (tp, tm) = (tp * shift, tm * shift.conj());
-            sum += t0 - ks * tp * tm / (d + ks * t0);
+            for ((sum, phase), &x0) in sums.iter_mut().zip(&phases).zip(xs) {
+                let (mut tp, mut tm) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
+                for (ai, ph) in a.iter().zip(phase) {
+                    tp += ai * ph;
+                    tm += ai * ph.conj();
+                }
+                let shift = Complex64::from_polar(1.0, kappa * x0);
+                let (tp, tm) = (tp * shift, tm * shift.conj());
+                *sum += t0 - ks * tp * tm / (d + ks * t0);
+            }
         }
-        sum / (2.0 * PI) * (g / ZONE_POINTS as f64)
+        sums.iter().map(|s| s / (2.0 * PI) * (g / ZONE_POINTS as f64)).collect()
     }
 
     /// The first bending frequency (Hz) of one span `d` of this rail simply

@@ -88,8 +88,8 @@ impl DiscreteDynamics {
                 let w = 2.0 * PI * n as f64 * speed.abs() / length;
                 let alpha_w = Complex64::new(-1.0 / (wheel.unsprung_mass * w * w), 0.0);
                 let mut row = [Complex64::new(0.0, 0.0); POSITIONS];
-                for (p, x) in positions.iter().enumerate() {
-                    row[p] = 1.0 / (alpha_w + alpha_c + track.receptance(*x, w));
+                for (v, alpha_r) in row.iter_mut().zip(track.receptances(&positions, w)) {
+                    *v = 1.0 / (alpha_w + alpha_c + alpha_r);
                 }
                 row
             })
@@ -111,12 +111,9 @@ impl DiscreteDynamics {
     pub fn parametric_profile(&self, nodes: usize, dx: f64) -> Vec<f64> {
         // The static receptance at the tabulated positions (0.1 Hz).
         let w0 = 2.0 * PI * 0.1;
-        let statics: Vec<f64> = (0..POSITIONS)
-            .map(|p| {
-                let x = self.track.spacing * 0.5 * p as f64 / (POSITIONS - 1) as f64;
-                self.track.receptance(x, w0).re
-            })
-            .collect();
+        let places: Vec<f64> =
+            (0..POSITIONS).map(|p| self.track.spacing * 0.5 * p as f64 / (POSITIONS - 1) as f64).collect();
+        let statics: Vec<f64> = self.track.receptances(&places, w0).iter().map(|a| a.re).collect();
         let path: Vec<f64> = (0..nodes)
             .map(|i| {
                 let s = self.position_index(self.sleeper_x0 + i as f64 * dx);

@@ -54,10 +54,10 @@ pub fn track_response(track: &TrackConfig, wheel: WheelParams, contact_stiffness
         .collect();
     let d = track.sleeper_spacing;
     let position: Vec<f64> = (0..=4).map(|k| d * k as f64 / 8.0).collect();
-    let rail: Vec<Vec<Complex64>> = position
-        .iter()
-        .map(|&x| frequency.par_iter().map(|f| discrete.receptance(x, 2.0 * PI * f)).collect())
-        .collect();
+    let by_frequency: Vec<Vec<Complex64>> =
+        frequency.par_iter().map(|f| discrete.receptances(&position, 2.0 * PI * f)).collect();
+    let rail: Vec<Vec<Complex64>> =
+        (0..position.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect();
     let cont: Vec<Complex64> = frequency.iter().map(|f| continuous.rail_receptance(2.0 * PI * f)).collect();
     let wheel_r: Vec<f64> = frequency.iter().map(|f| -1.0 / (wheel.unsprung_mass * (2.0 * PI * f).powi(2))).collect();
     let span = discrete.pinned_pinned_frequency();

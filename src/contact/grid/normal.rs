@@ -30,6 +30,10 @@ pub const NORMAL_TOLERANCE: f64 = 1e-12;
 /// surface penetrated by more.
 pub const GAP_TOLERANCE: f64 = 1e-10;
 
+/// Iterations after which `u = K_n p`, updated step by step, is
+/// recomputed from the pressure (bounds the rounding drift).
+const REFRESH: usize = 25;
+
 /// Iterations after which the normal solve gives up.
 const MAX_ITERATIONS: usize = 2000;
 
@@ -95,11 +99,21 @@ pub fn solve(
     };
     rescale(&mut p);
     let (mut u, mut r, mut t) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let mut g = vec![0.0; n];
+    let (mut g, mut p_old) = (vec![0.0; n], vec![0.0; n]);
     let (mut conjugate, mut g_old) = (false, 1.0);
     let mut change = f64::INFINITY;
+    // `u = K_n p` is kept up to date by the step's own product where the
+    // step is linear (no element clipped or readmitted): one product per
+    // iteration instead of two. It is recomputed from `p` after a nonlinear
+    // step, every REFRESH iterations, and before the verdict is accepted.
+    let mut fresh = false;
+    let mut since_fresh = 0usize;
     for it in 0..MAX_ITERATIONS {
-        conv.normal(scratch, &p, &mut u);
+        if !fresh && (since_fresh == 0 || since_fresh >= REFRESH) {
+            conv.normal(scratch, &p, &mut u);
+            fresh = true;
+            since_fresh = 0;
+        }
         let (mut sum, mut count) = (0.0, 0usize);
         for k in 0..n {
             g[k] = u[k] + h[k];
@@ -112,57 +126,73 @@ pub fn solve(
         // The verdict is complementarity itself: the gap uniform over the
         // contact area and open outside it, to GAP_TOLERANCE of the approach.
         let tol_gap = GAP_TOLERANCE * g_mean.abs().max(f64::MIN_POSITIVE);
-        let (mut spread, mut penetration) = (0.0f64, 0.0f64);
+        // The gap relative to its mean over the contact area (the residual),
+        // its spread there and the penetration outside, in one pass.
+        let (mut spread, mut penetration, mut big_g) = (0.0f64, 0.0f64, 0.0f64);
         for k in 0..n {
             let d = g[k] - g_mean;
+            g[k] = d;
             if p[k] > 0.0 {
                 spread = spread.max(d.abs());
+                big_g += d * d;
             } else {
                 penetration = penetration.max(-d);
             }
         }
         if spread <= tol_gap && penetration <= tol_gap {
-            return Ok(NormalSolution { pressure: p, approach: g_mean, iterations: it });
+            if fresh {
+                return Ok(NormalSolution { pressure: p, approach: g_mean, iterations: it });
+            }
+            // Converged on the updated product: check on an exact one.
+            since_fresh = 0;
+            continue;
         }
         if change < NORMAL_TOLERANCE {
             // Stalled short of complementarity: restart the directions.
             conjugate = false;
         }
-        g.iter_mut().for_each(|v| *v -= g_mean);
-        let big_g: f64 = (0..n).filter(|&k| p[k] > 0.0).map(|k| g[k] * g[k]).sum();
         let beta = if conjugate { big_g / g_old } else { 0.0 };
+        let mut gt = 0.0;
         for k in 0..n {
             t[k] = if p[k] > 0.0 { g[k] + beta * t[k] } else { 0.0 };
+            gt += g[k] * t[k];
         }
         g_old = big_g;
         conv.normal(scratch, &t, &mut r);
         let r_mean = (0..n).filter(|&k| p[k] > 0.0).map(|k| r[k]).sum::<f64>() / count.max(1) as f64;
-        let (mut gt, mut rt) = (0.0, 0.0);
-        for k in 0..n {
-            if p[k] > 0.0 {
-                gt += g[k] * t[k];
-                rt += (r[k] - r_mean) * t[k];
-            }
-        }
+        let rt: f64 = (0..n).filter(|&k| p[k] > 0.0).map(|k| (r[k] - r_mean) * t[k]).sum();
         let tau = if rt > 0.0 { gt / rt } else { 0.0 };
-        let p_old = p.clone();
-        let mut readmitted = false;
+        p_old.copy_from_slice(&p);
+        let (mut readmitted, mut clipped, mut total) = (false, false, 0.0);
         for k in 0..n {
             if p[k] > 0.0 {
-                p[k] = (p[k] - tau * t[k]).max(0.0);
+                let v = p[k] - tau * t[k];
+                clipped |= v <= 0.0;
+                p[k] = v.max(0.0);
             }
-        }
-        for k in 0..n {
             if p[k] == 0.0 && g[k] < 0.0 && tau > 0.0 {
                 // Penetrates: back into contact, steepest descent.
                 p[k] = -tau * g[k];
                 readmitted = true;
             }
+            total += p[k];
         }
         conjugate = !readmitted;
-        rescale(&mut p);
-        let moved: f64 = p.iter().zip(&p_old).map(|(a, b)| (a - b).abs()).sum();
-        change = moved / p.iter().sum::<f64>();
+        let scale = force / (area * total);
+        let linear = !(clipped || readmitted);
+        let (mut moved, mut sum_p) = (0.0, 0.0);
+        for k in 0..n {
+            p[k] *= scale;
+            moved += (p[k] - p_old[k]).abs();
+            sum_p += p[k];
+            if linear {
+                // Linear step: K_n p_new = scale (u - tau K_n t).
+                u[k] = scale * (u[k] - tau * r[k]);
+            }
+        }
+        fresh = false;
+        since_fresh = if linear { since_fresh + 1 } else { 0 };
+        change = moved / sum_p;
     }
     Err(NormalError::NoConvergence { force, iterations: MAX_ITERATIONS, change, tolerance: GAP_TOLERANCE })
 }
