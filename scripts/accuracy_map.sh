@@ -40,7 +40,7 @@ for lambda in 0.010 0.015 0.020 0.030 0.045 0.060; do
       set=("${fixed_args[@]}")
     fi
     rm -f "$f"
-    ./target/release/corrugation run configs/paper_normal_30mm.toml -o "$f" "${set[@]}" --set output.store_fields=false \
+    ./target/release/corrugation run --overwrite configs/paper_normal_30mm.toml -o "$f" "${set[@]}" --set output.store_fields=false \
       --set "load.harmonics[0].wavelength=$lambda" --set passage.start="$start" --set passage.end="$end" \
       --set rail.x_max="$lambda" > "$out/runs/${lambda}_$1_$2.log" 2>&1
     echo "$lambda,$1,$2,$f" >> "$manifest"

@@ -18,7 +18,7 @@ mkdir -p "$out"
 files=()
 for model in exact-transient simplified-transient fastsim; do
   f="$out/$model.h5"
-  ./target/release/corrugation run "$config" -o "$f" --set contact.model=$model "$@"
+  ./target/release/corrugation run --overwrite "$config" -o "$f" --set contact.model=$model "$@"
   PYTHONPATH=postprocess .venv/bin/python -m corrugation_post figures "$f" --out "$out/$model" >/dev/null
   files+=("$f")
 done

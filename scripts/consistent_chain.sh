@@ -27,7 +27,7 @@ run() { # name config dynamics wavelength amplitude [--set ...]
   shift 5
   local f="$out/runs/${name}_${dyn}_${lam}_${amp}.h5"
   rm -f "$f"
-  "$bin" run "$cfg" -o "$f" --set growth.passes=1 --set growth.adaptive=false --set growth.traffic_scale=1e3 \
+  "$bin" run --overwrite "$cfg" -o "$f" --set growth.passes=1 --set growth.adaptive=false --set growth.traffic_scale=1e3 \
     --set growth.store_every=1 --set growth.checkpoint_every=1 --set "growth.contact_history=[]" \
     --set roughness.kind=harmonics --set "roughness.harmonics=[{amplitude = $amp, wavelength = $lam}]" \
     --set rail.half_width=0.02 --set dynamics.model="$dyn" "$@" 2> "$out/runs/${name}_${dyn}_${lam}_${amp}.log"

@@ -31,7 +31,7 @@ run() { # scene grid size overrides...
   shift 3
   local f="$out/runs/${scene}_${grid}_${size}.h5"
   rm -f "$f"
-  ./target/release/corrugation run "configs/$scene.toml" -o "$f" --set contact.model=exact-transient \
+  ./target/release/corrugation run --overwrite "configs/$scene.toml" -o "$f" --set contact.model=exact-transient \
     --set output.store_fields=false "$@" 2> "$f.log"
   echo "$scene,$grid,$size,$f" >> "$manifest"
 }

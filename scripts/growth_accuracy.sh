@@ -27,7 +27,7 @@ run() { # model mesh [overrides...] (default: the model on an n x n mesh)
              --set contact.elements_x="$mesh" --set contact.elements_y="$mesh")
   [ $# -gt 0 ] && set=("$@")
   rm -f "$f"
-  ./target/release/corrugation run configs/growth_exact.toml -o "$f" "${set[@]}" --set growth.passes=3 \
+  ./target/release/corrugation run --overwrite configs/growth_exact.toml -o "$f" "${set[@]}" --set growth.passes=3 \
     --set growth.adaptive=false --set growth.traffic_scale=2e3 --set growth.contact_history=[0] \
     --set output.store_fields=false > "$out/runs/${model}_${mesh}.log" 2>&1
   echo "$model,$mesh,$f" >> "$manifest"

@@ -11,5 +11,5 @@ shift $(( $# > 2 ? 2 : $# ))
 bash scripts/setup.sh
 cargo build --release --quiet
 mkdir -p "$out"
-./target/release/corrugation run "$config" -o "$out/$name.h5" "$@"
+./target/release/corrugation run --overwrite "$config" -o "$out/$name.h5" "$@"
 PYTHONPATH=postprocess .venv/bin/python -m corrugation_post figures "$out/$name.h5" --out "$out"

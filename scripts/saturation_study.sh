@@ -17,7 +17,7 @@ out=out/saturation
 mkdir -p "$out"
 run() { # name --set ...
   local name=$1; shift
-  ./target/release/corrugation run configs/growth_saturation.toml -o "$out/$name.h5" "$@" 2>&1 | tee "$out/$name.log"
+  ./target/release/corrugation run --overwrite configs/growth_saturation.toml -o "$out/$name.h5" "$@" 2>&1 | tee "$out/$name.log"
 }
 run auto
 run profile --set contact.normal=profile

@@ -32,7 +32,7 @@ for solver in $adapted_solvers; do
       f="$out/${solver}_${n}.h5"
       rm -f "$f"
       start=$(date +%s.%N)
-      ./target/release/corrugation run configs/paper_normal_30mm.toml -o "$f" --set contact.model=exact-transient \
+      ./target/release/corrugation run --overwrite configs/paper_normal_30mm.toml -o "$f" --set contact.model=exact-transient \
         --set contact.solver="$solver" --set contact.elements_x="$n" --set contact.elements_y="$n" \
         --set output.store_fields=false > /dev/null 2>&1
       end=$(date +%s.%N)
@@ -53,7 +53,7 @@ for um in 400 280 200 140; do
     f="$out/fixed_${fixed_solver}_${um}.h5"
     rm -f "$f"
     start=$(date +%s.%N)
-    ./target/release/corrugation run configs/paper_normal_30mm.toml -o "$f" --set contact.model=exact-transient \
+    ./target/release/corrugation run --overwrite configs/paper_normal_30mm.toml -o "$f" --set contact.model=exact-transient \
       --set contact.grid=fixed --set contact.dx="$dx" --set contact.dy="$(python3 -c "print(2.5 * $dx)")" \
       --set passage.step_length="$dx" --set contact.solver="$fixed_solver" --set output.store_fields=false \
       > /dev/null 2>&1

@@ -34,7 +34,7 @@ run() { # scene model mesh repeat reference
     set=("${fixed_args[@]}")
   fi
   rm -f "$f"
-  if ./target/release/corrugation run "configs/$1.toml" -o "$f" "${set[@]}" --set output.store_fields=false \
+  if ./target/release/corrugation run --overwrite "configs/$1.toml" -o "$f" "${set[@]}" --set output.store_fields=false \
     2> "$f.log"; then
     echo "$1,$2,$3,$f,$5" >> "$manifest"
   else

@@ -40,7 +40,7 @@ run() { # sweep value --set ...
   local f="$out/runs/${sweep}_${value}.h5" log="$out/runs/${sweep}_${value}.log"
   rm -f "$f"
   local code=0
-  ./target/release/corrugation run configs/paper_normal_15mm.toml -o "$f" --set contact.model=exact-transient \
+  ./target/release/corrugation run --overwrite configs/paper_normal_15mm.toml -o "$f" --set contact.model=exact-transient \
     "${base[@]}" --set output.store_fields=false "$@" 2> "$log" || code=$?
   local msg
   msg=$(grep -m1 -A1 "^error" "$log" | tr '\n,|' ' ;/' | cut -c1-200 || true)

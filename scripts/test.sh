@@ -17,7 +17,7 @@ run_dir=target/test-run
 mkdir -p "$run_dir"
 # The binary the integration tests built (`cargo run` would resolve features
 # without the dev-dependencies and rebuild faer).
-./target/debug/corrugation run configs/paper_normal_15mm.toml -o "$run_dir/paper_normal_15mm.h5" \
+./target/debug/corrugation run --overwrite configs/paper_normal_15mm.toml -o "$run_dir/paper_normal_15mm.h5" \
   --set contact.elements_x=12 --set contact.elements_y=12
 CORRUGATION_RUN_FILE="$PWD/$run_dir/paper_normal_15mm.h5" CORRUGATION_BIN="$PWD/target/debug/corrugation" \
   .venv/bin/python -m pytest -q postprocess/tests

@@ -16,7 +16,7 @@ for m in 2e3 1e4 4e4 1e5 2e5; do
   passes=$(python3 -c "print(round(4e5 / $m))")
   f="$out/m_$m.h5"
   rm -f "$f"
-  if ./target/release/corrugation run configs/growth_fastsim.toml -o "$f" --set growth.adaptive=false \
+  if ./target/release/corrugation run --overwrite configs/growth_fastsim.toml -o "$f" --set growth.adaptive=false \
     --set growth.traffic_scale="$m" --set growth.passes="$passes" --set growth.store_every="$passes" \
     --set 'growth.contact_history=[]' 2> "$out/m_$m.log"; then
     grep -E "^(wrote|warning)" "$out/m_$m.log" || true

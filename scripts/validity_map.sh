@@ -33,7 +33,7 @@ for lambda in 0.010 0.015 0.020 0.030 0.040 0.060 0.100; do
       log="${f%.h5}.log"
       rm -f "$f"
       code=0
-      ./target/release/corrugation run configs/growth_exact.toml -o "$f" \
+      ./target/release/corrugation run --overwrite configs/growth_exact.toml -o "$f" \
         --set growth.passes=1 --set growth.adaptive=false --set growth.traffic_scale=1 \
         --set growth.store_every=1 --set growth.checkpoint_every=1 --set "growth.contact_history=[0]" \
         --set roughness.kind=harmonics \

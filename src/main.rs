@@ -50,6 +50,10 @@ enum Command {
         /// Override a config key, e.g. --set contact.elements_x=30 (repeatable).
         #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
         set: Vec<String>,
+        /// Replace the output file if it exists (without it, an existing
+        /// file is never replaced: it may hold a study's checkpoint).
+        #[arg(long)]
+        overwrite: bool,
     },
     /// Continue a growth study from its run file (a checkpoint or a finished
     /// run), bit for bit as if it had never stopped.
@@ -63,6 +67,9 @@ enum Command {
         /// Write the continued run here instead of rewriting FILE.
         #[arg(short, long)]
         output: Option<PathBuf>,
+        /// Replace the -o file if it exists.
+        #[arg(long)]
+        overwrite: bool,
     },
     /// Write the receptances of the configured track and wheel (20-5000 Hz,
     /// positions across a sleeper bay) and their resonances.
@@ -75,6 +82,9 @@ enum Command {
         /// Override a config key (repeatable).
         #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
         set: Vec<String>,
+        /// Replace the output file if it exists.
+        #[arg(long)]
+        overwrite: bool,
     },
     /// Parameter sweeps: plan, run here or on Slurm, status, collect.
     Sweep {
@@ -106,25 +116,30 @@ fn main() -> ExitCode {
                 Err(code) => code,
             }
         }
-        Command::Run { config, output, set } => {
+        Command::Run { config, output, set, overwrite } => {
             let resolved = match load(&config, &set) {
                 Ok(r) => r,
                 Err(code) => return code,
             };
             let out = output.unwrap_or_else(|| default_output(&config));
-            if let Err(code) = writable(&out) {
+            if let Err(code) = new_output(&out, overwrite, true).and_then(|_| writable(&out)) {
                 return code;
             }
             run(&resolved, &out)
         }
-        Command::Resume { file, passes, output } => {
+        Command::Resume { file, passes, output, overwrite } => {
+            if let Some(o) = output.as_deref().filter(|o| *o != file.as_path())
+                && let Err(code) = new_output(o, overwrite, false)
+            {
+                return code;
+            }
             if let Err(code) = writable(output.as_deref().unwrap_or(&file)) {
                 return code;
             }
             resume(&file, passes.map(|n| n as usize), output.as_deref())
         }
         Command::Sweep { command } => sweep_cli::main(command),
-        Command::Track { config, output, set } => {
+        Command::Track { config, output, set, overwrite } => {
             let resolved = match load(&config, &set) {
                 Ok(r) => r,
                 Err(code) => return code,
@@ -133,6 +148,9 @@ fn main() -> ExitCode {
                 let stem = config.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or("track".into());
                 PathBuf::from(format!("{stem}_track.h5"))
             });
+            if let Err(code) = new_output(&out, overwrite, false) {
+                return code;
+            }
             track(&resolved, &out)
         }
     }
@@ -198,6 +216,25 @@ fn load(path: &Path, set: &[String]) -> Result<Resolved, ExitCode> {
     })
 }
 
+/// Before computing anything: an existing `out` is replaced only with
+/// `--overwrite` (exit 2 naming the file otherwise; it may hold a growth
+/// study's checkpoint, which `resume` continues when `resumable`).
+fn new_output(out: &Path, overwrite: bool, resumable: bool) -> Result<(), ExitCode> {
+    if overwrite || !out.exists() {
+        return Ok(());
+    }
+    let continue_hint = if resumable {
+        format!("; if it holds a growth study, `corrugation resume {}` continues it", out.display())
+    } else {
+        String::new()
+    };
+    say!(
+        "error: {} exists and is not replaced unasked: pass --overwrite to replace it, or -o another file{continue_hint}",
+        out.display()
+    );
+    Err(ExitCode::from(2))
+}
+
 /// Before computing anything: the output can be written (exit 2 naming the
 /// path otherwise).
 fn writable(out: &Path) -> Result<(), ExitCode> {
@@ -245,6 +282,10 @@ fn resume(file: &Path, passes: Option<usize>, output: Option<&Path>) -> ExitCode
             say!("error: {e}");
             say!("{} holds the last checkpoint", out.display());
             ExitCode::from(1)
+        }
+        Err(e @ ResumeError::Complete { .. }) => {
+            say!("{e}");
+            ExitCode::SUCCESS
         }
         Err(e) => {
             say!("error: {e}");

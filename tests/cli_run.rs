@@ -194,3 +194,30 @@ fn a_closed_pipe_ends_check_quietly_and_does_not_stop_a_run() {
     assert!(child.wait().unwrap().success(), "run with a closed stderr");
     assert!(read_f64(&out, "rail", "wear").is_ok(), "the run file was written");
 }
+
+#[test]
+fn an_existing_output_is_replaced_only_with_overwrite() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("keep.h5");
+    std::fs::write(&out, b"a checkpoint").unwrap();
+    let c = config("paper_normal_30mm");
+    let o_path = out.to_str().unwrap();
+    // run, track and resume -o each refuse to replace it, naming the file
+    // and the way to replace it; the file is untouched.
+    let mut run_args = vec!["run", c.as_str(), "-o", o_path];
+    run_args.extend(FAST);
+    for args in [run_args.clone(), vec!["track", c.as_str(), "-o", o_path], vec!["resume", "other.h5", "-o", o_path]] {
+        let o = corrugation(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(o_path) && err.contains("--overwrite"), "{args:?}: {err}");
+        assert_eq!(std::fs::read(&out).unwrap(), b"a checkpoint", "{args:?}");
+    }
+    let o = corrugation(&run_args);
+    assert!(String::from_utf8_lossy(&o.stderr).contains("corrugation resume"), "run names resume");
+    // With --overwrite the run replaces it.
+    run_args.push("--overwrite");
+    let o = corrugation(&run_args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(read_f64(&out, "rail", "wear").is_ok(), "the run file replaced it");
+}

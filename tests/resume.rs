@@ -200,6 +200,11 @@ fn resume_refuses_what_it_cannot_continue() {
     assert_eq!(code, Some(2));
     assert!(err.contains("--passes") && err.contains("0"), "{err}");
     assert_eq!(std::fs::read(&part).unwrap(), before, "file untouched");
+    // A complete study: nothing to do, said so, the file left as it is.
+    let (code, err) = resume_cli(&[part.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(err.contains("complete study (2 passages): nothing to do"), "{err}");
+    assert_eq!(std::fs::read(&part).unwrap(), before, "complete file untouched");
     let corrupt = dir.path().join("corrupt.h5");
     std::fs::write(&corrupt, b"not an HDF5 file").unwrap();
     let (code, err) = resume_cli(&[corrupt.to_str().unwrap()]);

@@ -147,6 +147,17 @@ pub enum ResumeError {
         /// Passages asked for.
         more: usize,
     },
+    /// The study is complete and no `--passes` asked for more: nothing to
+    /// do (the file is left as it is).
+    #[error(
+        "{path} holds a complete study ({done} passages): nothing to do, the file is left as it is; --passes N runs N more"
+    )]
+    Complete {
+        /// The file.
+        path: PathBuf,
+        /// Passages in the file.
+        done: usize,
+    },
     /// The resumed run failed (nothing more was written than its checkpoints).
     #[error("{0}")]
     Run(#[from] RunError),
@@ -235,6 +246,10 @@ pub fn resume(
     if done > growth.passes {
         let msg = format!("holds {done} passages, more than its config's growth.passes = {}", growth.passes);
         return Err(read(NcError::Invalid { path: path.to_owned(), what: "passes/pass".into(), msg }));
+    }
+    let complete = read_attr_str(path, "", "status").map_err(read)? == "complete";
+    if complete && more.is_none() {
+        return Err(ResumeError::Complete { path: path.to_owned(), done });
     }
     let mut state = read_run_state(path, &layout).map_err(read)?;
     // A snapshot stored only because the earlier run ended there is not one
