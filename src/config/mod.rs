@@ -106,7 +106,10 @@ pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolv
     let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
         fail(vec![ConfigError::new("TOML syntax", e.to_string().trim().replace('\n', " "))])
     })?;
-    let mut errors: Vec<ConfigError> = overrides.iter().filter_map(|o| overrides::apply(&mut root, o).err()).collect();
+    // The file's config with defaults filled in says which keys hold strings.
+    let defaults = if overrides.is_empty() { Table::new() } else { read_scene(root.clone(), &mut Vec::new()).1 };
+    let mut errors: Vec<ConfigError> =
+        overrides.iter().filter_map(|o| overrides::apply(&mut root, o, &defaults).err()).collect();
     let (scene, resolved) = read_scene(root, &mut errors);
     match scene {
         Some(scene) if errors.is_empty() => {
