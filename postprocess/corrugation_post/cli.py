@@ -93,9 +93,11 @@ def _warn(problems) -> None:
 def _figures(args) -> int:
     from .figures import make_figures
 
-    paths, problems = make_figures(args.run, args.out, args.pass_index)
+    paths, problems, notes = make_figures(args.run, args.out, args.pass_index)
     for p in paths:
         print(p)
+    for msg in notes:
+        print(f"note: {msg}", file=sys.stderr)
     _warn(problems)
     return EXIT_PARTIAL if problems else EXIT_OK
 

@@ -179,6 +179,9 @@ def traction_snapshots(run: Run, pass_index: int, out_dir: Path, count: int = 4)
     steps = snapshot_steps(xc, contact, count)
     xi, eta = ct["xi"].values, ct["eta"].values
     p0 = values_in(ct["max_pressure"], "Pa")[steps]
+    if "traction_x" not in ct:
+        raise FigureSkipped("the run stored no contact fields (output.store_fields = false): "
+                            "traction_snapshots.png skipped")
     qx = values_in(ct["traction_x"], "Pa")[steps]
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = qx / (mu * p0[:, None])
@@ -337,6 +340,10 @@ def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     return _save(fig, out_dir, "spectrogram.png")
 
 
+class FigureSkipped(Exception):
+    """A figure the run file was configured not to support (a note, not a problem)."""
+
+
 FigureFn = Callable[[Run, int, Path], "Path | None"]
 RAIL_FIGURES: tuple[FigureFn, ...] = (wear_map, wear_centreline)
 CONTACT_FIGURES: tuple[FigureFn, ...] = (loads, traction_snapshots)
@@ -346,8 +353,10 @@ OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram, pro
 def make_figures(path, out_dir, pass_index: int | None = None):
     """Write every figure of one run.
 
-    Returns ``(paths, problems)``: the PNGs written and one message per figure
-    that could not be made.  Raises RunFileError when the file itself is unusable.
+    Returns ``(paths, problems, notes)``: the PNGs written, one message per
+    figure that could not be made, and one per figure the run's own settings
+    leave out (fields not stored).  Raises RunFileError when the file itself
+    is unusable.
     """
     run = Run.open(path)
     pass_index = run.resolve_pass(pass_index)
@@ -360,10 +369,13 @@ def make_figures(path, out_dir, pass_index: int | None = None):
         problems.append(f"{run.path}: no contact history for passage {pass_index}; "
                         "loads.png and traction_snapshots.png skipped")
     todo += OPTIONAL_FIGURES
-    paths = []
+    paths, notes = [], []
     for fn in todo:
         try:
             written = fn(run, pass_index, out_dir)
+        except FigureSkipped as note:
+            notes.append(f"{run.path}: {note}")
+            continue
         except KeyError as err:
             problems.append(f"{run.path}: {fn.__name__}: missing variable {err}")
             continue
@@ -372,4 +384,4 @@ def make_figures(path, out_dir, pass_index: int | None = None):
             continue
         if written is not None:
             paths.append(written)
-    return paths, problems
+    return paths, problems, notes

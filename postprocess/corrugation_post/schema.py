@@ -38,6 +38,8 @@ CONTACT_VARS = {
     **{v: ("element",) for v in _ELEMENT},
     **{v: ("step", "element") for v in _FIELDS},
 }
+# A contact group without element fields (output.store_fields = false).
+CONTACT_STEP_VARS = {k: v for k, v in CONTACT_VARS.items() if k not in _FIELDS}
 # Expected units (canonical spelling, see units.normalise).
 UNITS = {
     "x": "m", "y": "m", "profile": "m", "wear": "m", "rms_corrugation": "m",
@@ -56,8 +58,18 @@ def expected_groups(path: str | Path) -> dict[str, dict[str, tuple[str, ...]]]:
     """Group path -> required variables, including every stored contact group."""
     groups = {io.RAIL: RAIL_VARS, io.PASSES: PASSES_VARS}
     for p in io.contact_passes(path):
-        groups[io.contact_group(p)] = CONTACT_VARS
+        group = io.contact_group(p)
+        groups[group] = CONTACT_VARS if _has_fields(path, group) else CONTACT_STEP_VARS
     return groups
+
+
+def _has_fields(path, group: str) -> bool:
+    """Whether a contact group holds the element fields (a run with
+    ``output.store_fields = false`` keeps the per-step values only)."""
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        return any(v in f[group] for v in _FIELDS)
 
 
 def check_dataset(ds: xr.Dataset, group: str, required: dict[str, tuple[str, ...]]) -> list[str]:

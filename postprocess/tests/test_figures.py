@@ -98,3 +98,24 @@ def test_missing_variable_is_reported_and_other_figures_still_made(tmp_path, cap
     assert "semi_axis_b" in captured.err and str(run) in captured.err
     for name in ("wear_map.png", "wear_centreline.png", "traction_snapshots.png"):
         _assert_png(out / name)
+
+
+def test_a_run_without_stored_fields_draws_the_rest_and_passes_the_check(tmp_path, capsys):
+    # output.store_fields = false: the contact history keeps the per-step
+    # values only. figures leaves out the traction snapshots with a note
+    # (exit 0) and check finds nothing wrong.
+    import h5py
+
+    from corrugation_post.schema import _FIELDS
+
+    run = write_run(tmp_path / "nofields.h5", n_pass=1)
+    with h5py.File(run, "a") as f:
+        for v in _FIELDS:
+            del f[f"contact/pass_00000/{v}"]
+    out = tmp_path / "o"
+    assert main(["figures", str(run), "--out", str(out)]) == 0
+    captured = capsys.readouterr()
+    assert "store_fields = false" in captured.err and "warning" not in captured.err
+    _assert_png(out / "loads.png")
+    assert not (out / "traction_snapshots.png").exists()
+    assert main(["check", str(run)]) == 0
