@@ -21,6 +21,7 @@ macro_rules! say_raw {
 }
 
 mod check;
+mod interrupt;
 mod progress;
 mod sweep_cli;
 
@@ -253,7 +254,14 @@ fn run(resolved: &Resolved, out: &Path) -> ExitCode {
     let passes = resolved.scene.growth.as_ref().map_or(1, |g| g.passes);
     let label = if passes == 1 { "passage".to_string() } else { format!("{passes} passages") };
     let mut bar = progress::Progress::new(&label, resolved.scene.growth.is_some());
-    let result = run_scene(resolved, out, &mut |e| bar.event(e));
+    let checkpoint = interrupt::Checkpoint::default();
+    interrupt::watch(out.to_path_buf(), &checkpoint);
+    let result = run_scene(resolved, out, &mut |e| {
+        if let corrugation::run::Event::Checkpoint { done } = e {
+            checkpoint.written(done);
+        }
+        bar.event(e)
+    });
     bar.finish();
     match result {
         Ok(s) => {
@@ -270,9 +278,23 @@ fn run(resolved: &Resolved, out: &Path) -> ExitCode {
 
 fn resume(file: &Path, passes: Option<usize>, output: Option<&Path>) -> ExitCode {
     let mut bar = progress::Progress::new("resume", true);
-    let result = corrugation::run::resume(file, passes, output, &mut |e| bar.event(e));
-    bar.finish();
     let out = output.unwrap_or(file);
+    // Until its first checkpoint, a resume onto another file has written
+    // nothing; one in place keeps the file's own checkpoint.
+    let checkpoint = interrupt::Checkpoint::default();
+    if output.is_none_or(|o| o == file)
+        && let Ok(done) = corrugation::output::netcdf::read_f64(file, "passes", "traffic")
+    {
+        checkpoint.written(done.len());
+    }
+    interrupt::watch(out.to_path_buf(), &checkpoint);
+    let result = corrugation::run::resume(file, passes, output, &mut |e| {
+        if let corrugation::run::Event::Checkpoint { done } = e {
+            checkpoint.written(done);
+        }
+        bar.event(e)
+    });
+    bar.finish();
     match result {
         Ok(s) => {
             report(&s, out);

@@ -187,6 +187,43 @@ fn killed_run_resumes_from_its_last_checkpoint() {
     assert_same(&reference, &out);
 }
 
+#[cfg(unix)]
+#[test]
+fn a_terminated_run_says_which_checkpoint_it_keeps() {
+    // SIGTERM once a checkpoint is on disk: exit 143 (128 + 15), the file a
+    // checkpoint, and the last line names its passage and `corrugation resume`.
+    let dir = tempfile::tempdir().unwrap();
+    let set = ["growth.passes=40", "growth.checkpoint_every=2", "growth.store_every=4"];
+    let out = dir.path().join("terminated.h5");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_corrugation"));
+    cmd.arg("run").arg("configs/growth_fastsim.toml").arg("-o").arg(&out);
+    for s in overrides(&set) {
+        cmd.arg("--set").arg(s);
+    }
+    let child = cmd.stderr(std::process::Stdio::piped()).spawn().unwrap();
+    let clock = Instant::now();
+    while !(out.exists() && read_f64(&out, "passes", "traffic").is_ok_and(|t| t.len() >= 2)) {
+        assert!(clock.elapsed() < Duration::from_secs(120), "no checkpoint appeared");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    // SAFETY: kill(2) on our own child's pid.
+    unsafe { libc::kill(child.id() as i32, libc::SIGTERM) };
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(143));
+    let err = String::from_utf8_lossy(&o.stderr);
+    let last = err.lines().last().unwrap_or("");
+    let held = read_f64(&out, "passes", "traffic").unwrap().len();
+    assert_eq!(read_attr_str(&out, "", "status").unwrap(), "checkpoint");
+    let said: usize = last
+        .split("checkpoint after passage ")
+        .nth(1)
+        .and_then(|t| t.split(':').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no checkpoint named: {last}"));
+    assert!(said >= 2 && said <= held && said.is_multiple_of(2), "said {said}, file holds {held}");
+    assert!(last.starts_with("stopped by SIGTERM") && last.contains("corrugation resume"), "{last}");
+}
+
 #[test]
 fn resume_refuses_what_it_cannot_continue() {
     let dir = tempfile::tempdir().unwrap();
