@@ -23,10 +23,13 @@ impl Progress {
     /// A progress report for a run labelled `label`; `growth` for a
     /// multi-passage study.
     pub fn new(label: &str, growth: bool) -> Self {
+        // A growth study's bar counts passages, a single passage's its steps;
+        // the length is set by the first event (1 until then: 0 %, not the
+        // 100 % of an empty bar).
         let bar = std::io::stderr().is_terminal().then(|| {
-            let b = ProgressBar::new(0);
+            let b = ProgressBar::new(1);
             b.set_style(
-                ProgressStyle::with_template("{msg} [{bar:30}] {percent}%, {elapsed} elapsed, ETA {eta}")
+                ProgressStyle::with_template("{msg} [{bar:20}] {percent}%, {elapsed}, ETA {eta}")
                     .expect("valid template")
                     .progress_chars("=> "),
             );
@@ -48,6 +51,7 @@ impl Progress {
     pub fn event(&mut self, event: Event) {
         match event {
             Event::Steps { done, total } => match &self.bar {
+                Some(_) if self.growth => {}
                 Some(b) => {
                     b.set_length(total as u64);
                     b.set_position(done as u64);
@@ -70,7 +74,17 @@ impl Progress {
                      {update_ratio:.2e}), rms corrugation {rms:.4e} m"
                 );
                 match &self.bar {
-                    Some(b) => b.set_message(text),
+                    Some(b) => {
+                        // Compact (the bar's line stays under about 100
+                        // characters): the full line is the log's.
+                        b.set_length(total as u64);
+                        if done - 1 == first {
+                            b.set_position((done - 1) as u64);
+                            b.reset_eta();
+                        }
+                        b.set_position(done as u64);
+                        b.set_message(format!("passage {done}/{total}{class}: rms {:.3} um, m {scale:.2e}", rms * 1e6));
+                    }
                     None => {
                         let due = self.last_line.is_none_or(|t| t.elapsed() >= Duration::from_secs(2));
                         if due || done == total {
