@@ -129,7 +129,9 @@ fn main() -> ExitCode {
             run(&resolved, &out)
         }
         Command::Resume { file, passes, output, overwrite } => {
-            if let Some(o) = output.as_deref().filter(|o| *o != file.as_path())
+            // `-o` naming the input itself (by any path) is the in-place resume.
+            let output = output.filter(|o| !same_file(o, &file));
+            if let Some(o) = output.as_deref()
                 && let Err(code) = new_output(o, overwrite, false)
             {
                 return code;
@@ -236,6 +238,14 @@ fn new_output(out: &Path, overwrite: bool, resumable: bool) -> Result<(), ExitCo
     Err(ExitCode::from(2))
 }
 
+/// Whether `a` and `b` name the same existing file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => a == b,
+    }
+}
+
 /// Before computing anything: the output can be written (exit 2 naming the
 /// path otherwise).
 fn writable(out: &Path) -> Result<(), ExitCode> {
@@ -255,13 +265,16 @@ fn run(resolved: &Resolved, out: &Path) -> ExitCode {
     let label = if passes == 1 { "passage".to_string() } else { format!("{passes} passages") };
     let mut bar = progress::Progress::new(&label, resolved.scene.growth.is_some());
     let checkpoint = interrupt::Checkpoint::default();
-    interrupt::watch(out.to_path_buf(), &checkpoint);
+    interrupt::watch(out.to_path_buf(), &checkpoint, None);
     let result = run_scene(resolved, out, &mut |e| {
         if let corrugation::run::Event::Checkpoint { done } = e {
             checkpoint.written(done);
         }
         bar.event(e)
     });
+    if result.is_ok() {
+        checkpoint.finished();
+    }
     bar.finish();
     match result {
         Ok(s) => {
@@ -282,18 +295,20 @@ fn resume(file: &Path, passes: Option<usize>, output: Option<&Path>) -> ExitCode
     // Until its first checkpoint, a resume onto another file has written
     // nothing; one in place keeps the file's own checkpoint.
     let checkpoint = interrupt::Checkpoint::default();
-    if output.is_none_or(|o| o == file)
-        && let Ok(done) = corrugation::output::netcdf::read_f64(file, "passes", "traffic")
-    {
-        checkpoint.written(done.len());
+    let held = corrugation::output::netcdf::read_f64(file, "passes", "traffic").map_or(0, |t| t.len());
+    if output.is_none() {
+        checkpoint.written(held);
     }
-    interrupt::watch(out.to_path_buf(), &checkpoint);
+    interrupt::watch(out.to_path_buf(), &checkpoint, passes.map(|p| held + p));
     let result = corrugation::run::resume(file, passes, output, &mut |e| {
         if let corrugation::run::Event::Checkpoint { done } = e {
             checkpoint.written(done);
         }
         bar.event(e)
     });
+    if result.is_ok() {
+        checkpoint.finished();
+    }
     bar.finish();
     match result {
         Ok(s) => {

@@ -204,7 +204,8 @@ fn member(path: &Path, index: usize) -> ExitCode {
         }
     };
     say!("sweep member {index}: {}", if index < spec.len() { spec.describe(index) } else { "?".into() });
-    let mut bar = crate::progress::Progress::new(&format!("member {index}"), true);
+    let growth = spec.resolve(index).map_or(true, |r| r.scene.growth.is_some());
+    let mut bar = crate::progress::Progress::new(&format!("member {index}"), growth);
     let result = run_member(&spec, index, &mut |e| bar.event(e));
     bar.finish();
     match result {

@@ -108,3 +108,65 @@ fn growth_with_the_discrete_track_resumes_bit_for_bit() {
     let e = load_str(base, "g", &["dynamics.model=discrete".to_string()]).unwrap_err().to_string();
     assert!(e.contains("rail.x_max") && e.contains("track.sleeper_spacing"), "{e}");
 }
+
+#[test]
+fn forced_wear_is_left_out_of_the_update_bound() {
+    // On the discrete track the supports' parametric excitation wears the
+    // sleeper-passing harmonics whatever the profile; the Euler update
+    // integrates that exactly, so the adaptive bound leaves it out. The
+    // study with the adaptive m (4 passages) must wear the rail as the same
+    // traffic in 16 equal steps does, within the bound's accuracy.
+    let base = include_str!("../configs/growth_fastsim.toml");
+    let set = |extra: &[&str]| -> Vec<String> {
+        common::DISCRETE_BAY
+            .iter()
+            .chain(&["growth.contact_history=[]", "growth.store_every=1"])
+            .chain(extra)
+            .map(|s| s.to_string())
+            .collect()
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let adaptive = dir.path().join("adaptive.h5");
+    let cfg = set(&["growth.passes=4", "growth.adaptive=true", "growth.traffic_scale=2e3"]);
+    run_scene(&load_str(base, "g", &cfg).unwrap(), &adaptive, &mut |_| {}).unwrap();
+    let traffic = read_f64(&adaptive, "passes", "traffic").unwrap();
+    let ratio = read_f64(&adaptive, "passes", "update_ratio").unwrap();
+    let total = traffic[traffic.len() - 1];
+    assert!(ratio.iter().all(|q| *q <= 0.05 * (1.0 + 1e-9)), "{ratio:?}");
+    let fine = dir.path().join("fine.h5");
+    let m = format!("growth.traffic_scale={}", total / 16.0);
+    let cfg = set(&["growth.passes=16", "growth.adaptive=false", &m]);
+    run_scene(&load_str(base, "g", &cfg).unwrap(), &fine, &mut |_| {}).unwrap();
+    // The centre line's change over the study, its mean (the uniform
+    // wear-down) removed: from the initial profile (the first snapshot plus
+    // its passage's wear times its m) to the last.
+    let change = |f: &std::path::Path| -> Vec<f64> {
+        let (p, w) = (read_f64(f, "rail", "profile").unwrap(), read_f64(f, "rail", "wear").unwrap());
+        let m0 = read_f64(f, "passes", "traffic_scale").unwrap()[0];
+        let (n, row) = (p.shape()[0], p.shape()[1] / 2);
+        let c: Vec<f64> =
+            (0..p.shape()[2]).map(|i| p[[n - 1, row, i]] - (p[[0, row, i]] + m0 * w[[0, row, i]])).collect();
+        let mean = c.iter().sum::<f64>() / c.len() as f64;
+        c.iter().map(|v| v - mean).collect()
+    };
+    let (ca, cb) = (change(&adaptive), change(&fine));
+    // The m taken is beyond what a bound counting the forced wear allows.
+    let (p, w) = (read_f64(&adaptive, "rail", "profile").unwrap(), read_f64(&adaptive, "rail", "wear").unwrap());
+    let ms = read_f64(&adaptive, "passes", "traffic_scale").unwrap();
+    let row = p.shape()[1] / 2;
+    let centre =
+        |a: &ndarray::ArrayD<f64>, s: usize| -> Vec<f64> { (0..a.shape()[2]).map(|i| a[[s, row, i]]).collect() };
+    let with_forced = (1..ms.len())
+        .map(|i| ms[i] * corrugation::growth::traffic::change_rate(&centre(&p, i - 1), &centre(&w, i)))
+        .fold(0.0f64, f64::max);
+    assert!(with_forced > 0.1, "the forced wear would not have bounded m: {with_forced}");
+    // The sleeper-passing harmonics (600 and 300 mm), forced, and the whole
+    // line.
+    for k in [1, 2] {
+        let (ha, hb) = (harmonic(&ca, k), harmonic(&cb, k));
+        assert!((ha - hb).abs() <= 0.02 * hb, "harmonic {k}: {ha:e} vs {hb:e}");
+    }
+    let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
+    let diff: Vec<f64> = ca.iter().zip(&cb).map(|(x, y)| x - y).collect();
+    assert!(rms(&diff) <= 0.03 * rms(&cb), "change {:e} vs {:e} (diff {:e})", rms(&ca), rms(&cb), rms(&diff));
+}

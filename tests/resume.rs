@@ -242,6 +242,16 @@ fn resume_refuses_what_it_cannot_continue() {
     assert_eq!(code, Some(0), "{err}");
     assert!(err.contains("complete study (2 passages): nothing to do"), "{err}");
     assert_eq!(std::fs::read(&part).unwrap(), before, "complete file untouched");
+    // -o naming the same file by another path is the same in-place resume.
+    let same = dir.path().join(".").join("part.h5");
+    let (code, err) = resume_cli(&[part.to_str().unwrap(), "-o", same.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{err}");
+    assert!(err.contains("nothing to do"), "{err}");
+    // -o another file writes the complete study there.
+    let copy = dir.path().join("copy.h5");
+    let (code, err) = resume_cli(&[part.to_str().unwrap(), "-o", copy.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{err}");
+    assert_eq!(read_f64(&copy, "passes", "traffic").unwrap().len(), 2);
     let corrupt = dir.path().join("corrupt.h5");
     std::fs::write(&corrupt, b"not an HDF5 file").unwrap();
     let (code, err) = resume_cli(&[corrupt.to_str().unwrap()]);

@@ -16,6 +16,7 @@ from matplotlib.ticker import MaxNLocator
 from matplotlib.tri import Triangulation
 
 from .io import Run, RunFileError
+from .schema import FIELDS
 from .units import values_in
 
 DPI = 150
@@ -179,7 +180,7 @@ def traction_snapshots(run: Run, pass_index: int, out_dir: Path, count: int = 4)
     steps = snapshot_steps(xc, contact, count)
     xi, eta = ct["xi"].values, ct["eta"].values
     p0 = values_in(ct["max_pressure"], "Pa")[steps]
-    if "traction_x" not in ct:
+    if not any(v in ct for v in FIELDS):
         raise FigureSkipped("the run stored no contact fields (output.store_fields = false): "
                             "traction_snapshots.png skipped")
     qx = values_in(ct["traction_x"], "Pa")[steps]

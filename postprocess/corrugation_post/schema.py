@@ -31,15 +31,15 @@ PASSES_VARS = {
 _STEP = ("time", "x_c", "normal_force", "longitudinal_force", "creepage_x", "creepage_y",
          "spin", "semi_axis_a", "semi_axis_b", "max_pressure", "contact_area", "stick_fraction")
 _ELEMENT = ("xi", "eta", "d_xi", "d_eta")
-_FIELDS = ("pressure", "traction_x", "traction_y", "slip_x", "slip_y", "wear_rate", "stick")
+FIELDS = ("pressure", "traction_x", "traction_y", "slip_x", "slip_y", "wear_rate", "stick")
 CONTACT_VARS = {
     "step": ("step",), "element": ("element",),
     **{v: ("step",) for v in _STEP},
     **{v: ("element",) for v in _ELEMENT},
-    **{v: ("step", "element") for v in _FIELDS},
+    **{v: ("step", "element") for v in FIELDS},
 }
 # A contact group without element fields (output.store_fields = false).
-CONTACT_STEP_VARS = {k: v for k, v in CONTACT_VARS.items() if k not in _FIELDS}
+CONTACT_STEP_VARS = {k: v for k, v in CONTACT_VARS.items() if k not in FIELDS}
 # Expected units (canonical spelling, see units.normalise).
 UNITS = {
     "x": "m", "y": "m", "profile": "m", "wear": "m", "rms_corrugation": "m",
@@ -69,7 +69,7 @@ def _has_fields(path, group: str) -> bool:
     import h5py
 
     with h5py.File(path, "r") as f:
-        return any(v in f[group] for v in _FIELDS)
+        return any(v in f[group] for v in FIELDS)
 
 
 def check_dataset(ds: xr.Dataset, group: str, required: dict[str, tuple[str, ...]]) -> list[str]:

@@ -106,11 +106,11 @@ def test_a_run_without_stored_fields_draws_the_rest_and_passes_the_check(tmp_pat
     # (exit 0) and check finds nothing wrong.
     import h5py
 
-    from corrugation_post.schema import _FIELDS
+    from corrugation_post.schema import FIELDS
 
     run = write_run(tmp_path / "nofields.h5", n_pass=1)
     with h5py.File(run, "a") as f:
-        for v in _FIELDS:
+        for v in FIELDS:
             del f[f"contact/pass_00000/{v}"]
     out = tmp_path / "o"
     assert main(["figures", str(run), "--out", str(out)]) == 0

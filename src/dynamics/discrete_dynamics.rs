@@ -169,4 +169,8 @@ impl TrackDynamics for DiscreteDynamics {
         let _ = (self.wheel, self.contact_stiffness);
         vec![("pinned-pinned: the rail between two sleepers".into(), self.track.pinned_pinned_frequency())]
     }
+
+    fn forces_smooth_rail(&self) -> bool {
+        true
+    }
 }

@@ -44,6 +44,13 @@ pub trait TrackDynamics {
 
     /// The model's resonances as (label, frequency in Hz), for reports.
     fn describe_resonances(&self) -> Vec<(String, f64)>;
+
+    /// Whether the model forces a dynamic force on a smooth rail (the
+    /// discrete supports' parametric excitation): wear that does not depend
+    /// on the profile, which the growth loop's update bound leaves out.
+    fn forces_smooth_rail(&self) -> bool {
+        false
+    }
 }
 
 /// Applies a frequency response to one period of a sampled periodic profile:

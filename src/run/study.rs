@@ -248,7 +248,9 @@ pub fn resume(
         return Err(read(NcError::Invalid { path: path.to_owned(), what: "passes/pass".into(), msg }));
     }
     let complete = read_attr_str(path, "", "status").map_err(read)? == "complete";
-    if complete && more.is_none() {
+    // Complete and nothing more asked: in place there is nothing to do (a
+    // copy to another file is written as before).
+    if complete && more.is_none() && out.is_none_or(|o| o == path) {
         return Err(ResumeError::Complete { path: path.to_owned(), done });
     }
     let mut state = read_run_state(path, &layout).map_err(read)?;
@@ -355,6 +357,13 @@ fn continue_run(
     // A study that stopped (growth.stop) stays stopped when resumed: the rule
     // reads the stored rows.
     let mut stopped = stop_reason(growth, &state.rows);
+    // The wear one passage of a class leaves on the smooth rail, where its
+    // track forces a dynamic force there (the discrete supports' parametric
+    // excitation): it does not depend on the profile, the update integrates
+    // it exactly, and the update bound counts the rest (growth::traffic).
+    // Computed at a class's first passage of this invocation.
+    let mut forced: Vec<Option<Vec<f64>>> = vec![None; class_models.len()];
+    let smooth = Array2::<f64>::zeros(state.profile.raw_dim());
     for pass in first..passes {
         if stopped.is_some() {
             break;
@@ -460,7 +469,34 @@ fn continue_run(
         // With imposed dynamics the wear does not depend on the profile: the
         // update is exact for any m (growth::traffic).
         let class_dynamics = class_models.get(class).is_some_and(|(_, dy)| dy.is_some());
-        let rho = if class_dynamics { change_rate(&line(&state.profile), &line(&wear)) } else { 0.0 };
+        let forcing = class_models.get(class).and_then(|(_, dy)| dy.as_deref()).filter(|d| d.forces_smooth_rail());
+        if let Some(dy) = forcing
+            && forced[class].is_none()
+        {
+            let (class_passage, _) = &class_models[class];
+            let w0 = growth_passage(
+                class_passage,
+                &d.shape,
+                solver.as_mut(),
+                deposit.as_ref(),
+                &grid,
+                &smooth,
+                normal,
+                Some(dy),
+                false,
+                &mut |_, _| {},
+            )
+            .map_err(|source| RunError::Passage { pass, source })?;
+            forced[class] = Some(line(&w0.wear));
+        }
+        let rho = match (&forced.get(class), class_dynamics) {
+            (_, false) => 0.0,
+            (Some(Some(w0)), true) => {
+                let w: Vec<f64> = line(&wear).iter().zip(w0).map(|(w, f)| w - f).collect();
+                change_rate(&line(&state.profile), &w)
+            }
+            _ => change_rate(&line(&state.profile), &line(&wear)),
+        };
         let previous = state.rows.last();
         // The adaptive m rises from the last m of the same class: classes
         // whose wear changes the profile faster keep a smaller m.
