@@ -1,4 +1,4 @@
-//! Command line of `corrugation` (DESIGN.md section 4).
+//! Command line of `corrugation` (README: Command line).
 //!
 //! Exit codes: 0 success, 1 the run failed (solver or output), 2 bad input
 //! (command line or config).

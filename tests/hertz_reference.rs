@@ -1,11 +1,11 @@
-//! Hertz solution against DESIGN.md section 2/5 and CONTACT's printed patches.
+//! Hertz solution against the closed-form patches of the paper's scene (Baeza et al. 2008) and CONTACT's printed patches.
 mod common;
 use common::{STEEL, paper_shape, rel};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 
 #[test]
 fn paper_patch_both_readings() {
-    // DESIGN.md section 2 (N = 100 kN): convex a = 8.07 mm, b = 3.99 mm,
+    // The paper's scene (N = 100 kN): convex a = 8.07 mm, b = 3.99 mm,
     // p0 = 1483 MPa; concave a = 5.96 mm, b = 10.22 mm, p0 = 785 MPa.
     // CONTACT: cvx 8.067/3.991 mm, 1483 MPa, approach 0.1111 mm;
     //          ccv 5.957/10.22 mm, 784.5 MPa, approach 0.0818 mm.

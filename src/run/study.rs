@@ -1,4 +1,4 @@
-//! The pass loop of DESIGN.md section 3, with checkpoints and resume:
+//! The pass loop (README: Growth studies), with checkpoints and resume:
 //!
 //! ```text
 //! for each simulated passage n:
