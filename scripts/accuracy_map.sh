@@ -49,7 +49,7 @@ for lambda in 0.010 0.015 0.020 0.030 0.045 0.060; do
   for um in 400 280 200 140; do run exact-fixed "$um"; done
   for n in 10 20 40; do run simplified-transient "$n"; run fastsim "$n"; done
 done
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post accuracy-map "$manifest" --out "$out"
+.venv/bin/corrugation-post accuracy-map "$manifest" --out "$out"
 if [ "$install" = 1 ]; then
   cp "$out/accuracy_map.csv" src/model_choice/accuracy_map.csv
   cp "$out/accuracy_map.png" docs/figures/accuracy_map.png

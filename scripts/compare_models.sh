@@ -19,7 +19,7 @@ files=()
 for model in exact-transient simplified-transient fastsim; do
   f="$out/$model.h5"
   ./target/release/corrugation run --overwrite "$config" -o "$f" --set contact.model=$model "$@"
-  PYTHONPATH=postprocess .venv/bin/python -m corrugation_post figures "$f" --out "$out/$model" >/dev/null
+  .venv/bin/corrugation-post figures "$f" --out "$out/$model" >/dev/null
   files+=("$f")
 done
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post compare "${files[@]}" --out "$out"
+.venv/bin/corrugation-post compare "${files[@]}" --out "$out"

@@ -48,11 +48,11 @@ if [ -n "${HERTZ:-}" ]; then
     grep -E "^(wrote|warning)" "$out/hertz_v$1.log" || true
     hertz_runs+=("$f")
   done
-  PYTHONPATH=postprocess .venv/bin/python -m corrugation_post speeds "${hertz_runs[@]}" \
+  .venv/bin/corrugation-post speeds "${hertz_runs[@]}" \
     --track "$out/track.h5" --out "$out/hertz"
 fi
 echo "running the mix"
 "$bin" run --overwrite configs/growth_discrete_mix.toml -o "$out/mix.h5" "${mix_short[@]}" 2> "$out/mix.log"
 grep -E "^(wrote|warning)" "$out/mix.log" || true
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post speeds "${runs[@]}" "$out/mix.h5" \
+.venv/bin/corrugation-post speeds "${runs[@]}" "$out/mix.h5" \
   --track "$out/track.h5" --out "$out"

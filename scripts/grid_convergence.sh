@@ -47,4 +47,4 @@ for scene in "${scenes[@]}"; do
   done
   echo "$scene done" >&2
 done
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post grid-convergence "$manifest" --out "$out"
+.venv/bin/corrugation-post grid-convergence "$manifest" --out "$out"

@@ -38,4 +38,4 @@ for um in 400 300 200 150; do
   run exact-fixed "$um" "${fixed_args[@]}"
 done
 for n in 10 20 40; do run simplified-transient "$n"; run fastsim "$n"; done
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post growth-accuracy "$manifest" --out "$out"
+.venv/bin/corrugation-post growth-accuracy "$manifest" --out "$out"

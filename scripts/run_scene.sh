@@ -12,4 +12,4 @@ bash scripts/setup.sh
 cargo build --release --quiet
 mkdir -p "$out"
 ./target/release/corrugation run --overwrite "$config" -o "$out/$name.h5" "$@"
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post figures "$out/$name.h5" --out "$out"
+.venv/bin/corrugation-post figures "$out/$name.h5" --out "$out"

@@ -22,5 +22,5 @@ run() { # name --set ...
 run auto
 run profile --set contact.normal=profile
 run hertz --set contact.normal=hertz --set growth.passes=300
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post growth "$out/auto.h5" "$out/profile.h5" "$out/hertz.h5" \
+.venv/bin/corrugation-post growth "$out/auto.h5" "$out/profile.h5" "$out/hertz.h5" \
   --out "$out"

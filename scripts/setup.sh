@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what corrugation needs on a Debian machine that has a Rust
 # toolchain, gcc and python3: HDF5 (libhdf5-dev, pkg-config) from Debian,
-# and a Python venv (.venv) with the post-processing packages from PyPI.
+# and a Python venv (.venv) with the post-processing package (postprocess/,
+# its dependencies from PyPI).
 # Idempotent: does nothing that is already done.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,11 +27,13 @@ if [ ! -x .venv/bin/python ]; then
     python3 -m venv .venv
   fi
 fi
-stamp=.venv/.requirements.sha256
-want=$(sha256sum postprocess/requirements.txt | cut -d' ' -f1)
+# The post-processing package, editable (changes to postprocess/ apply at
+# once), with its test extra; its command is .venv/bin/corrugation-post.
+stamp=.venv/.postprocess.sha256
+want=$(sha256sum postprocess/pyproject.toml | cut -d' ' -f1)
 if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
-  echo "setup: installing Python packages (postprocess/requirements.txt)" >&2
+  echo "setup: installing the post-processing package (postprocess/pyproject.toml)" >&2
   .venv/bin/python -m pip install -q --upgrade pip
-  .venv/bin/python -m pip install -q -r postprocess/requirements.txt
+  PYTHONWARNINGS=ignore .venv/bin/python -m pip install -q -e "postprocess[test]"
   echo "$want" > "$stamp"
 fi

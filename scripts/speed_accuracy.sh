@@ -52,7 +52,7 @@ for scene in "${scenes[@]}"; do
   done
   echo "$scene done" >&2
 done
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post speed-accuracy "$manifest" --out "$out"
+.venv/bin/corrugation-post speed-accuracy "$manifest" --out "$out"
 if [ "$failures" -gt 0 ]; then
   echo "$failures run(s) failed and are missing from the table" >&2
   exit 1

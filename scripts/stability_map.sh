@@ -65,5 +65,5 @@ for amp in 0.45 0.9 0.99 1.2; do
   run n_amplitude "$amp" --set load.longitudinal_force=0 --set rolling.creepage_y=1e-3 --set rail.half_width=0.016 \
     --set load.harmonics[0].amplitude="$(python3 -c "print($amp * 1e5)")"
 done
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post stability "$manifest" --out "$out"
+.venv/bin/corrugation-post stability "$manifest" --out "$out"
 done

@@ -25,4 +25,4 @@ for m in 2e3 1e4 4e4 1e5 2e5; do
     echo "m = $m failed (left out):"; grep -E "^error" "$out/m_$m.log" || tail -3 "$out/m_$m.log"
   fi
 done
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post growth "${files[@]}" --out "$out"
+.venv/bin/corrugation-post growth "${files[@]}" --out "$out"

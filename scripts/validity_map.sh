@@ -47,4 +47,4 @@ for lambda in 0.010 0.015 0.020 0.030 0.040 0.060 0.100; do
   done
   echo "wavelength $lambda done"
 done
-PYTHONPATH=postprocess .venv/bin/python -m corrugation_post validity-map "$manifest" --out "$out"
+.venv/bin/corrugation-post validity-map "$manifest" --out "$out"

@@ -1,7 +1,7 @@
 """Post-processing of corrugation run files: wear maps, loads, traction snapshots, comparisons.
 
-Command line: ``python -m corrugation_post {figures,compare,check} ...``
-(see ``python -m corrugation_post --help``).
+Command line: ``corrugation-post {figures,compare,check,...} ...`` (or ``python -m corrugation_post``)
+(see ``corrugation-post --help``).
 """
 
 from .io import Run, RunFileError, open_group

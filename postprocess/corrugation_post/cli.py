@@ -1,4 +1,4 @@
-"""Command line: ``python -m corrugation_post {figures,compare,growth,speeds,sweep,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}``.
+"""Command line: ``corrugation-post {figures,compare,growth,speeds,sweep,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}`` (or ``python -m corrugation_post``).
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -31,7 +31,7 @@ MANIFEST_COMMANDS = (
 
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="python -m corrugation_post",
+        prog="corrugation-post",
         description="Figures and comparisons from corrugation run files (HDF5).",
     )
     sub = parser.add_subparsers(dest="command", required=True)

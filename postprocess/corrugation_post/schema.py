@@ -1,4 +1,4 @@
-"""The run-file contract, and a checker for it (``python -m corrugation_post check``).
+"""The run-file contract, and a checker for it (``corrugation-post check``).
 
 Only required content is listed: extra variables, attributes and groups are
 allowed everywhere.  Contact groups are checked against ``CONTACT_VARS``.

@@ -9,22 +9,16 @@ optional variables.
 from __future__ import annotations
 
 import os
-import sys
 from pathlib import Path
 
 import pytest
 
-HERE = Path(__file__).resolve().parent
-PACKAGE_ROOT = HERE.parent  # /.../postprocess, holding corrugation_post/
-for p in (PACKAGE_ROOT, HERE):
-    if str(p) not in sys.path:
-        sys.path.insert(0, str(p))
-
-import matplotlib  # noqa: E402
+import matplotlib
 
 matplotlib.use("Agg")
 
-from synthetic_run import write_run  # noqa: E402
+from synthetic_run import write_run  # noqa: E402  (tests/, on pytest's path)
+
 
 ENV_VAR = "CORRUGATION_RUN_FILE"
 
@@ -45,8 +39,3 @@ def run_file(tmp_path) -> Path:
             pytest.fail(f"{ENV_VAR}={env}: no such file")
         return path
     return write_run(tmp_path / "synthetic.h5")
-
-
-@pytest.fixture
-def package_root() -> Path:
-    return PACKAGE_ROOT

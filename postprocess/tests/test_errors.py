@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import h5py
 import pytest
@@ -35,13 +36,22 @@ def test_bad_input_in_process(tmp_path, capsys, case, command):
     assert not (tmp_path / "o").exists()
 
 
+# The installed console command (scripts/setup.sh installs the package into
+# the venv that runs these tests), and ``python -m corrugation_post``.
+COMMANDS = {
+    "console": [str(Path(sys.executable).parent / "corrugation-post")],
+    "python_m": [sys.executable, "-m", "corrugation_post"],
+}
+
+
+@pytest.mark.parametrize("entry", ["console", "python_m"])
 @pytest.mark.parametrize("case", ["missing", "no_rail"])
-def test_bad_input_via_python_m(tmp_path, package_root, case):
-    """The real entry point, ``python -m corrugation_post``, run as a subprocess."""
+def test_bad_input_via_the_entry_points(tmp_path, case, entry):
+    """The real entry points, run as subprocesses."""
     path, words = _bad_files(tmp_path)[case]
-    env = dict(os.environ, PYTHONPATH=str(package_root), MPLBACKEND="Agg")
+    env = dict(os.environ, MPLBACKEND="Agg")
     proc = subprocess.run(
-        [sys.executable, "-m", "corrugation_post", "figures", str(path), "--out", str(tmp_path / "o")],
+        COMMANDS[entry] + ["figures", str(path), "--out", str(tmp_path / "o")],
         capture_output=True, text=True, env=env, cwd=tmp_path, timeout=120,
     )
     assert proc.returncode != 0
@@ -49,11 +59,10 @@ def test_bad_input_via_python_m(tmp_path, package_root, case):
     assert "Traceback" not in proc.stderr
 
 
-def test_python_m_figures_prints_paths(run_file, tmp_path, package_root):
-    env = dict(os.environ, PYTHONPATH=str(package_root))
+def test_console_command_figures_prints_paths(run_file, tmp_path):
     proc = subprocess.run(
-        [sys.executable, "-m", "corrugation_post", "figures", str(run_file), "--out", str(tmp_path / "o")],
-        capture_output=True, text=True, env=env, cwd=tmp_path, timeout=300,
+        COMMANDS["console"] + ["figures", str(run_file), "--out", str(tmp_path / "o")],
+        capture_output=True, text=True, cwd=tmp_path, timeout=300,
     )
     assert proc.returncode == 0, proc.stderr
     printed = proc.stdout.split()
