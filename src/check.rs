@@ -238,7 +238,10 @@ pub fn print_check(r: &Resolved) {
         }
     }
     let setup_text = if cost.setup > 0.0 {
-        format!(" plus {:.1} s to tabulate the discrete track's receptances", cost.setup)
+        format!(
+            " plus {:.1} s to set up the discrete track (its receptances, and a passage over the smooth rail per traffic class)",
+            cost.setup
+        )
     } else {
         String::new()
     };

@@ -66,14 +66,23 @@ pub fn estimate(s: &Scene) -> CostEstimate {
         let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
         let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
         // With the profile in the contact (the default in growth studies):
-        // a larger grid, the gap of every step and the equivalent
-        // roughness's normal solves; 2.8 times on growth_exact.toml (100
-        // passages: 3.3 s per passage, median, against 1.16 s with "hertz").
+        // a grid 1.5 times the patch both ways, the gap of every step and the
+        // normal solves; measured 2026-11-25 after the one-product normal
+        // CG: with CG, whose products cover the larger grid, 1.9 times
+        // (growth_exact.toml, 2.41 s per passage of 326 steps, median of 5);
+        // with Gauss-Seidel, which sweeps the contact area only, 1.15 times
+        // (growth_discrete.toml, 9.1-9.6 s per passage of 1526 steps).
+        let cg = f.solver.resolve(f.friction_law) == GridSolver::Cg;
         let profile = match s.contact.normal {
-            NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => 2.8,
+            NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => {
+                if cg {
+                    1.9
+                } else {
+                    1.15
+                }
+            }
             _ => 1.0,
         };
-        let cg = f.solver.resolve(f.friction_law) == GridSolver::Cg;
         let solver = if cg { 3.97e-3 * (n_c / 478.0).powf(1.13) } else { 5.39e-3 * (n_c / 478.0).powf(1.46) };
         let whole = match (symmetric, cg) {
             (true, _) => 1.0,
@@ -106,13 +115,15 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     let deposit = if fixed_step.is_some() { 0.0 } else { p.substeps as f64 * nodes * 20e-9 };
     let per_passage = p.n_steps() as f64 * (contact + deposit);
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
-    // The discrete model tabulates its receptances once per traffic class:
-    // about 1 s per 100 harmonics up to its 5 kHz on 2 cores.
+    // The discrete model tabulates its receptances once per traffic class
+    // (0.9 s CPU for the 108 harmonics up to 5 kHz of growth_discrete.toml,
+    // 0.45 s on 2 cores), and runs one passage per class over the smooth
+    // rail for the update bound (its forced wear).
     let setup: f64 = match &s.growth {
         Some(gr) if matches!(gr.dynamics, DynamicsKind::Discrete { .. }) => gr
             .classes
             .iter()
-            .map(|c| 0.01 * crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64)
+            .map(|c| 0.0042 * crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64 + per_passage)
             .sum(),
         _ => 0.0,
     };
