@@ -31,6 +31,72 @@ impl CostEstimate {
     }
 }
 
+/// The fixed grid's CPU time per step (s, 2 cores) of scene `s` with the
+/// tangential solver `solver` (Cg or GaussSeidel).
+fn fixed_grid_step(s: &Scene, d: &crate::run::Derived, solver: GridSolver) -> f64 {
+    let ContactGrid::Fixed(f) = s.contact.grid else {
+        return 0.0;
+    };
+    // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
+    // 2026-11-25): with the CG solver 3.97 ms per step with 478 elements in
+    // contact at the mean load, 17.3 ms with 1912, 42.3 ms with 3902,
+    // fitted by N^1.13; with Gauss-Seidel (its option, and exact Coulomb
+    // friction) 5.39, 38.5 and 115.8 ms, N^1.46; the wear deposit is in it.
+    // A scene that is not symmetric about the centre line (lateral
+    // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
+    // (scripts/stability_map.sh); the CG solver's products cover the whole
+    // grid either way: 1.1-1.3 times on the stability map's rows with
+    // lateral creepage (5.9-7.2 s against 5.4 s), taken as 1.2.
+    let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
+    let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
+    let cg = solver == GridSolver::Cg;
+    // With the profile in the contact (the default in growth studies):
+    // a grid 1.5 times the patch both ways, the gap of every step and the
+    // normal solves; measured 2026-11-25 after the one-product normal
+    // CG: with CG, whose products cover the larger grid, 1.9 times
+    // (growth_exact.toml, 2.41 s per passage of 326 steps, median of 5);
+    // with Gauss-Seidel, which sweeps the contact area only, 1.15 times
+    // (growth_discrete.toml, 9.1-9.6 s per passage of 1526 steps;
+    // growth_exact.toml 2.03 s, the model 2.02 s).
+    let profile = match s.contact.normal {
+        NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => {
+            if cg {
+                1.9
+            } else {
+                1.15
+            }
+        }
+        _ => 1.0,
+    };
+    let per_step = if cg { 3.97e-3 * (n_c / 478.0).powf(1.13) } else { 5.39e-3 * (n_c / 478.0).powf(1.46) };
+    let whole = match (symmetric, cg) {
+        (true, _) => 1.0,
+        (false, true) => 1.2,
+        (false, false) => 2.7,
+    };
+    per_step * whole * profile
+}
+
+/// What `contact.solver = "auto"` runs on the fixed grid of scene `s`: for
+/// the regularised law the cheaper of CG and Gauss-Seidel by this cost
+/// model (Gauss-Seidel on the coarse grids a growth study enlarges for the
+/// profile contact, CG from about 800 elements in contact), for exact
+/// Coulomb friction Gauss-Seidel (which CG does not solve).
+pub fn auto_grid_solver(s: &Scene) -> GridSolver {
+    let ContactGrid::Fixed(f) = s.contact.grid else {
+        return GridSolver::GaussSeidel;
+    };
+    if f.solver != GridSolver::Auto || f.friction_law == crate::contact::friction::FrictionLaw::Coulomb {
+        return f.solver.resolve(f.friction_law);
+    }
+    let d = derive(s);
+    if fixed_grid_step(s, &d, GridSolver::Cg) <= fixed_grid_step(s, &d, GridSolver::GaussSeidel) {
+        GridSolver::Cg
+    } else {
+        GridSolver::GaussSeidel
+    }
+}
+
 /// The cost model of `s`.
 pub fn estimate(s: &Scene) -> CostEstimate {
     let d = derive(s);
@@ -62,35 +128,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     // (scripts/stability_map.sh); the CG solver's products cover the whole
     // grid either way: 1.1-1.3 times on the stability map's rows with
     // lateral creepage (5.9-7.2 s against 5.4 s), taken as 1.2.
-    let fixed_step = fixed.as_ref().map(|(f, _)| {
-        let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
-        let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
-        // With the profile in the contact (the default in growth studies):
-        // a grid 1.5 times the patch both ways, the gap of every step and the
-        // normal solves; measured 2026-11-25 after the one-product normal
-        // CG: with CG, whose products cover the larger grid, 1.9 times
-        // (growth_exact.toml, 2.41 s per passage of 326 steps, median of 5);
-        // with Gauss-Seidel, which sweeps the contact area only, 1.15 times
-        // (growth_discrete.toml, 9.1-9.6 s per passage of 1526 steps).
-        let cg = f.solver.resolve(f.friction_law) == GridSolver::Cg;
-        let profile = match s.contact.normal {
-            NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => {
-                if cg {
-                    1.9
-                } else {
-                    1.15
-                }
-            }
-            _ => 1.0,
-        };
-        let solver = if cg { 3.97e-3 * (n_c / 478.0).powf(1.13) } else { 5.39e-3 * (n_c / 478.0).powf(1.46) };
-        let whole = match (symmetric, cg) {
-            (true, _) => 1.0,
-            (false, true) => 1.2,
-            (false, false) => 2.7,
-        };
-        solver * whole * profile
-    });
+    let fixed_step = fixed.as_ref().map(|(f, _)| fixed_grid_step(s, &d, f.solver.resolve(f.friction_law)));
     let contact = match s.contact.model {
         _ if fixed_step.is_some() => fixed_step.unwrap_or_default(),
         ContactModelKind::Fastsim => 25.0 * 18e-9 * n_el,

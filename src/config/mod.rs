@@ -362,6 +362,15 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     check_sleeper_bays(&scene, errors);
     contact::check_grid_size(&scene, errors);
     contact::check_periodic_steps(&scene, errors);
+    // contact.solver = "auto" on the fixed grid: the cheaper tangential
+    // solver by the cost model (the config keeps "auto").
+    let mut scene = scene;
+    if errors.is_empty() && scene.contact.model == ContactModelKind::ExactTransient {
+        let choice = crate::cost::auto_grid_solver(&scene);
+        if let ContactGrid::Fixed(f) = &mut scene.contact.grid {
+            f.solver = choice;
+        }
+    }
     (Some(scene), resolved)
 }
 

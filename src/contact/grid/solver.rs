@@ -68,8 +68,10 @@ pub enum GridScheme {
 /// The tangential solver of the fixed grid (`contact.solver`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum GridSolver {
-    /// The Newton-Krylov solver for the regularised law, Gauss-Seidel for
-    /// exact Coulomb friction.
+    /// The cheaper of the two by the cost model for the regularised law
+    /// (the config resolves it: `cost::auto_grid_solver`), Gauss-Seidel
+    /// for exact Coulomb friction; a spec built without the config takes
+    /// CG for the regularised law.
     #[default]
     Auto,
     /// Newton with projected CG inner solves, every iteration one FFT
