@@ -49,7 +49,7 @@ fn contents(path: &Path) -> Vec<(String, Vec<u64>)> {
             out.push((full, bits));
         }
     }
-    let file = hdf5::File::open(path).unwrap();
+    let file = corrugation::output::netcdf::open_file(path).unwrap();
     let mut out = Vec::new();
     walk(&file.group("/").unwrap(), "", &mut out);
     for attr in ["config", "status", "contact_model", "title"] {

@@ -517,7 +517,7 @@ where
         .with_fcpl(|p| {
             p.link_creation_order(LinkCreationOrder::Indexed).attr_creation_order(AttrCreationOrder::Indexed)
         })
-        .with_fapl(|p| p.fclose_degree(FileCloseDegree::Strong))
+        .with_fapl(|p| p.fclose_degree(FileCloseDegree::Strong).file_locking(false))
         .create(&tmp)
         .map_err(|e| write_err(&format!("temporary file {}", tmp.display()), e))?;
     guard.armed = true;
@@ -535,10 +535,29 @@ where
     Ok(())
 }
 
+/// Opens the file at `path` for reading, as every reader of this module
+/// does (HDF5 refuses to open a file a second time in one process with
+/// other locking settings: open it with this while this module reads it).
+pub fn open_file(path: &Path) -> Result<File, NcError> {
+    File::with_options().with_fapl(|p| p.file_locking(false)).open(path).map_err(|source| NcError::Read {
+        path: path.to_owned(),
+        what: "file".into(),
+        source,
+    })
+}
+
 /// Open `group` (`""` or `"/"` = root) of the file at `path` for reading.
+///
+/// HDF5's own file locks are off for every file this module opens or
+/// writes: a file is written whole under a temporary name and renamed, so a
+/// reader never sees it half-written, and a lock would outlive the writer in
+/// any child process started while the file was open (it inherits the
+/// descriptor and, with it, the lock: a later reader of the renamed file was
+/// refused with "unable to lock file, errno 11"). Sweep members have their
+/// own lock files.
 fn open_group(path: &Path, group: &str) -> Result<Group, NcError> {
     let read_err = |what: String, source| NcError::Read { path: path.to_owned(), what, source };
-    let file = File::open(path).map_err(|e| read_err("file".into(), e))?;
+    let file = open_file(path)?;
     let gname = if group.is_empty() { "/" } else { group };
     file.group(gname).map_err(|e| read_err(format!("group {group:?}"), e))
 }
