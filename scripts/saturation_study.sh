@@ -1,14 +1,13 @@
 #!/usr/bin/env bash
 # From initiation to saturation (configs/growth_saturation.toml): the growth
 # study run until the corrugation stops growing or the wheel leaves the
-# rail, with its normal contact chosen per passage (contact.normal = "auto":
-# Hertz while the corrugation is below the profile contact's floor, the
-# profile from then on), and the same study with the profile in the contact
-# from the start and with the Hertz contact throughout (capped at 300
-# passages); then rms and the dominant harmonic against traffic
-# (corrugation_post growth). Run files and figures in out/saturation/.
-# About 15 minutes on 2 cores (2.4 s per passage with the profile contact,
-# 1.2 s with Hertz).
+# rail, with the consistent chain (contact.normal = "auto": the profile in
+# the contact of every step, the dynamics fed the linear contact's
+# equivalent roughness while the corrugation is shallow), the same study
+# with the nonlinear profile contact's own equivalent roughness throughout
+# ("profile"), and with the Hertz contact (capped at 300 passages); then rms
+# and the dominant harmonic against traffic (corrugation-post growth). Run
+# files and figures in out/saturation/. About 10 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
