@@ -22,4 +22,4 @@ run auto
 run profile --set contact.normal=profile
 run hertz --set contact.normal=hertz --set growth.passes=300
 .venv/bin/corrugation-post growth "$out/auto.h5" "$out/profile.h5" "$out/hertz.h5" \
-  --out "$out"
+  --out "$out" --wavelength 0.0171
