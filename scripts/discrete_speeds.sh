@@ -26,30 +26,26 @@ if [ -n "${PASSES:-}" ]; then
   short=(--set "growth.passes=$PASSES")
   mix_short=(--set "growth.passes=$(( PASSES * 8 / 5 ))")
 fi
-runs=()
-for case in "80 22.22" "100 27.78" "140 38.89"; do
-  set -- $case
-  f="$out/v$1.h5"
-  echo "running $1 km/h ($2 m/s)"
-  "$bin" run --overwrite configs/growth_discrete.toml -o "$f" --set "rolling.speed=$2" --set 'growth.contact_history=[]' \
-    "${short[@]}" 2> "$out/v$1.log"
-  grep -E "^(wrote|warning)" "$out/v$1.log" || true
-  runs+=("$f")
-done
-if [ -n "${HERTZ:-}" ]; then
-  hertz_runs=()
+# speeds PREFIX LABEL [--set ...]: growth_discrete.toml at the three
+# speeds, files $out/PREFIXv<km/h>.h5; their names in the array `made`.
+speeds() {
+  local prefix=$1 label=$2; shift 2
+  made=()
   for case in "80 22.22" "100 27.78" "140 38.89"; do
-    set -- $case
-    f="$out/hertz_v$1.h5"
-    echo "running $1 km/h on the Hertz chain (FASTSIM 40 x 40)"
-    "$bin" run --overwrite configs/growth_discrete.toml -o "$f" --set "rolling.speed=$2" --set 'growth.contact_history=[]' \
-      --set contact.model=fastsim --set contact.grid=adapted --set contact.elements_x=40 --set contact.elements_y=40 \
-      --set passage.step_length=2e-4 --set contact.normal=hertz "${short[@]}" 2> "$out/hertz_v$1.log"
-    grep -E "^(wrote|warning)" "$out/hertz_v$1.log" || true
-    hertz_runs+=("$f")
+    local kmh=${case% *} ms=${case#* } f="$out/${prefix}v${case% *}.h5"
+    echo "running $kmh km/h$label ($ms m/s)"
+    "$bin" run --overwrite configs/growth_discrete.toml -o "$f" --set "rolling.speed=$ms" \
+      --set 'growth.contact_history=[]' "$@" "${short[@]}" 2> "${f%.h5}.log"
+    grep -E "^(wrote|warning)" "${f%.h5}.log" || true
+    made+=("$f")
   done
-  .venv/bin/corrugation-post speeds "${hertz_runs[@]}" \
-    --track "$out/track.h5" --out "$out/hertz"
+}
+speeds "" ""
+runs=("${made[@]}")
+if [ -n "${HERTZ:-}" ]; then
+  speeds hertz_ " on the Hertz chain (FASTSIM 40 x 40)" --set contact.model=fastsim --set contact.grid=adapted \
+    --set contact.elements_x=40 --set contact.elements_y=40 --set passage.step_length=2e-4 --set contact.normal=hertz
+  .venv/bin/corrugation-post speeds "${made[@]}" --track "$out/track.h5" --out "$out/hertz"
 fi
 echo "running the mix"
 "$bin" run --overwrite configs/growth_discrete_mix.toml -o "$out/mix.h5" "${mix_short[@]}" 2> "$out/mix.log"

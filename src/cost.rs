@@ -118,16 +118,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     // Performance) takes 0.45-0.6 of these times: an upper estimate.
     let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
-    // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
-    // 2026-11-25): with the CG solver 3.97 ms per step with 478 elements in
-    // contact at the mean load, 17.3 ms with 1912, 42.3 ms with 3902,
-    // fitted by N^1.13; with Gauss-Seidel (its option, and exact Coulomb
-    // friction) 5.39, 38.5 and 115.8 ms, N^1.46; the wear deposit is in it.
-    // A scene that is not symmetric about the centre line (lateral
-    // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
-    // (scripts/stability_map.sh); the CG solver's products cover the whole
-    // grid either way: 1.1-1.3 times on the stability map's rows with
-    // lateral creepage (5.9-7.2 s against 5.4 s), taken as 1.2.
+    // The fixed grid: its step's fit ([`fixed_grid_step`]).
     let fixed_step = fixed.as_ref().map(|(f, _)| fixed_grid_step(s, &d, f.solver.resolve(f.friction_law)));
     let contact = match s.contact.model {
         _ if fixed_step.is_some() => fixed_step.unwrap_or_default(),

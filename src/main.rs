@@ -238,6 +238,33 @@ fn new_output(out: &Path, overwrite: bool, resumable: bool) -> Result<(), ExitCo
     Err(ExitCode::from(2))
 }
 
+/// Runs `work` (a run or a resume writing `out`) with its events shown on
+/// `bar` and a watch for SIGINT / SIGTERM that says which checkpoint `out`
+/// keeps: `kept` passages at the start, `target` the passages a `resume
+/// --passes` is to reach ([`interrupt::watch`]).
+fn watched<T, E>(
+    out: &Path,
+    kept: usize,
+    target: Option<usize>,
+    bar: &mut progress::Progress,
+    work: impl FnOnce(&mut dyn FnMut(corrugation::run::Event)) -> Result<T, E>,
+) -> Result<T, E> {
+    let checkpoint = interrupt::Checkpoint::default();
+    checkpoint.written(kept);
+    interrupt::watch(out.to_path_buf(), &checkpoint, target);
+    let result = work(&mut |e| {
+        if let corrugation::run::Event::Checkpoint { done } = e {
+            checkpoint.written(done);
+        }
+        bar.event(e)
+    });
+    if result.is_ok() {
+        checkpoint.finished();
+    }
+    bar.finish();
+    result
+}
+
 /// Whether `a` and `b` name the same existing file.
 fn same_file(a: &Path, b: &Path) -> bool {
     match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
@@ -264,18 +291,7 @@ fn run(resolved: &Resolved, out: &Path) -> ExitCode {
     let passes = resolved.scene.growth.as_ref().map_or(1, |g| g.passes);
     let label = if passes == 1 { "passage".to_string() } else { format!("{passes} passages") };
     let mut bar = progress::Progress::new(&label, resolved.scene.growth.is_some());
-    let checkpoint = interrupt::Checkpoint::default();
-    interrupt::watch(out.to_path_buf(), &checkpoint, None);
-    let result = run_scene(resolved, out, &mut |e| {
-        if let corrugation::run::Event::Checkpoint { done } = e {
-            checkpoint.written(done);
-        }
-        bar.event(e)
-    });
-    if result.is_ok() {
-        checkpoint.finished();
-    }
-    bar.finish();
+    let result = watched(out, 0, None, &mut bar, |events| run_scene(resolved, out, events));
     match result {
         Ok(s) => {
             report(&s, out);
@@ -294,22 +310,11 @@ fn resume(file: &Path, passes: Option<usize>, output: Option<&Path>) -> ExitCode
     let out = output.unwrap_or(file);
     // Until its first checkpoint, a resume onto another file has written
     // nothing; one in place keeps the file's own checkpoint.
-    let checkpoint = interrupt::Checkpoint::default();
     let held = corrugation::output::netcdf::read_f64(file, "passes", "traffic").map_or(0, |t| t.len());
-    if output.is_none() {
-        checkpoint.written(held);
-    }
-    interrupt::watch(out.to_path_buf(), &checkpoint, passes.map(|p| held + p));
-    let result = corrugation::run::resume(file, passes, output, &mut |e| {
-        if let corrugation::run::Event::Checkpoint { done } = e {
-            checkpoint.written(done);
-        }
-        bar.event(e)
+    let kept = if output.is_none() { held } else { 0 };
+    let result = watched(out, kept, passes.map(|p| held + p), &mut bar, |events| {
+        corrugation::run::resume(file, passes, output, events)
     });
-    if result.is_ok() {
-        checkpoint.finished();
-    }
-    bar.finish();
     match result {
         Ok(s) => {
             report(&s, out);

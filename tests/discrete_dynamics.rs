@@ -25,6 +25,12 @@ fn harmonic(v: &[f64], k: usize) -> f64 {
     2.0 * (c * c + s * s).sqrt() / n
 }
 
+/// growth_fastsim.toml's overrides for one sleeper bay of the discrete
+/// track, and `extra`.
+fn discrete_bay(extra: &[&str]) -> Vec<String> {
+    common::DISCRETE_BAY.iter().chain(extra).map(|s| s.to_string()).collect()
+}
+
 #[test]
 fn sleeper_passing_force_of_a_smooth_rail() {
     // At 10 m/s the sleeper-passing frequency V/d = 16.7 Hz lies far below
@@ -86,13 +92,10 @@ fn the_pinned_pinned_band_shows_in_the_force_transfer() {
 #[test]
 fn growth_with_the_discrete_track_resumes_bit_for_bit() {
     let base = include_str!("../configs/growth_fastsim.toml");
-    let set = |extra: &[&str]| -> Vec<String> {
-        common::DISCRETE_BAY
-            .iter()
-            .chain(&["growth.adaptive=false", "growth.traffic_scale=100", "growth.contact_history=[]"])
-            .chain(extra)
-            .map(|s| s.to_string())
-            .collect()
+    let set = |extra: &[&str]| {
+        discrete_bay(
+            &[&["growth.adaptive=false", "growth.traffic_scale=100", "growth.contact_history=[]"], extra].concat(),
+        )
     };
     let dir = tempfile::tempdir().unwrap();
     let full = dir.path().join("full.h5");
@@ -117,14 +120,7 @@ fn forced_wear_is_left_out_of_the_update_bound() {
     // study with the adaptive m (4 passages) must wear the rail as the same
     // traffic in 16 equal steps does, within the bound's accuracy.
     let base = include_str!("../configs/growth_fastsim.toml");
-    let set = |extra: &[&str]| -> Vec<String> {
-        common::DISCRETE_BAY
-            .iter()
-            .chain(&["growth.contact_history=[]", "growth.store_every=1"])
-            .chain(extra)
-            .map(|s| s.to_string())
-            .collect()
-    };
+    let set = |extra: &[&str]| discrete_bay(&[&["growth.contact_history=[]", "growth.store_every=1"], extra].concat());
     let dir = tempfile::tempdir().unwrap();
     let adaptive = dir.path().join("adaptive.h5");
     let cfg = set(&["growth.passes=4", "growth.adaptive=true", "growth.traffic_scale=2e3"]);

@@ -357,13 +357,8 @@ fn continue_run(
     // A study that stopped (growth.stop) stays stopped when resumed: the rule
     // reads the stored rows.
     let mut stopped = stop_reason(growth, &state.rows);
-    // The wear one passage of a class leaves on the smooth rail, where its
-    // track forces a dynamic force there (the discrete supports' parametric
-    // excitation): it does not depend on the profile, the update integrates
-    // it exactly, and the update bound counts the rest (growth::traffic).
-    // Computed at a class's first passage of this invocation.
+    // Each class's forced wear (below), from its first passage here on.
     let mut forced: Vec<Option<Vec<f64>>> = vec![None; class_models.len()];
-    let smooth = Array2::<f64>::zeros(state.profile.raw_dim());
     for pass in first..passes {
         if stopped.is_some() {
             break;
@@ -405,18 +400,21 @@ fn continue_run(
             }
             Some(_) => {
                 let (class_passage, class_dynamics) = &class_models[class];
-                let g = growth_passage(
-                    class_passage,
-                    &d.shape,
-                    solver.as_mut(),
-                    deposit.as_ref(),
-                    &grid,
-                    &state.profile,
-                    normal,
-                    class_dynamics.as_deref(),
-                    record_fields,
-                    &mut report,
-                );
+                let mut passage = |profile: &Array2<f64>, record: bool, report: &mut dyn FnMut(usize, usize)| {
+                    growth_passage(
+                        class_passage,
+                        &d.shape,
+                        solver.as_mut(),
+                        deposit.as_ref(),
+                        &grid,
+                        profile,
+                        normal,
+                        class_dynamics.as_deref(),
+                        record,
+                        report,
+                    )
+                };
+                let g = passage(&state.profile, record_fields, &mut report);
                 // At saturation the dynamic force may take N below F_x / mu:
                 // the prescribed force can no longer be transmitted, the
                 // end of what the model describes; the study stops there.
@@ -453,6 +451,18 @@ fn continue_run(
                     });
                 }
                 fallbacks = g.passage.fallback_steps;
+                // The wear one passage of this class leaves on the smooth
+                // rail, where its track forces a dynamic force there (the
+                // discrete supports' parametric excitation): it does not
+                // depend on the profile, the update integrates it exactly,
+                // and the update bound counts the rest (growth::traffic).
+                // Computed at the class's first passage of this invocation.
+                if forced[class].is_none() && class_dynamics.as_deref().is_some_and(|dy| dy.forces_smooth_rail()) {
+                    let smooth = Array2::zeros(state.profile.raw_dim());
+                    let w0 =
+                        passage(&smooth, false, &mut |_, _| {}).map_err(|source| RunError::Passage { pass, source })?;
+                    forced[class] = Some(line(&w0.wear));
+                }
                 (g.wear, g.passage.history)
             }
         };
@@ -469,33 +479,14 @@ fn continue_run(
         // With imposed dynamics the wear does not depend on the profile: the
         // update is exact for any m (growth::traffic).
         let class_dynamics = class_models.get(class).is_some_and(|(_, dy)| dy.is_some());
-        let forcing = class_models.get(class).and_then(|(_, dy)| dy.as_deref()).filter(|d| d.forces_smooth_rail());
-        if let Some(dy) = forcing
-            && forced[class].is_none()
-        {
-            let (class_passage, _) = &class_models[class];
-            let w0 = growth_passage(
-                class_passage,
-                &d.shape,
-                solver.as_mut(),
-                deposit.as_ref(),
-                &grid,
-                &smooth,
-                normal,
-                Some(dy),
-                false,
-                &mut |_, _| {},
-            )
-            .map_err(|source| RunError::Passage { pass, source })?;
-            forced[class] = Some(line(&w0.wear));
-        }
-        let rho = match (&forced.get(class), class_dynamics) {
-            (_, false) => 0.0,
-            (Some(Some(w0)), true) => {
-                let w: Vec<f64> = line(&wear).iter().zip(w0).map(|(w, f)| w - f).collect();
-                change_rate(&line(&state.profile), &w)
+        let rho = if class_dynamics {
+            let mut w = line(&wear);
+            if let Some(w0) = forced.get(class).and_then(Option::as_ref) {
+                w.iter_mut().zip(w0).for_each(|(w, f)| *w -= f);
             }
-            _ => change_rate(&line(&state.profile), &line(&wear)),
+            change_rate(&line(&state.profile), &w)
+        } else {
+            0.0
         };
         let previous = state.rows.last();
         // The adaptive m rises from the last m of the same class: classes

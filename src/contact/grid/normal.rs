@@ -105,14 +105,14 @@ pub fn solve(
     // `u = K_n p` is kept up to date by the step's own product where the
     // step is linear (no element clipped or readmitted): one product per
     // iteration instead of two. It is recomputed from `p` after a nonlinear
-    // step, every REFRESH iterations, and before the verdict is accepted.
-    let mut fresh = false;
-    let mut since_fresh = 0usize;
+    // step, every REFRESH iterations, and before the verdict is accepted
+    // (`updated` counts the steps since the last exact product).
+    let mut updated = 0usize;
     for it in 0..MAX_ITERATIONS {
-        if !fresh && (since_fresh == 0 || since_fresh >= REFRESH) {
+        let exact = updated == 0 || updated >= REFRESH;
+        if exact {
             conv.normal(scratch, &p, &mut u);
-            fresh = true;
-            since_fresh = 0;
+            updated = 0;
         }
         let (mut sum, mut count) = (0.0, 0usize);
         for k in 0..n {
@@ -140,11 +140,11 @@ pub fn solve(
             }
         }
         if spread <= tol_gap && penetration <= tol_gap {
-            if fresh {
+            if exact {
                 return Ok(NormalSolution { pressure: p, approach: g_mean, iterations: it });
             }
             // Converged on the updated product: check on an exact one.
-            since_fresh = 0;
+            updated = 0;
             continue;
         }
         if change < NORMAL_TOLERANCE {
@@ -190,8 +190,7 @@ pub fn solve(
                 u[k] = scale * (u[k] - tau * r[k]);
             }
         }
-        fresh = false;
-        since_fresh = if linear { since_fresh + 1 } else { 0 };
+        updated = if linear { updated + 1 } else { 0 };
         change = moved / sum_p;
     }
     Err(NormalError::NoConvergence { force, iterations: MAX_ITERATIONS, change, tolerance: GAP_TOLERANCE })
