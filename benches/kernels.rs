@@ -1,6 +1,7 @@
 //! Benchmarks of the kernels (issue: "criterion benchmarks for one FASTSIM
 //! solve (20 x 20 mesh) and the wear interpolation of one step"), plus a
 //! whole paper_normal_30mm FASTSIM passage. Run: `cargo bench --bench kernels`.
+use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::friction::FrictionLaw;
@@ -13,8 +14,8 @@ use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, Tang
 use corrugation::creep_coefficients::creep_coefficients;
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use corrugation::passage::run_passage;
-use corrugation::run::{build_deposit, build_solver, derive};
-use corrugation::wear::{PatchWear, RailGrid, WearDeposit, archard_rates};
+use corrugation::rail_grid::RailGrid;
+use corrugation::wear::{PatchWear, WearDeposit, archard_rates};
 use criterion::{Criterion, criterion_group, criterion_main};
 use ndarray::Array2;
 use std::hint::black_box;

@@ -2,13 +2,14 @@
 //! patches, mesh or grid, passage, rail grid, growth settings, resonances)
 //! and a rough cost estimate.
 
+use corrugation::build::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics};
 use corrugation::config::Resolved;
 use corrugation::contact::grid::GRID_MARGIN;
 use corrugation::contact::grid::convolution::smooth_padding;
-use corrugation::growth::traffic::TrafficScaling;
-use corrugation::model_choice::{AccuracyMap, AutoChoice, Candidate, SAFETY, departures};
+use corrugation::model_choice::{AccuracyMap, SAFETY, departures};
+use corrugation::params::TrafficScaling;
+use corrugation::params::{AutoChoice, Candidate};
 use corrugation::params::{ContactGrid, DynamicsKind, NormalContact};
-use corrugation::run::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics};
 
 /// What contact.model = "auto" chose and why.
 fn print_auto(a: &AutoChoice, normal: NormalContact) {
@@ -171,14 +172,14 @@ pub fn print_check(r: &Resolved) {
     if let Some(g) = &s.growth {
         match g.traffic {
             TrafficScaling::Fixed { scale, .. } => println!(
-                "growth             {} passages x traffic scale {scale} = {:.4e} real passages; dynamics {:?}",
+                "growth             {} passages x traffic scale {scale} = {:.4e} real passages; dynamics {}",
                 g.passes,
                 g.passes as f64 * scale,
                 g.dynamics
             ),
             TrafficScaling::Adaptive { initial, max, max_update_ratio } => println!(
                 "growth             {} passages, adaptive traffic scale from {initial} up to {max} (update ratio <= \
-                 {max_update_ratio}); dynamics {:?}",
+                 {max_update_ratio}); dynamics {}",
                 g.passes, g.dynamics
             ),
         }

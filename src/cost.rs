@@ -4,11 +4,11 @@
 //! The times are fitted to measurements (README, Performance); they are
 //! upper estimates on the development machines, not promises.
 
+use crate::build::{derive, fixed_grid_spec, periodic_grid};
 use crate::contact::grid::GridSolver;
 use crate::contact::transient::StepSolver;
 use crate::loads::LoadQuantity;
 use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
-use crate::run::{derive, fixed_grid_spec, periodic_grid};
 
 /// What a scene is expected to cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,7 +33,7 @@ impl CostEstimate {
 
 /// The fixed grid's CPU time per step (s, 2 cores) of scene `s` with the
 /// tangential solver `solver` (Cg or GaussSeidel).
-fn fixed_grid_step(s: &Scene, d: &crate::run::Derived, solver: GridSolver) -> f64 {
+fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, solver: GridSolver) -> f64 {
     let ContactGrid::Fixed(f) = s.contact.grid else {
         return 0.0;
     };
@@ -171,7 +171,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
 /// model's matrices (the adapted exact model's influence matrices and
 /// Newton Jacobian, about 40 N^2 bytes; the fixed grid's FFT tables, about
 /// 2 kB per element); all times 1.5.
-fn memory(s: &Scene, g: &crate::wear::RailGrid, steps: usize, n_el: f64, grid_elements: Option<usize>) -> f64 {
+fn memory(s: &Scene, g: &crate::rail_grid::RailGrid, steps: usize, n_el: f64, grid_elements: Option<usize>) -> f64 {
     let nodes = (g.nx * g.ny) as f64;
     let (snapshots, histories) = match &s.growth {
         Some(gr) => {

@@ -8,6 +8,7 @@
 //! [`passage`]. [`config`] turns TOML into validated [`params`]; [`output`]
 //! writes netCDF-4 compatible HDF5.
 
+pub mod build;
 pub mod config;
 pub mod contact;
 pub mod cost;
@@ -22,6 +23,7 @@ pub mod numerics;
 pub mod output;
 pub mod params;
 pub mod passage;
+pub mod rail_grid;
 pub mod run;
 pub mod sweep;
 pub mod wear;

@@ -167,7 +167,7 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
         return code;
     }
     let s = &resolved.scene;
-    let d = corrugation::run::derive(s);
+    let d = corrugation::build::derive(s);
     let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
     let mass = match s.growth.as_ref().map(|g| g.dynamics) {
         Some(

@@ -1,6 +1,6 @@
 //! Corrugation measures of a rail profile.
 
-use crate::wear::RailGrid;
+use crate::rail_grid::RailGrid;
 use ndarray::ArrayView2;
 
 /// Index of the grid row closest to the rail centre line y = 0.

@@ -11,7 +11,8 @@
 use crate::contact::{ContactError, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::hertz::{HertzError, HertzShape};
 use crate::loads::ImposedLoads;
-use crate::wear::{PatchWear, RailGrid, WearKernel, archard_rates};
+use crate::rail_grid::RailGrid;
+use crate::wear::{PatchWear, WearKernel, archard_rates};
 use ndarray::Array2;
 
 /// Kinematics, loads and discretisation of one passage (SI units).

@@ -3,11 +3,11 @@
 //! at the mesh it would otherwise need, and the chosen model's wear meets the
 //! tolerance against the converged exact reference (tests/data, Richardson
 //! extrapolation of exact 14, 20 and 28 with the observed order).
+use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;
 use corrugation::model_choice::{AccuracyMap, SAFETY};
 use corrugation::params::{ContactModelKind, Scene};
 use corrugation::passage::run_passage;
-use corrugation::run::{build_deposit, build_solver, derive};
 
 const SCENES: [(&str, &str, &str); 2] = [
     (

@@ -36,6 +36,11 @@ fn check_prints_derived_quantities() {
     assert!(text.contains("b = 10.2157 mm"), "{text}");
     assert!(text.contains("p0 = 784.6 MPa"), "{text}");
     assert!(text.contains("491 steps"), "{text}");
+    // Every line in the project's words, no Rust debug text.
+    let o = corrugation(&["check", &config("growth_discrete")]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("dynamics discrete (Timoshenko rail on discrete supports), unsprung mass 600 kg"), "{text}");
+    assert!(!text.contains(" { "), "{text}");
 }
 
 #[test]
@@ -54,6 +59,7 @@ fn run_file_satisfies_invariants() {
     let w = read_f64(&f, g, "wear_rate").unwrap();
     let stick = read_i8(&f, g, "stick").unwrap();
     let sx = read_f64(&f, g, "slip_x").unwrap();
+    let sy = read_f64(&f, g, "slip_y").unwrap();
     let d_xi = read_f64(&f, g, "d_xi").unwrap();
     let d_eta = read_f64(&f, g, "d_eta").unwrap();
     assert_eq!(p.shape()[1], 100);
@@ -70,7 +76,9 @@ fn run_file_satisfies_invariants() {
             force_x += tx[[s, k]] * area;
             let t = tx[[s, k]].hypot(ty[[s, k]]);
             assert!(t <= 0.4 * p[[s, k]] * (1.0 + 1e-12), "|p| <= mu p3 at step {s} element {k}");
-            assert!(w[[s, k]] >= 0.0);
+            // Archard: w = (k/H) p3 |s|, k/H = 3.4e-14 m^2/N in the config.
+            let archard = 3.4e-14 * p[[s, k]] * sx[[s, k]].hypot(sy[[s, k]]);
+            assert!((w[[s, k]] - archard).abs() <= 1e-12 * archard, "Archard at step {s} element {k}");
             assert!(stick[[s, k]] == 0 || stick[[s, k]] == 1);
             if stick[[s, k]] == 1 {
                 assert_eq!(sx[[s, k]], 0.0);
@@ -130,6 +138,13 @@ fn bad_config_exits_2_and_keeps_existing_output() {
     let o = corrugation(&["check", "/nonexistent/scene.toml"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("/nonexistent/scene.toml"));
+    // A missing run file to resume: the file system's words, not HDF5's.
+    let missing = Path::new(env!("CARGO_TARGET_TMPDIR")).join("no_such_run.h5");
+    let o = corrugation(&["resume", missing.to_str().unwrap()]);
+    assert_ne!(o.status.code(), Some(0));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&format!("cannot resume from {}: No such file or directory", missing.display())), "{err}");
+    assert!(!err.contains("H5F"), "{err}");
 }
 
 #[test]

@@ -201,11 +201,27 @@ fn fixed_grid_steps_divide_a_growth_stretch() {
 }
 
 #[test]
+fn whole_numbers_written_as_floats_are_integers() {
+    let r = load_str(BASE, "base", &["contact.elements_x=1e1".into(), "wear.substeps=4.0".into()]).unwrap();
+    assert_eq!(r.scene.contact.elements_x, 10);
+    assert_eq!(r.scene.wear_substeps, 4);
+    assert!(r.toml.contains("elements_x = 10\n"), "{}", r.toml);
+    let e = errors(BASE, &["contact.elements_x=1e3"]);
+    assert_eq!(e, vec!["contact.elements_x: = 1000 is out of range; expected an integer in [2, 200]".to_string()]);
+    let e = errors(BASE, &["contact.elements_x=1e30"]);
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(e[0].starts_with("contact.elements_x: expected an integer in [2, 200], found float"), "{e:?}");
+}
+
+#[test]
 fn missing_keys_and_syntax() {
     let e = errors(&BASE.replace("young_modulus = 2.1e11          # Pa\n", ""), &[]);
     assert_eq!(e, vec!["material.young_modulus: missing; expected a finite number > 0".to_string()]);
     let e = errors("[material\nx = 1", &[]);
     assert!(e[0].starts_with("TOML syntax:"), "{e:?}");
+    // The parser's picture of the line keeps its line breaks.
+    let e = errors("a = [1,\nb = 2\n", &[]);
+    assert!(e[0].contains("line 2, column 3\n") && e[0].contains("| b = 2\n"), "{e:?}");
     let e = errors(BASE, &["rail.half_width=0.005"]);
     assert_eq!(
         e,
@@ -236,12 +252,27 @@ fn resolved_config_round_trips() {
     assert!(r.toml.contains("substeps = 4"), "defaults are written out");
 }
 
+/// The value at dotted `key` (with `[0]` indices) of a TOML text.
+fn value_at(toml_text: &str, key: &str) -> Option<f64> {
+    let root: toml::Table = toml_text.parse().ok()?;
+    let mut v = toml::Value::Table(root);
+    for part in key.split('.') {
+        v = match part.split_once('[') {
+            Some((name, index)) => v.get(name)?.get(index.trim_end_matches(']').parse::<usize>().ok()?)?.clone(),
+            None => v.get(part)?.clone(),
+        };
+    }
+    v.as_float().or_else(|| v.as_integer().map(|i| i as f64))
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
-    /// Any numeric override either validates or is rejected with an error
-    /// naming the overridden key; never a panic.
+    /// Any numeric override either validates, and the resolved config holds
+    /// it, or is rejected with an error naming the overridden key's section
+    /// (or one it constrains); never a panic. Values every key refuses (not
+    /// finite, or <= 0 for a key that must be positive) are always rejected.
     #[test]
-    fn numeric_overrides_never_panic(key in prop::sample::select(vec![
+    fn numeric_overrides_are_applied_or_refused_by_name(key in prop::sample::select(vec![
         "material.young_modulus", "material.poisson_ratio", "material.friction_coefficient",
         "geometry.wheel_radius", "geometry.wheel_profile_radius", "geometry.rail_head_radius",
         "rolling.speed", "load.normal_force", "load.longitudinal_force", "load.harmonics[0].amplitude",
@@ -252,6 +283,20 @@ proptest! {
         let section = key.split('.').next().unwrap();
         for m in &e {
             prop_assert!(m.starts_with(section) || m.starts_with("load") || m.starts_with("geometry") || m.starts_with("rail"), "{set}: {m}");
+        }
+        // Signed keys: the longitudinal force (braking or traction), the
+        // harmonic's amplitude, the wheel profile radius (negative concave).
+        let signed = ["load.longitudinal_force", "load.harmonics[0].amplitude", "geometry.wheel_profile_radius"];
+        let refused_by_every_key = value.is_nan() || (value.is_infinite() && key != "geometry.wheel_profile_radius");
+        // k/H = 0 is a run without wear; nu = 0 a valid material.
+        let nonnegative = ["wear.k_over_h", "material.poisson_ratio"];
+        let positive = !signed.contains(&key) && !nonnegative.contains(&key);
+        if refused_by_every_key || (positive && value <= 0.0) || (nonnegative.contains(&key) && value < 0.0) {
+            prop_assert!(!e.is_empty(), "{set} was accepted");
+        }
+        if e.is_empty() {
+            let r = load_str(BASE, "base", &[set.clone()]).unwrap();
+            prop_assert_eq!(value_at(&r.toml, key), Some(value), "{} not in the resolved config", set);
         }
     }
 }

@@ -50,9 +50,14 @@ fn sleeper_passing_force_of_a_smooth_rail() {
     );
     let path = m.parametric_profile(nodes, dx);
     let r1 = harmonic(&path, 1);
-    // The rail deflects more at mid-span: tens of micrometres between
-    // sleeper and mid-span under 100 kN.
-    assert!(r1 > 1e-7 && r1 < 1e-4, "path harmonic {r1}");
+    // The rail deflects more at mid-span than above a sleeper by the span's
+    // bending under the load, P d^3 / (c EI), the continuous rail's span
+    // between a clamped (c = 192) and a pinned one (c = 48); the path's
+    // first harmonic is about half that difference (UIC60: 1.75e-5 to
+    // 7.0e-5 m under 100 kN at d = 0.6 m).
+    let t = TrackConfig::default();
+    let span = 1e5 * t.sleeper_spacing.powi(3) / t.rail.bending_stiffness;
+    assert!((span / 192.0..=span / 48.0).contains(&(2.0 * r1)), "path harmonic {r1} against {:e}", span / 96.0);
     let force = m.force_from_profile(&vec![0.0; nodes], dx, speed);
     let w = 2.0 * PI * speed / 0.6;
     let direct = mass * w * w * r1;

@@ -5,6 +5,7 @@
 //! friction bound, wear volume.
 mod common;
 use common::{STEEL, paper_shape, peak, rel};
+use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
@@ -14,7 +15,6 @@ use corrugation::contact::influence::{Rect, influence};
 use corrugation::contact::{StepInput, TangentialSolver};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use corrugation::passage::run_passage;
-use corrugation::run::{build_deposit, build_solver, derive};
 
 /// The friction law, difference scheme and regularisation of a test grid.
 type Model = (FrictionLaw, GridScheme, f64);

@@ -6,7 +6,8 @@ use corrugation::contact::fastsim::Fastsim;
 use corrugation::growth::growth_passage;
 use corrugation::loads::ImposedLoads;
 use corrugation::passage::PassageSpec;
-use corrugation::wear::{RailGrid, WearDeposit};
+use corrugation::rail_grid::RailGrid;
+use corrugation::wear::WearDeposit;
 use ndarray::Array2;
 
 fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {

@@ -17,6 +17,7 @@
 //!   corrugated rail.
 mod common;
 use common::{STEEL, paper_shape, rel};
+use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
@@ -26,8 +27,7 @@ use corrugation::contact::{RailContact, StepInput, TangentialSolver};
 use corrugation::growth::equivalent_roughness;
 use corrugation::hertz::Curvatures;
 use corrugation::passage::{PassageError, run_passage};
-use corrugation::run::{build_deposit, build_solver, derive};
-use corrugation::wear::RailGrid;
+use corrugation::rail_grid::RailGrid;
 use std::f64::consts::PI;
 use std::sync::Arc;
 

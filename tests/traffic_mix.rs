@@ -93,7 +93,7 @@ fn superposition(m: &str, dir: &Path) -> (f64, f64, f64) {
     assert_eq!(share.as_slice().unwrap(), &[0.5, 0.5]);
     // The initial roughness, the same in all three runs (same seed).
     let scene = load_str(&mixed_text, "mix", &coarse(&fixed)).unwrap().scene;
-    let grid = corrugation::run::periodic_grid(&scene);
+    let grid = corrugation::build::periodic_grid(&scene);
     let roughness = &scene.growth.as_ref().unwrap().roughness;
     let r0 = corrugation::growth::roughness::profile_line(roughness, &grid.xs(), grid.nx as f64 * grid.dx);
     let (a, b, m) = (worn_corrugation(&fast, &r0), worn_corrugation(&slow, &r0), worn_corrugation(&mix, &r0));

@@ -4,7 +4,8 @@ mod common;
 use common::{STEEL, paper_coefficients, paper_shape, rel};
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::{EllipseMesh, PressureShape, StepInput};
-use corrugation::wear::{PatchWear, RailGrid, WearDeposit, archard_rates};
+use corrugation::rail_grid::RailGrid;
+use corrugation::wear::{PatchWear, WearDeposit, archard_rates};
 use ndarray::Array2;
 
 const V: f64 = 27.78;
@@ -64,9 +65,15 @@ fn uniform_rate_gives_chord_over_speed() {
             }
         }
     }
-    // First-order convergence of the centre-line deficit, close to 1/(2 nx).
+    // First-order convergence of the centre-line deficit: 1/(2 nx) (the
+    // last half element's ramp), within 5 % (measured 1.023, 1.012, 0.976
+    // times it), and an observed order of 1 within 0.1 between meshes.
     for (err, n) in centre_errors.iter().zip([20.0, 40.0, 100.0]) {
-        assert!((err - 0.5 / n).abs() < 0.25 / n, "centre-line deficit {err} at n = {n}");
+        assert!((err * 2.0 * n - 1.0).abs() < 0.05, "centre-line deficit {err} at n = {n}");
+    }
+    for (pair, ratio) in centre_errors.windows(2).zip([2.0f64, 2.5]) {
+        let order = (pair[0] / pair[1]).ln() / ratio.ln();
+        assert!((order - 1.0).abs() < 0.1, "observed order {order}");
     }
 }
 

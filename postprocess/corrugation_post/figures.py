@@ -17,7 +17,7 @@ from matplotlib.tri import Triangulation
 
 from .io import Run, RunFileError
 from .schema import FIELDS
-from .units import values_in
+from .units import depth_unit, values_in
 
 DPI = 150
 
@@ -40,15 +40,16 @@ def _traffic_note(rail, pass_index: int) -> str:
 
 
 def wear_map(run: Run, pass_index: int, out_dir: Path) -> Path:
-    """Wear depth of one passage over the rail stretch, colour in micrometres."""
+    """Wear depth of one passage over the rail stretch, colour in nm or µm (by its size)."""
     with run.rail() as rail:
         wear = rail["wear"].sel({"pass": pass_index}).transpose("y", "x").load()
         x, y = values_in(rail["x"], "mm"), values_in(rail["y"], "mm")
         note = _traffic_note(rail, pass_index)
     fig = Figure(figsize=(9, 4), layout="constrained")
     ax = fig.add_subplot()
-    mesh = ax.pcolormesh(x, y, values_in(wear, "um"), shading="auto", cmap="viridis")
-    fig.colorbar(mesh, ax=ax, label="wear depth (µm)")
+    unit, label = depth_unit(wear)
+    mesh = ax.pcolormesh(x, y, values_in(wear, unit), shading="auto", cmap="viridis")
+    fig.colorbar(mesh, ax=ax, label=f"wear depth ({label})")
     ax.set(xlabel="x along rail (mm)", ylabel="y lateral (mm)",
            title=_title(run, "Wear depth", pass_index, note))
     return _save(fig, out_dir, "wear_map.png")
@@ -64,9 +65,10 @@ def wear_centreline(run: Run, pass_index: int, out_dir: Path) -> Path:
         note = _traffic_note(rail, pass_index)
     fig = Figure(figsize=(9, 4), layout="constrained")
     ax = fig.add_subplot()
-    ax.plot(x, values_in(row, "um"), label=f"centre line (y = {y0:.2f} mm)")
-    ax.plot(x, values_in(wear.max("y"), "um"), "--", label="maximum over y")
-    ax.set(xlabel="x along rail (mm)", ylabel="wear depth (µm)",
+    unit, label = depth_unit(wear)
+    ax.plot(x, values_in(row, unit), label=f"centre line (y = {y0:.2f} mm)")
+    ax.plot(x, values_in(wear.max("y"), unit), "--", label="maximum over y")
+    ax.set(xlabel="x along rail (mm)", ylabel=f"wear depth ({label})",
            title=_title(run, "Wear depth", pass_index, note))
     ax.grid(alpha=0.3)
     ax.legend()
@@ -281,8 +283,7 @@ def profile_snapshots(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     with run.rail() as rail:
         if "profile" not in rail or rail.sizes.get("pass", 0) < 2:
             return None
-        centre = int(np.argmin(np.abs(rail["y"].values)))
-        line = rail["profile"].isel(y=centre).load()
+        line = rail["profile"].sel(y=0.0, method="nearest").load()
         traffic = rail["traffic"].values if "traffic" in rail else rail["pass"].values
         x_mm = values_in(rail["x"], "mm")
     picks = np.unique(np.linspace(0, line.sizes["pass"] - 1, min(6, line.sizes["pass"])).round().astype(int))

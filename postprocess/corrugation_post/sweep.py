@@ -60,10 +60,10 @@ def sweep_map(path, out_dir, x: str | None = None, y: str | None = None, wavelen
         sel = ds.isel(held)
         rate = sel["growth_rate"]
         if wavelength is not None:
-            k = int(np.argmin(np.abs(ds["wavelength"].values - wavelength)))
-            peak = rate.isel(wavelength=k)
-            peak_wl = xr.full_like(peak, float(ds["wavelength"].values[k]))
-            what = f"growth rate at {ds['wavelength'].values[k] * 1e3:.1f} mm"
+            peak = rate.sel(wavelength=wavelength, method="nearest")
+            nearest = float(peak["wavelength"])
+            peak_wl = xr.full_like(peak, nearest)
+            what = f"growth rate at {nearest * 1e3:.1f} mm"
         else:
             # Among the harmonics of the initial roughness (at least STRONG of
             # its largest): one built up from nothing has no meaningful rate.

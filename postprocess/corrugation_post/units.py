@@ -16,13 +16,14 @@ _ALIASES = {
     "meter": "m", "meters": "m", "metre": "m", "metres": "m",
     "millimetre": "mm", "millimeter": "mm",
     "micrometre": "um", "micrometer": "um", "µm": "um", "μm": "um",
+    "nanometre": "nm", "nanometer": "nm",
     "newton": "N", "newtons": "N",
     "second": "s", "seconds": "s",
     "": "1", "-": "1", "dimensionless": "1",
 }
 # Metres per unit, newtons per unit, seconds per unit, 1 per unit.
 _SCALE = {
-    "m": ("length", 1.0), "mm": ("length", 1e-3), "um": ("length", 1e-6),
+    "m": ("length", 1.0), "mm": ("length", 1e-3), "um": ("length", 1e-6), "nm": ("length", 1e-9),
     "N": ("force", 1.0), "kN": ("force", 1e3),
     "s": ("time", 1.0), "ms": ("time", 1e-3),
     "1": ("ratio", 1.0),
@@ -58,3 +59,11 @@ def values_in(da: xr.DataArray, to_unit: str) -> np.ndarray:
     except ValueError as err:
         raise ValueError(f"variable {da.name!r}: {err}") from None
     return np.asarray(da.values, dtype=float) * k
+
+
+def depth_unit(da: xr.DataArray) -> tuple[str, str]:
+    """The unit to draw a small length (a wear depth) in, and its label: nm
+    below 0.1 µm (one passage's wear is a fraction of a nanometre, whose
+    µm values would read like metres), µm otherwise."""
+    largest = float(np.nanmax(np.abs(values_in(da, "m")))) if da.size else 0.0
+    return ("nm", "nm") if largest < 1e-7 else ("um", "µm")

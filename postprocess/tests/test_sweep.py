@@ -78,6 +78,13 @@ def test_sweep_map_against_two_and_one_axes(collected, tmp_path):
                  "--out", str(tmp_path / "one")]) == 0
     rows = read_csv(tmp_path / "one" / "sweep_map.csv")
     assert [float(r["rolling_speed"]) for r in rows] == [22.22, 27.78, 33.33]
+    # At a given wavelength: the harmonic nearest it, the same for every member.
+    assert main(["sweep", str(collected), "--wavelength", "0.031", "--out", str(tmp_path / "at")]) == 0
+    rows = read_csv(tmp_path / "at" / "sweep_map.csv")
+    with xr.open_dataset(collected) as ds:
+        nearest = float(ds["wavelength"].sel(wavelength=0.031, method="nearest"))
+    assert len(rows) == 6 and all(float(r["wavelength_m"]) == nearest for r in rows)
+    assert abs(nearest - 0.031) < 0.005
     assert main(["sweep", str(collected), "--x", "rolling_speed", "--y", "rolling_speed",
                  "--out", str(tmp_path / "bad")]) == 2
     assert main(["sweep", str(collected), "--x", "nope", "--out", str(tmp_path / "bad")]) == 2

@@ -3,13 +3,14 @@
 //! ([`crate::model_choice`]), with its refusals as config errors.
 
 use super::ConfigError;
-use crate::growth::roughness::Roughness;
 use crate::growth::roughness::profile_line;
 use crate::growth::spectrum::{amplitudes, wavelengths};
 use crate::hertz::HertzShape;
 use crate::loads::ImposedLoads;
 use crate::model_choice::hertz_validity::HertzValidity;
-use crate::model_choice::{AccuracyMap, AutoChoice, ChoiceError, SAFETY};
+use crate::model_choice::{AccuracyMap, ChoiceError, SAFETY};
+use crate::params::AutoChoice;
+use crate::params::Roughness;
 use crate::params::{DynamicsKind, GrowthParams};
 
 /// The config name of the automatic choice.

@@ -23,19 +23,6 @@ pub const DEFAULT_GRID_DY: f64 = 5e-4;
 /// the wheel's curvature.
 pub const DEFAULT_PROFILE_GRID_SCALE: f64 = 1.5;
 
-/// Twice the nonlinear profile contact's noise floor at
-/// [`PROFILE_NOISE_ELEMENT`]. The floor is the corrugation
-/// amplitude whose wear harmonic the sub-element wandering of the patch
-/// over the grid drowns (the contact point moves by R dr/dX; elements enter
-/// and leave contact whole): about 2.5 um at 0.4 mm elements (60 mm
-/// corrugation, scripts/validity_map.sh: the wear harmonic per um of
-/// amplitude is 3 times its large-amplitude value at 1 um, 1.8 times at
-/// 0.2 mm elements). First order in the element: scaled with `contact.dx`.
-pub const PROFILE_NOISE_AMPLITUDE: f64 = 5e-6;
-
-/// The element length at which [`PROFILE_NOISE_AMPLITUDE`] holds (m).
-pub const PROFILE_NOISE_ELEMENT: f64 = 4e-4;
-
 /// The keys of `[contact]` as read (each None when invalid).
 pub(super) struct ContactKeys {
     pub model: Option<String>,
@@ -291,8 +278,8 @@ pub(super) fn check_grid_size(scene: &crate::params::Scene, errors: &mut Vec<Con
     if scene.contact.model != ContactModelKind::ExactTransient {
         return;
     }
-    let shape = crate::run::derive(scene).shape;
-    let s = crate::run::fixed_grid_spec(scene, &shape, f);
+    let shape = crate::build::derive(scene).shape;
+    let s = crate::build::fixed_grid_spec(scene, &shape, f);
     let g = s.grid();
     if g.nx > MAX_GRID.0 || g.ny > MAX_GRID.1 {
         errors.push(ConfigError::new(

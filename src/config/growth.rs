@@ -5,9 +5,10 @@
 use super::ConfigError;
 use super::reader::{Range, Section};
 use super::traffic::BaseClass;
-use crate::growth::roughness::{LevelBand, ProfileHarmonic, Roughness, band_harmonics};
-use crate::growth::traffic::{DEFAULT_MAX_UPDATE_RATIO, TrafficScaling};
+use crate::growth::roughness::band_harmonics;
+use crate::growth::traffic::DEFAULT_MAX_UPDATE_RATIO;
 use crate::params::{DynamicsKind, GrowthParams, StopRule};
+use crate::params::{LevelBand, ProfileHarmonic, Roughness, TrafficScaling};
 use toml::{Table, Value};
 
 /// Default `growth.saturation_rate` (dB per 1e5 real passages): a tenth of

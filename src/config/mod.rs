@@ -104,7 +104,7 @@ pub fn load_file(path: &Path, overrides: &[String]) -> Result<Resolved, ConfigEr
 pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
     let fail = |errors| ConfigErrors { source: source.to_string(), errors };
     let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
-        fail(vec![ConfigError::new("TOML syntax", e.to_string().trim().replace('\n', " "))])
+        fail(vec![ConfigError::new("TOML syntax", e.to_string().trim().replace('\n', "\n    "))])
     })?;
     // The file's config with defaults filled in says which keys hold strings.
     let defaults = if overrides.is_empty() { Table::new() } else { read_scene(root.clone(), &mut Vec::new()).1 };
@@ -390,13 +390,13 @@ fn check_growth(
         growth::check_periodic(&format!("load.harmonics[{i}].wavelength"), h.wavelength, length, errors);
     }
     match &g.roughness {
-        crate::growth::roughness::Roughness::Harmonics(hs) => {
+        crate::params::Roughness::Harmonics(hs) => {
             for (i, h) in hs.iter().enumerate() {
                 growth::check_periodic(&format!("roughness.harmonics[{i}].wavelength"), h.wavelength, length, errors);
             }
         }
-        crate::growth::roughness::Roughness::Levels { bands, .. } => growth::check_bands(bands, length, dx, errors),
-        crate::growth::roughness::Roughness::Random { wavelength_min, .. } if *wavelength_min <= 2.0 * dx => {
+        crate::params::Roughness::Levels { bands, .. } => growth::check_bands(bands, length, dx, errors),
+        crate::params::Roughness::Random { wavelength_min, .. } if *wavelength_min <= 2.0 * dx => {
             errors.push(ConfigError::new(
                 "roughness.wavelength_min",
                 format!("= {wavelength_min} m must be > 2 rail.dx = {} m (resolved on the rail grid)", 2.0 * dx),
@@ -424,7 +424,7 @@ fn check_growth(
 /// below full sliding, as [`check_loads`] requires of `[load]` (the one
 /// class of a study without `[traffic]` is `[load]` itself).
 fn check_classes(
-    classes: &[crate::growth::mix::TrafficClass],
+    classes: &[crate::params::TrafficClass],
     loads: &ImposedLoads,
     mu: f64,
     errors: &mut Vec<ConfigError>,

@@ -148,6 +148,9 @@ impl<'a> Section<'a> {
         let expect = format!("an integer in [{lo}, {hi}]");
         let v = self.take(key, default.map(|d| d as i64), &expect, |v| match v {
             Value::Integer(i) => Ok(i),
+            // A whole number written as a float (`1e3`, `1000.0`) is that
+            // integer; beyond 2^53 a float no longer holds every integer.
+            Value::Float(x) if x.fract() == 0.0 && x.abs() <= 2f64.powi(53) => Ok(x as i64),
             other => Err(other),
         })?;
         if v < lo as i64 || v > hi as i64 {

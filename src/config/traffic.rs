@@ -7,7 +7,7 @@
 
 use super::ConfigError;
 use super::reader::{Range, Section};
-use crate::growth::mix::TrafficClass;
+use crate::params::TrafficClass;
 use toml::{Table, Value};
 
 /// The most classes a mix may have.

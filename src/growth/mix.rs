@@ -21,33 +21,6 @@
 //! `m` for every passage it is smooth weighted round robin: shares 0.7 / 0.3
 //! simulate `A B A A B A A B A A`, 7 to 3 in every ten.
 
-use crate::loads::ImposedLoads;
-
-/// One class of traffic (SI units).
-#[derive(Debug, Clone, PartialEq)]
-pub struct TrafficClass {
-    /// Name (letters, digits, `_`, `-`), for the output and messages.
-    pub name: String,
-    /// Rolling speed V (m/s).
-    pub speed: f64,
-    /// Mean normal force (N).
-    pub normal_force: f64,
-    /// Mean longitudinal force on the wheel (N).
-    pub longitudinal_force: f64,
-    /// Unsprung mass per wheel (kg).
-    pub unsprung_mass: f64,
-    /// Share of the real wheel passages (1; the shares of a mix sum to 1).
-    pub share: f64,
-}
-
-impl TrafficClass {
-    /// The imposed loads as wheels of this class see them: the class's mean
-    /// normal and longitudinal force with the harmonics of `base`.
-    pub fn loads(&self, base: &ImposedLoads) -> ImposedLoads {
-        ImposedLoads { normal_force: self.normal_force, longitudinal_force: self.longitudinal_force, ..base.clone() }
-    }
-}
-
 /// The class of the next simulated passage: the one whose real traffic
 /// `tally[c]` is furthest below its share `shares[c]` (summing to 1) of the
 /// total, `s_c T - T_c`; ties go to the larger share, then the lower index.

@@ -12,10 +12,13 @@
 //! the patch positions inside the stretch is folded onto the periodic grid,
 //! so every node receives exactly one full passage of the patch.
 
+mod hertz_check;
 pub mod mix;
 pub mod roughness;
 pub mod spectrum;
+pub mod state;
 pub mod stop;
+pub mod study;
 pub mod traffic;
 
 use crate::contact::grid::RailSurface;
@@ -25,7 +28,8 @@ use crate::hertz::HertzShape;
 use crate::metrics::centre_row;
 use crate::params::NormalContact;
 use crate::passage::{PassageError, PassageResult, PassageSpec, PeriodicSignal, run_passage};
-use crate::wear::{RailGrid, WearKernel};
+use crate::rail_grid::RailGrid;
+use crate::wear::WearKernel;
 use ndarray::Array2;
 use std::sync::Arc;
 

@@ -16,56 +16,10 @@
 //! share its rms equally, `A = rms sqrt(2 / K)`, with seeded random phases.
 //! The irregularity is uniform across the rail head.
 
+use crate::params::{LevelBand, ProfileHarmonic, Roughness};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
-
-/// One harmonic of the rail profile.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ProfileHarmonic {
-    /// Amplitude (m).
-    pub amplitude: f64,
-    /// Wavelength (m).
-    pub wavelength: f64,
-    /// Phase (rad): height = amplitude sin(2 pi X / wavelength + phase).
-    pub phase: f64,
-}
-
-/// The initial irregularity.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Roughness {
-    /// A smooth rail.
-    None,
-    /// Explicit harmonics.
-    Harmonics(Vec<ProfileHarmonic>),
-    /// Seeded random, band-limited roughness.
-    Random {
-        /// Seed of the generator.
-        seed: u64,
-        /// rms height (m).
-        rms: f64,
-        /// Shortest wavelength (m).
-        wavelength_min: f64,
-        /// Longest wavelength (m).
-        wavelength_max: f64,
-    },
-    /// Seeded random roughness with a one-third-octave level spectrum.
-    Levels {
-        /// Seed of the generator.
-        seed: u64,
-        /// The bands.
-        bands: Vec<LevelBand>,
-    },
-}
-
-/// One one-third-octave band of a roughness level spectrum.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LevelBand {
-    /// Centre wavelength (m).
-    pub wavelength: f64,
-    /// rms roughness in the band, dB re 1 um.
-    pub level: f64,
-}
 
 /// Harmonic numbers n of a stretch of length `length` (m) in each band of
 /// `bands`: those whose wavelength L/n lies within a sixth of an octave of

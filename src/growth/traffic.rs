@@ -45,6 +45,7 @@
 //! `m` after computing `W`: `m_n = min(m_max, 2 m_{n-1}, q_max / rho_n)`,
 //! `rho_n = q / m`, and never below 1.
 
+use crate::params::TrafficScaling;
 use num_complex::Complex64;
 use rustfft::FftPlanner;
 
@@ -76,27 +77,6 @@ pub fn change_rate(profile: &[f64], wear: &[f64]) -> f64 {
         return 0.0;
     }
     harmonics.map(|k| w[k].norm() / r[k].norm().max(SIGNIFICANT * largest)).fold(0.0f64, f64::max)
-}
-
-/// How `m` is chosen.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum TrafficScaling {
-    /// The same `m` for every passage.
-    Fixed {
-        /// Real passages per simulated passage (1).
-        scale: f64,
-        /// Bound on `q` the run is checked against (1).
-        max_update_ratio: f64,
-    },
-    /// `m` chosen per passage to keep `q <= max_update_ratio`.
-    Adaptive {
-        /// The first passage's `m` (upper bound) (1).
-        initial: f64,
-        /// Largest `m` (1).
-        max: f64,
-        /// Bound on `q`, the relative profile change per update (1).
-        max_update_ratio: f64,
-    },
 }
 
 impl TrafficScaling {

@@ -18,6 +18,19 @@ use std::sync::OnceLock;
 /// wear's first harmonic that the Hertz region admits (1).
 pub const HERTZ_LIMIT: f64 = 0.05;
 
+/// Twice the nonlinear profile contact's noise floor at
+/// [`PROFILE_NOISE_ELEMENT`]. The floor is the corrugation
+/// amplitude whose wear harmonic the sub-element wandering of the patch
+/// over the grid drowns (the contact point moves by R dr/dX; elements enter
+/// and leave contact whole): about 2.5 um at 0.4 mm elements (60 mm
+/// corrugation, scripts/validity_map.sh: the wear harmonic per um of
+/// amplitude is 3 times its large-amplitude value at 1 um, 1.8 times at
+/// 0.2 mm elements). First order in the element: scaled with `contact.dx`.
+pub const PROFILE_NOISE_AMPLITUDE: f64 = 5e-6;
+
+/// The element length at which [`PROFILE_NOISE_AMPLITUDE`] holds (m).
+pub const PROFILE_NOISE_ELEMENT: f64 = 4e-4;
+
 /// The measured map.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HertzValidity {

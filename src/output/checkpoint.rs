@@ -4,7 +4,8 @@
 //! starts from exactly the numbers the interrupted one had in memory.
 
 use super::netcdf::{NcError, read_f64, read_i8, read_i64};
-use super::run_file::{FIELD_VARS, PassRow, RailSnapshot, RunState, STEP_VARS, field_columns_mut, step_columns_mut};
+use super::run_file::{FIELD_VARS, STEP_VARS, field_columns_mut, step_columns_mut};
+use crate::growth::state::{PassRow, RailSnapshot, RunState};
 use crate::passage::{PatchFields, PatchHistory};
 use ndarray::{Array2, ArrayD, Axis, Ix1, Ix2, Ix3};
 use std::path::Path;

@@ -142,9 +142,9 @@ impl SweepSpec {
         let fail = |errors: Vec<SpecError>| SpecErrors { path: path.to_owned(), errors };
         let err = |key: &str, message: String| SpecError { key: key.into(), message };
         let text = std::fs::read_to_string(path).map_err(|e| fail(vec![err("file", format!("cannot read: {e}"))]))?;
-        let mut root: Table = text
-            .parse()
-            .map_err(|e: toml::de::Error| fail(vec![err("TOML syntax", e.to_string().trim().replace('\n', " "))]))?;
+        let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
+            fail(vec![err("TOML syntax", e.to_string().trim().replace('\n', "\n    "))])
+        })?;
         let mut errors = Vec::new();
         let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let string = |root: &mut Table, key: &str, errors: &mut Vec<SpecError>| match root.remove(key) {
@@ -313,7 +313,7 @@ impl SweepSpec {
             let grids: Vec<(f64, usize, f64)> = ok
                 .iter()
                 .map(|r| {
-                    let g = crate::run::study_grid(&r.scene);
+                    let g = crate::build::study_grid(&r.scene);
                     (g.x_min, g.nx, g.dx)
                 })
                 .collect();

@@ -21,8 +21,8 @@
 //! cells it covers.
 
 use super::deposit::{PatchWear, WearKernel};
-use super::grid::RailGrid;
 use crate::contact::grid::PotentialGrid;
+use crate::rail_grid::RailGrid;
 use ndarray::Array2;
 
 /// The conservative deposit of the fixed grid's elements.

@@ -16,8 +16,8 @@
 //! unit square: each node is given to the first triangle (in a fixed order)
 //! that contains it, so nodes on shared edges are counted once.
 
-use super::grid::RailGrid;
 use crate::contact::EllipseMesh;
+use crate::rail_grid::RailGrid;
 use ndarray::{Array2, Axis, s};
 use rayon::prelude::*;
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation};

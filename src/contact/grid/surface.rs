@@ -20,7 +20,7 @@
 //! along the rail it is periodic (a growth study's stretch) or held at its
 //! end values, across it held at the edge rows.
 
-use crate::wear::RailGrid;
+use crate::rail_grid::RailGrid;
 use ndarray::Array2;
 
 /// Heights of the rail surface on a lattice (m).

@@ -8,6 +8,14 @@ use crate::contact::transient::StepSolver;
 use crate::hertz::{Curvatures, Elastic};
 use crate::loads::ImposedLoads;
 
+mod choice;
+mod growth;
+
+pub use choice::{AutoChoice, Candidate};
+pub use growth::{
+    DynamicsKind, GrowthParams, LevelBand, ProfileHarmonic, Roughness, StopRule, TrafficClass, TrafficScaling,
+};
+
 /// Tangential contact model.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ContactModelKind {
@@ -84,7 +92,7 @@ pub struct ContactParams {
     pub solver: StepSolver,
     /// What `contact.model = "auto"` chose (None when the config names the
     /// model).
-    pub auto: Option<crate::model_choice::AutoChoice>,
+    pub auto: Option<AutoChoice>,
     /// The discretisation of the exact-transient model.
     pub grid: ContactGrid,
     /// What the normal problem sees of the rail.
@@ -241,7 +249,7 @@ impl Scene {
     /// normal and longitudinal force (the imposed harmonics kept) and
     /// unsprung mass. A study without `[traffic]` has one class whose scene
     /// is the scene itself.
-    pub fn for_class(&self, c: &crate::growth::mix::TrafficClass) -> Scene {
+    pub fn for_class(&self, c: &TrafficClass) -> Scene {
         let mut scene = self.clone();
         scene.speed = c.speed;
         scene.loads = c.loads(&self.loads);
@@ -259,78 +267,4 @@ impl Scene {
             None => self.loads.max_normal_force(),
         }
     }
-}
-
-/// Vehicle-track dynamics of a growth study.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum DynamicsKind {
-    /// Only the imposed `load.harmonics` (no feedback of the profile).
-    Imposed,
-    /// Linear receptance model (wheel mass, Hertz spring, the `[track]`
-    /// smeared into a continuous support).
-    Receptance {
-        /// Unsprung mass per wheel (kg).
-        unsprung_mass: f64,
-    },
-    /// The Timoshenko rail on discrete supports (`[track]`), the
-    /// receptance depending on the wheel's place in the sleeper bay, with
-    /// the supports' parametric excitation.
-    Discrete {
-        /// Unsprung mass per wheel (kg).
-        unsprung_mass: f64,
-    },
-}
-
-impl DynamicsKind {
-    /// The same model with another unsprung mass (kg).
-    pub fn with_unsprung_mass(self, mass: f64) -> Self {
-        match self {
-            DynamicsKind::Imposed => DynamicsKind::Imposed,
-            DynamicsKind::Receptance { .. } => DynamicsKind::Receptance { unsprung_mass: mass },
-            DynamicsKind::Discrete { .. } => DynamicsKind::Discrete { unsprung_mass: mass },
-        }
-    }
-}
-
-/// A multi-passage growth study on the periodic stretch [x_min, x_max).
-#[derive(Debug, Clone, PartialEq)]
-pub struct GrowthParams {
-    /// Simulated passages.
-    pub passes: usize,
-    /// How many real passages one simulated passage stands for.
-    pub traffic: crate::growth::traffic::TrafficScaling,
-    /// Store the rail profile and wear every this many passages (and the last).
-    pub store_every: usize,
-    /// Rewrite the run file (a checkpoint) every this many passages.
-    pub checkpoint_every: usize,
-    /// Passages whose contact-patch history is stored.
-    pub contact_history: Vec<usize>,
-    /// Initial irregularity.
-    pub roughness: crate::growth::roughness::Roughness,
-    /// Dynamics model.
-    pub dynamics: DynamicsKind,
-    /// When the study stops before `passes`.
-    pub stop: StopRule,
-    /// The traffic classes (`[[traffic.mix]]`, shares summing to 1; one
-    /// class of the base config without `[traffic]`).
-    pub classes: Vec<crate::growth::mix::TrafficClass>,
-}
-
-/// When a growth study stops before its planned passages (`growth.stop`).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub enum StopRule {
-    /// Runs every planned passage.
-    #[default]
-    Never,
-    /// Stops after a passage in which the wheel left the rail, at a passage
-    /// whose dynamic force takes N below F_x / mu (full sliding: that
-    /// passage is not recorded), or once the corrugation has stopped
-    /// growing: its rms grew by less than `rate` (dB per 1e5 real
-    /// passages) over the last [`crate::growth::stop::SATURATION_WINDOW`]
-    /// passages.
-    Saturation {
-        /// Growth rate of the rms below which the corrugation counts as
-        /// saturated (dB per 1e5 real passages).
-        rate: f64,
-    },
 }

@@ -6,7 +6,7 @@ use crate::model_choice::hertz_validity::{HERTZ_LIMIT, HertzValidity};
 /// Tells the user, once per invocation, when the corrugation of a study
 /// with the Hertz normal contact leaves the region where that contact is
 /// good enough ([`HertzValidity`]).
-pub(super) struct HertzCheck {
+pub(crate) struct HertzCheck {
     /// Still to check (Hertz normal contact, track dynamics, not yet told).
     pub active: bool,
     /// Whether the study runs on the fixed grid (the profile contact's).

@@ -1,5 +1,6 @@
 //! The regular grid of nodes on the rail running surface where wear depth is
-//! accumulated (Baeza et al. 2008, Fig. 5).
+//! accumulated (Baeza et al. 2008, Fig. 5), the profile evolves and the
+//! contact reads the rail: shared by contact, wear, growth and output.
 
 /// Rail-surface grid: nodes `x_i = x_min + i dx`, `y_j = -half_width + j dy`.
 #[derive(Debug, Clone, PartialEq)]

@@ -1,0 +1,237 @@
+//! From a validated scene to what its passages are made of: the quantities
+//! derived from it (Hertz patches, passage, rail grids), the tangential
+//! solver, the wear deposit and the track dynamics. Used by the run, the
+//! growth loop, `check` and the cost model alike; knows nothing of files.
+
+use crate::contact::fastsim::Fastsim;
+use crate::contact::grid::{Alignment, FixedGrid, solver::FixedGridSpec};
+use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
+use crate::contact::transient::{ElasticModel, Transient};
+use crate::contact::{Elements, EllipseMesh, PressureShape, TangentialSolver};
+use crate::creep_coefficients::creep_coefficients;
+use crate::dynamics::TrackDynamics;
+use crate::dynamics::discrete::DiscreteTrack;
+use crate::dynamics::discrete_dynamics::DiscreteDynamics;
+use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
+use crate::hertz::{HertzPatch, HertzShape};
+use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
+use crate::passage::PassageSpec;
+use crate::rail_grid::RailGrid;
+use crate::wear::{CellDeposit, WearDeposit, WearKernel};
+
+/// Quantities derived from a scene (what `corrugation check` prints).
+#[derive(Debug, Clone)]
+pub struct Derived {
+    /// Hertz shape (fixed curvatures).
+    pub shape: HertzShape,
+    /// Patch at the mean, smallest and largest normal force.
+    pub patch_mean: HertzPatch,
+    /// Patch at the smallest normal force (None when contact is lost).
+    pub patch_min: Option<HertzPatch>,
+    /// Patch at the largest normal force.
+    pub patch_max: HertzPatch,
+    /// The passage discretisation.
+    pub passage: PassageSpec,
+    /// Rail grid.
+    pub grid: RailGrid,
+}
+
+/// Derived quantities of a validated scene.
+pub fn derive(scene: &Scene) -> Derived {
+    let shape = HertzShape::new(scene.geometry.curvatures(), scene.material.elastic).expect("validated geometry");
+    let patch = |n: f64| shape.patch(n).expect("validated loads keep N > 0");
+    let loads = &scene.loads;
+    // On the fixed grid the patch moves exactly one element per step: the
+    // last step is the first at or beyond passage.end.
+    let end = match scene.contact.grid {
+        ContactGrid::Fixed(f) => scene.start + ((scene.end - scene.start) / f.dx - 1e-9).ceil() * f.dx,
+        ContactGrid::Adapted => scene.end,
+    };
+    let passage = PassageSpec {
+        speed: scene.speed,
+        friction: scene.material.friction,
+        creepage_y: scene.creepage_y,
+        spin: scene.spin,
+        loads: loads.clone(),
+        start: scene.start,
+        end,
+        step_length: scene.step_length,
+        k_over_h: scene.k_over_h,
+        substeps: scene.wear_substeps,
+        wear_window: (f64::NEG_INFINITY, f64::INFINITY),
+        dynamic_normal_force: None,
+        surface: None,
+    };
+    Derived {
+        shape,
+        patch_mean: patch(loads.normal_force),
+        patch_min: shape.patch(loads.min_normal_force()).ok(),
+        patch_max: patch(loads.max_normal_force()),
+        passage,
+        grid: derive_grid(scene),
+    }
+}
+
+/// The tangential solver a scene asks for.
+pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolver> {
+    let c = &scene.contact;
+    // The adapted mesh's linear profile contact: its solution operator, for
+    // the growth studies that may take it.
+    let linear = scene.growth.is_some() && matches!(c.normal, NormalContact::Linear | NormalContact::Auto { .. });
+    match c.model {
+        ContactModelKind::Fastsim => {
+            let coefficients =
+                creep_coefficients(shape.aspect(), scene.material.elastic.poisson_ratio).expect("validated aspect");
+            let f = Fastsim::new(
+                c.elements_x,
+                c.elements_y,
+                c.fastsim_bound,
+                coefficients,
+                scene.material.elastic.shear_modulus(),
+            );
+            Box::new(if linear { f.with_linear_contact(shape) } else { f })
+        }
+        ContactModelKind::ExactTransient => {
+            let el = scene.material.elastic;
+            if let ContactGrid::Fixed(f) = c.grid {
+                return Box::new(FixedGrid::new(fixed_grid_spec(scene, shape, f)));
+            }
+            let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
+            let exact = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
+            let t = Transient::new(mesh, ElasticModel::Exact(Box::new(exact)), PressureShape::Hertz, c.regularisation)
+                .with_solver(c.solver);
+            Box::new(if linear { t.with_linear_contact(shape) } else { t })
+        }
+        ContactModelKind::SimplifiedTransient => {
+            let el = scene.material.elastic;
+            let coefficients = creep_coefficients(shape.aspect(), el.poisson_ratio).expect("validated aspect");
+            let g = el.shear_modulus();
+            let winkler = WinklerElastic {
+                l1_unit: 8.0 / (3.0 * coefficients.c11 * g),
+                l2_unit: 8.0 / (3.0 * coefficients.c22 * g),
+            };
+            let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
+            let t = Transient::new(mesh, ElasticModel::Winkler(winkler), c.fastsim_bound, c.regularisation);
+            Box::new(if linear { t.with_linear_contact(shape) } else { t })
+        }
+    }
+}
+
+/// Load factor on the largest imposed normal force for which the fixed grid
+/// of a growth study with track dynamics is sized: the dynamic force of the
+/// worn profile adds to the imposed loads (a too small grid stops the run
+/// with an error naming the step).
+pub const DYNAMIC_LOAD_FACTOR: f64 = 1.3;
+
+/// The fixed grid of a scene: sized for the largest normal force (times
+/// [`DYNAMIC_LOAD_FACTOR`] with track dynamics), its element edges on the
+/// rail cells' boundaries at the first step.
+pub fn fixed_grid_spec(scene: &Scene, shape: &HertzShape, f: crate::params::FixedGridParams) -> FixedGridSpec {
+    let largest = shape.patch(fixed_grid_load(scene)).expect("validated loads keep N > 0");
+    let rail = if scene.growth.is_some() { periodic_grid(scene) } else { derive_grid(scene) };
+    // The profile's troughs lengthen the patch over them, its crests widen
+    // it (a growth study's; a single passage has no profile in its contact).
+    let scale = if scene.growth.is_some() { scene.contact.normal.grid_scale() } else { 1.0 };
+    FixedGridSpec {
+        curvatures: scene.geometry.curvatures(),
+        elastic: scene.material.elastic,
+        dx: f.dx,
+        dy: f.dy,
+        a_max: scale * largest.a,
+        b_max: scale * largest.b,
+        // Rail cell boundaries x_i + dx/2 in the contact frame of the first
+        // step. Across, the grid stays symmetric about the centre line (a
+        // symmetric problem keeps a symmetric answer); the deposit spreads
+        // an element over the rail cells it overlaps.
+        align_x: Alignment { edge: rail.x_min + 0.5 * rail.dx - scene.start, period: rail.dx },
+        align_y: Alignment::default(),
+        law: f.friction_law,
+        eps: scene.contact.regularisation,
+        scheme: f.scheme,
+        solver: f.solver,
+    }
+}
+
+/// The normal force (N) whose Hertz patch the fixed grid is sized for.
+pub fn fixed_grid_load(scene: &Scene) -> f64 {
+    let dynamic = scene.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
+    scene.max_normal_force() * if dynamic { DYNAMIC_LOAD_FACTOR } else { 1.0 }
+}
+
+/// The rail grid of a single passage.
+fn derive_grid(scene: &Scene) -> RailGrid {
+    let r = &scene.rail;
+    RailGrid::new(r.x_min, r.x_max, r.dx, r.half_width, r.dy)
+}
+
+/// How a solver's element rates reach the rail: the Delaunay deposit on the
+/// adapted mesh, the conservative cell deposit on the fixed grid.
+pub fn build_deposit(elements: &Elements) -> Box<dyn WearKernel> {
+    match elements {
+        Elements::Adapted(mesh) => Box::new(WearDeposit::new(mesh)),
+        Elements::Grid(grid) => Box::new(CellDeposit::new(grid.clone())),
+    }
+}
+
+/// Number of contact elements the fields of a scene are stored on: the
+/// adapted mesh's `elements_x * elements_y`, or the fixed grid's (built
+/// without its influence coefficients).
+pub fn element_count(scene: &Scene) -> usize {
+    match scene.contact.grid {
+        ContactGrid::Fixed(f) if scene.contact.model == ContactModelKind::ExactTransient => {
+            let shape = derive(scene).shape;
+            let s = fixed_grid_spec(scene, &shape, f);
+            s.grid().len()
+        }
+        _ => scene.contact.elements_x * scene.contact.elements_y,
+    }
+}
+
+/// Contact steps per passage of a scene.
+pub fn steps_per_passage(scene: &Scene) -> usize {
+    derive(scene).passage.n_steps()
+}
+
+/// The rail grid of a scene's run file: periodic for a growth study.
+pub fn study_grid(scene: &Scene) -> RailGrid {
+    match scene.growth {
+        Some(_) => periodic_grid(scene),
+        None => derive(scene).grid,
+    }
+}
+
+/// The periodic grid of a growth study: nodes `x_min + i dx`, `i < nx`,
+/// period `x_max - x_min`.
+pub fn periodic_grid(scene: &Scene) -> RailGrid {
+    let r = &scene.rail;
+    let nx = ((r.x_max - r.x_min) / r.dx).round().max(2.0) as usize;
+    let full = RailGrid::new(r.x_min, r.x_max, r.dx, r.half_width, r.dy);
+    RailGrid { x_min: r.x_min, dx: (r.x_max - r.x_min) / nx as f64, nx, ..full }
+}
+
+/// The track model of a growth study, if it has one. The discrete model
+/// tabulates its receptances for the study's speed and periodic stretch
+/// (the first rail node is above a sleeper).
+pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamics>> {
+    let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
+    match scene.growth.as_ref()?.dynamics {
+        DynamicsKind::Imposed => None,
+        DynamicsKind::Receptance { unsprung_mass } => {
+            let wheel = WheelParams { unsprung_mass };
+            Some(Box::new(ReceptanceModel::new(scene.track.smeared(), wheel, k_h).expect("validated parameters")))
+        }
+        DynamicsKind::Discrete { unsprung_mass } => {
+            let grid = periodic_grid(scene);
+            Some(Box::new(DiscreteDynamics::new(
+                DiscreteTrack::new(&scene.track),
+                WheelParams { unsprung_mass },
+                k_h,
+                scene.loads.normal_force,
+                grid.x_min,
+                grid.nx,
+                grid.dx,
+                scene.speed,
+            )))
+        }
+    }
+}

@@ -1,0 +1,77 @@
+//! What a growth study carries from one passage to the next: the rail
+//! profile, one row per passage done, the stored rail states and patch
+//! histories. The run file holds exactly this ([`crate::output::run_file`]),
+//! so a resumed study continues from what it reads back.
+
+use crate::passage::PatchHistory;
+use ndarray::Array2;
+
+/// One simulated passage's summary row.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassRow {
+    /// Passage index (0-based).
+    pub index: i64,
+    /// Real passages represented up to and including this one (1).
+    pub traffic: f64,
+    /// Real passages this simulated one stands for (1).
+    pub traffic_scale: f64,
+    /// rms of the corrugation on the centre line after this passage (m).
+    pub rms_corrugation: f64,
+    /// Volume removed from the rail grid by this passage, unscaled (m^3).
+    pub removed_volume: f64,
+    /// CPU time of the passage (s).
+    pub cpu_seconds: f64,
+    /// Relative profile change of the update, q = m max_k |W_k| / |R_k| (1);
+    /// see [`crate::growth::traffic`].
+    pub update_ratio: f64,
+    /// Steps of the stretch where the wheel left the rail (N <= 0) (1).
+    pub contact_loss_steps: f64,
+    /// The passage's normal contact: 0 Hertz, 1 the nonlinear profile
+    /// contact, 2 the linear profile contact, 3 the nonlinear profile
+    /// contact with the linear contact's equivalent roughness.
+    pub profile_contact: f64,
+    /// Steps at which the linear profile contact's pressure vanished well
+    /// inside the patch (1).
+    pub clipped_steps: f64,
+    /// Index of the passage's traffic class (0 without a mix).
+    pub traffic_class: usize,
+    /// Amplitude spectrum of the centre-line profile after the passage (m),
+    /// on the record's `wavelengths`.
+    pub spectrum: Vec<f64>,
+    /// Amplitude spectrum of the contact-filtered profile after the passage
+    /// (m): the profile averaged across the mean patch width with the Hertz
+    /// line-load weight, the line the wheel sees and the dynamics is driven by.
+    pub filtered_spectrum: Vec<f64>,
+    /// Growth rate of each harmonic of the contact-filtered profile over this
+    /// passage (dB per 1e5 real passages), on the record's `wavelengths`.
+    pub growth_rate: Vec<f64>,
+}
+
+/// A stored rail state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RailSnapshot {
+    /// Passage index.
+    pub index: i64,
+    /// Real passages represented (1).
+    pub traffic: f64,
+    /// Surface height change, shape (ny, nx) (m, wear negative).
+    pub profile: Array2<f64>,
+    /// Wear depth of this passage, shape (ny, nx) (m, positive).
+    pub wear: Array2<f64>,
+}
+
+/// The state of a run after some passages: everything a run file holds
+/// that changes from passage to passage, and everything a resumed run
+/// needs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunState {
+    /// Rail surface height change after the passages done, shape (ny, nx)
+    /// (m, wear negative).
+    pub profile: Array2<f64>,
+    /// One row per passage done.
+    pub rows: Vec<PassRow>,
+    /// Stored rail states.
+    pub rail: Vec<RailSnapshot>,
+    /// Stored patch histories: (passage index, history).
+    pub histories: Vec<(i64, PatchHistory)>,
+}

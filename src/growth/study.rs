@@ -1,0 +1,536 @@
+//! The growth loop as a type (README: Growth studies): one simulated
+//! passage at a time,
+//!
+//! ```text
+//! for each simulated passage n:
+//!     class = the traffic class furthest behind its share
+//!     W_n   = passage(r_n)                   (dynamics -> contact -> wear)
+//!     m_n   = traffic scaling(rho(r_n, W_n))  (fixed, or adaptive)
+//!     r_n+1 = r_n - m_n W_n
+//!     record rms, spectra (centre line, contact-filtered), growth rate;
+//!     stop rule
+//! ```
+//!
+//! [`Study::advance`] does one passage and appends its row to the
+//! [`RunState`]; the caller ([`crate::run`]) keeps the checkpoints, the
+//! file and the terminal. A single passage is the study of one passage
+//! without a profile. The passage carries no state from one passage to the
+//! next (every passage starts with a run-in from a reset solver), so a
+//! study continued from a stored state computes bit for bit what the
+//! uninterrupted study would have.
+
+use super::hertz_check::HertzCheck;
+use super::mix::{next_class, tally};
+use super::roughness::profile_line;
+use super::spectrum::{amplitudes, growth_rates, wavelengths};
+use super::state::{PassRow, RailSnapshot, RunState};
+use super::traffic::change_rate;
+use super::{contact_filtered_line, growth_passage};
+use crate::build::{Derived, build_deposit, build_solver, derive, study_grid, track_dynamics};
+use crate::contact::{ContactError, Elements, TangentialSolver};
+use crate::dynamics::TrackDynamics;
+use crate::metrics::{centre_row, rms_corrugation};
+use crate::model_choice::hertz_validity::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
+use crate::params::{ContactGrid, GrowthParams, NormalContact, Scene, StopRule, TrafficClass, TrafficScaling};
+use crate::passage::{PassageError, PassageSpec, run_passage};
+use crate::rail_grid::RailGrid;
+use crate::wear::WearKernel;
+use ndarray::Array2;
+
+/// What a study reports while it goes.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    /// Contact steps done, of the steps this invocation computes.
+    Steps {
+        /// Steps done.
+        done: usize,
+        /// Steps in all.
+        total: usize,
+    },
+    /// A passage finished.
+    Passage {
+        /// Passages done (all, including those before a resume).
+        done: usize,
+        /// Passages the run will have.
+        total: usize,
+        /// Real passages represented so far (1).
+        traffic: f64,
+        /// Real passages this one stood for (1).
+        scale: f64,
+        /// rms corrugation after it (m).
+        rms: f64,
+        /// Relative profile change of its update (1).
+        update_ratio: f64,
+        /// Its traffic class, in a mixed-traffic study.
+        class: Option<String>,
+    },
+    /// What the run did (not a problem).
+    Note {
+        /// Simulated passage index (0-based).
+        pass: usize,
+        /// What happened.
+        message: String,
+    },
+    /// Something the user must know about a passage's results.
+    Warning {
+        /// Simulated passage index (0-based).
+        pass: usize,
+        /// What happened.
+        message: String,
+    },
+    /// The study stopped after this passage (`growth.stop`).
+    Stopped {
+        /// Simulated passage index (0-based).
+        pass: usize,
+        /// Why.
+        reason: String,
+    },
+    /// The run file was rewritten after `done` passages (reported by the
+    /// run, which keeps the file).
+    Checkpoint {
+        /// Passages in the file.
+        done: usize,
+    },
+}
+
+/// A passage whose physics could not be solved.
+#[derive(Debug, thiserror::Error)]
+#[error("passage {pass} failed: {source}")]
+pub struct PassageFailed {
+    /// Simulated passage index.
+    pub pass: usize,
+    /// Cause.
+    pub source: PassageError,
+}
+
+/// What one passage left besides its row.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Advanced {
+    /// CPU seconds of the passage.
+    pub cpu_seconds: f64,
+    /// Maximum wear depth of the passage, unscaled (m).
+    pub max_wear: f64,
+}
+
+/// One traffic class's passage (speed, mean loads) and track dynamics
+/// (speed, contact spring at its load, unsprung mass).
+struct ClassModel {
+    passage: PassageSpec,
+    dynamics: Option<Box<dyn TrackDynamics>>,
+    /// The wear one passage of the class leaves on the smooth rail where
+    /// its track forces a dynamic force there; computed at the class's
+    /// first passage of this invocation.
+    forced: Option<Vec<f64>>,
+}
+
+/// A growth study (or a single passage) in progress: the scene's kernels,
+/// built once, and the state after the passages done.
+pub struct Study<'a> {
+    scene: &'a Scene,
+    growth: Option<&'a GrowthParams>,
+    d: Derived,
+    solver: Box<dyn TangentialSolver>,
+    deposit: Box<dyn WearKernel>,
+    elements: Elements,
+    grid: RailGrid,
+    passes: usize,
+    scaling: TrafficScaling,
+    classes: Vec<TrafficClass>,
+    shares: Vec<f64>,
+    models: Vec<ClassModel>,
+    waves: Vec<f64>,
+    centre: usize,
+    mean_patch: (f64, f64),
+    hertz_check: HertzCheck,
+    /// Passages in the state when the study was built.
+    first: usize,
+    stopped: Option<String>,
+    state: RunState,
+}
+
+/// The initial state of a scene: the profile of its roughness (none for a
+/// single passage), no passages done.
+pub fn initial_state(scene: &Scene) -> RunState {
+    let grid = study_grid(scene);
+    let profile = match &scene.growth {
+        Some(g) => {
+            let line = profile_line(&g.roughness, &grid.xs(), grid.nx as f64 * grid.dx);
+            Array2::from_shape_fn((grid.ny, grid.nx), |(_, i)| line[i])
+        }
+        None => Array2::zeros((grid.ny, grid.nx)),
+    };
+    RunState { profile, rows: Vec::new(), rail: Vec::new(), histories: Vec::new() }
+}
+
+impl<'a> Study<'a> {
+    /// The study of `scene` continuing from `state`. One solver serves every
+    /// traffic class: its grid is sized for the largest load of any class,
+    /// and the speed and loads come with each step.
+    pub fn new(scene: &'a Scene, state: RunState) -> Self {
+        let d = derive(scene);
+        let solver = build_solver(scene, &d.shape);
+        let elements = solver.elements();
+        let deposit = build_deposit(&elements);
+        let growth = scene.growth.as_ref();
+        let grid = study_grid(scene);
+        let classes: Vec<TrafficClass> = growth.map_or_else(Vec::new, |g| g.classes.clone());
+        let models: Vec<ClassModel> = classes
+            .iter()
+            .map(|c| {
+                let cs = scene.for_class(c);
+                let cd = derive(&cs);
+                let dynamics = track_dynamics(&cs, &cd);
+                ClassModel { passage: cd.passage, dynamics, forced: None }
+            })
+            .collect();
+        let has_dynamics = models.iter().any(|m| m.dynamics.is_some());
+        // What the wheel sees: the profile weighted across the mean patch
+        // width. The mean patch: of the mean load, or under mixed traffic
+        // the classes' patches weighted by their shares (one line for every
+        // passage, so that growth rates compare across passages of
+        // different classes).
+        let mean_patch = if classes.is_empty() {
+            (d.patch_mean.a, d.patch_mean.b)
+        } else {
+            classes.iter().fold((0.0, 0.0), |(a, b), c| {
+                let p = d.shape.patch(c.normal_force).expect("validated loads keep N > 0");
+                (a + c.share * p.a, b + c.share * p.b)
+            })
+        };
+        let hertz_check = HertzCheck {
+            active: scene.contact.normal == NormalContact::Hertz && has_dynamics,
+            fixed: matches!(scene.contact.grid, ContactGrid::Fixed(_)),
+            from: match scene.contact.grid {
+                ContactGrid::Fixed(f) => PROFILE_NOISE_AMPLITUDE * f.dx / PROFILE_NOISE_ELEMENT,
+                ContactGrid::Adapted => PROFILE_NOISE_AMPLITUDE,
+            },
+        };
+        // A study that stopped (growth.stop) stays stopped when resumed: the
+        // rule reads the stored rows.
+        let stopped = stop_reason(growth, &state.rows);
+        Study {
+            scene,
+            growth,
+            solver,
+            deposit,
+            elements,
+            passes: growth.map_or(1, |g| g.passes),
+            scaling: growth.map_or(TrafficScaling::Fixed { scale: 1.0, max_update_ratio: 1.0 }, |g| g.traffic),
+            shares: classes.iter().map(|c| c.share).collect(),
+            classes,
+            models,
+            waves: wavelengths(grid.nx, grid.dx),
+            centre: centre_row(&grid),
+            grid,
+            mean_patch,
+            hertz_check,
+            first: state.rows.len(),
+            stopped,
+            state,
+            d,
+        }
+    }
+
+    /// The passage `advance` computes next, if the study goes on.
+    pub fn next_pass(&self) -> Option<usize> {
+        let done = self.state.rows.len();
+        (self.stopped.is_none() && done < self.passes).then_some(done)
+    }
+
+    /// Runs the next passage and updates the profile: appends its row (and
+    /// its rail snapshot and patch history where the study stores them).
+    /// `Ok(None)` when the passage ended the study instead (full sliding at
+    /// saturation; [`Study::stopped`] says why).
+    pub fn advance(&mut self, progress: &mut dyn FnMut(Event)) -> Result<Option<Advanced>, PassageFailed> {
+        let Some(pass) = self.next_pass() else { return Ok(None) };
+        let fail = |source| PassageFailed { pass, source };
+        let scene = self.scene;
+        let growth = self.growth;
+        let line = |p: &Array2<f64>| p.row(self.centre).to_vec();
+        // The class of this passage: the one furthest behind its share.
+        let class = match self.classes.len() {
+            0 | 1 => 0,
+            n => {
+                next_class(&self.shares, &tally(n, self.state.rows.iter().map(|r| (r.traffic_class, r.traffic_scale))))
+            }
+        };
+        let keep_history = growth.is_none_or(|g| g.contact_history.contains(&pass));
+        let record_fields = keep_history && scene.output.store_fields;
+        let normal = self.normal_contact();
+        let clock = cpu_time::ProcessTime::now();
+        let steps = self.d.passage.n_steps();
+        let (first, passes) = (self.first, self.passes);
+        let total_steps = (passes - first) * steps;
+        let mut report =
+            |done: usize, _: usize| progress(Event::Steps { done: (pass - first) * steps + done, total: total_steps });
+        let (mut loss, mut clipped, mut linear_filter) = (0, 0, false);
+        let fallbacks;
+        let (wear, history) = match growth {
+            None => {
+                let r = run_passage(
+                    &self.d.passage,
+                    &self.d.shape,
+                    self.solver.as_mut(),
+                    self.deposit.as_ref(),
+                    &self.grid,
+                    record_fields,
+                    &mut report,
+                )
+                .map_err(fail)?;
+                fallbacks = r.fallback_steps;
+                (r.wear, r.history)
+            }
+            Some(_) => {
+                let model = &mut self.models[class];
+                let (solver, deposit, grid, shape) =
+                    (self.solver.as_mut(), self.deposit.as_ref(), &self.grid, &self.d.shape);
+                let mut passage = |profile: &Array2<f64>, record: bool, report: &mut dyn FnMut(usize, usize)| {
+                    growth_passage(
+                        &model.passage,
+                        shape,
+                        &mut *solver,
+                        deposit,
+                        grid,
+                        profile,
+                        normal,
+                        model.dynamics.as_deref(),
+                        record,
+                        report,
+                    )
+                };
+                let g = passage(&self.state.profile, record_fields, &mut report);
+                // At saturation the dynamic force may take N below F_x / mu:
+                // the prescribed force can no longer be transmitted, the end
+                // of what the model describes; the study stops there.
+                let g = match g {
+                    Err(source) if sliding_stops(growth, &source) => {
+                        let reason = format!("full sliding in passage {}: {source}", pass + 1);
+                        progress(Event::Stopped { pass, reason: reason.clone() });
+                        self.stopped = Some(reason);
+                        return Ok(None);
+                    }
+                    g => g.map_err(fail)?,
+                };
+                loss = g.contact_loss_steps;
+                clipped = g.clipped_steps;
+                linear_filter = g.linear_filter;
+                if clipped > 0 {
+                    progress(Event::Warning {
+                        pass,
+                        message: format!(
+                            "the linear profile contact's patch opened inside (the pressure vanished well inside \
+                             the patch) at {clipped} steps: the corrugation is beyond the linearisation's range \
+                             (the nonlinear profile contact needs contact.grid = \"fixed\")"
+                        ),
+                    });
+                }
+                if g.contact_loss_steps > 0 {
+                    progress(Event::Warning {
+                        pass,
+                        message: format!(
+                            "the wheel left the rail at {} of the stretch's steps (N <= 0): the linear track model \
+                             is not valid there, and the growth this passage drives is not reliable",
+                            g.contact_loss_steps
+                        ),
+                    });
+                }
+                fallbacks = g.passage.fallback_steps;
+                // The wear one passage of this class leaves on the smooth
+                // rail, where its track forces a dynamic force there (the
+                // discrete supports' parametric excitation): it does not
+                // depend on the profile, the update integrates it exactly,
+                // and the update bound counts the rest (growth::traffic).
+                if model.forced.is_none() && model.dynamics.as_deref().is_some_and(|dy| dy.forces_smooth_rail()) {
+                    let smooth = Array2::zeros(self.state.profile.raw_dim());
+                    let w0 = passage(&smooth, false, &mut |_, _| {}).map_err(fail)?;
+                    model.forced = Some(line(&w0.wear));
+                }
+                (g.wear, g.passage.history)
+            }
+        };
+        if fallbacks > 0 {
+            progress(Event::Warning {
+                pass,
+                message: format!(
+                    "the fixed grid's CG solver did not converge at {fallbacks} steps, which Gauss-Seidel solved \
+                     (same equations; set contact.solver = \"gauss-seidel\" to use it throughout)"
+                ),
+            });
+        }
+        let cpu_seconds = clock.elapsed().as_secs_f64();
+        let m_rho = self.traffic_scale(class, &line(&wear));
+        let (m, rho) = m_rho;
+        let state = &mut self.state;
+        let previous = state.rows.last();
+        let filtered = |p: &Array2<f64>| contact_filtered_line(p, &self.grid, self.mean_patch.1);
+        let before = match previous {
+            Some(r) => r.filtered_spectrum.clone(),
+            None => amplitudes(&filtered(&state.profile)),
+        };
+        let traffic = previous.map_or(0.0, |r| r.traffic) + m;
+        state.profile.scaled_add(-m, &wear);
+        let spectrum = amplitudes(&line(&state.profile));
+        let filtered_spectrum = amplitudes(&filtered(&state.profile));
+        if let Some(message) = self.hertz_check.check(&self.waves, &filtered_spectrum) {
+            progress(Event::Warning { pass, message });
+        }
+        let row = PassRow {
+            index: pass as i64,
+            traffic,
+            traffic_scale: m,
+            rms_corrugation: rms_corrugation(state.profile.view(), &self.grid),
+            removed_volume: wear.sum() * self.grid.dx * self.grid.dy,
+            cpu_seconds,
+            update_ratio: m * rho,
+            traffic_class: class,
+            contact_loss_steps: loss as f64,
+            profile_contact: match normal {
+                NormalContact::Hertz => 0.0,
+                NormalContact::Linear => PROFILE_LINEAR,
+                _ if linear_filter => PROFILE_LINEAR_FILTER,
+                _ => PROFILE_NONLINEAR,
+            },
+            clipped_steps: clipped as f64,
+            // Below 1e-12 m (1 pm) an amplitude is numerical noise.
+            growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
+            spectrum,
+            filtered_spectrum,
+        };
+        progress(Event::Passage {
+            done: pass + 1,
+            total: passes,
+            traffic,
+            scale: m,
+            rms: row.rms_corrugation,
+            update_ratio: row.update_ratio,
+            class: (self.classes.len() > 1).then(|| self.classes[class].name.clone()),
+        });
+        let max_wear = wear.iter().cloned().fold(0.0, f64::max);
+        let store_every = growth.map_or(1, |g| g.store_every);
+        if (pass + 1) % store_every == 0 || pass + 1 == passes {
+            state.rail.push(RailSnapshot { index: pass as i64, traffic, profile: state.profile.clone(), wear });
+        }
+        if keep_history {
+            state.histories.push((pass as i64, history));
+        }
+        state.rows.push(row);
+        self.stopped = stop_reason(growth, &state.rows);
+        if let Some(reason) = &self.stopped {
+            progress(Event::Stopped { pass, reason: reason.clone() });
+        }
+        Ok(Some(Advanced { cpu_seconds, max_wear }))
+    }
+
+    /// What the normal contact of this passage sees of the rail: the
+    /// consistent chain's is the linear contact on the adapted mesh and the
+    /// nonlinear profile contact on the fixed grid.
+    fn normal_contact(&self) -> NormalContact {
+        match self.scene.contact.normal {
+            NormalContact::Auto { .. } if !matches!(self.scene.contact.grid, ContactGrid::Fixed(_)) => {
+                NormalContact::Linear
+            }
+            normal => normal,
+        }
+    }
+
+    /// The traffic scale m of a passage of `class` whose centre-line wear
+    /// is `wear`, and the relative profile change rho per real passage it
+    /// bounds. With imposed dynamics the wear does not depend on the
+    /// profile: the update is exact for any m (growth::traffic), rho = 0.
+    /// The adaptive m rises from the last m of the same class: classes
+    /// whose wear changes the profile faster keep a smaller m.
+    fn traffic_scale(&self, class: usize, wear: &[f64]) -> (f64, f64) {
+        let rho = match self.models.get(class) {
+            Some(model) if model.dynamics.is_some() => {
+                let mut w = wear.to_vec();
+                if let Some(w0) = &model.forced {
+                    w.iter_mut().zip(w0).for_each(|(w, f)| *w -= f);
+                }
+                change_rate(&self.state.profile.row(self.centre).to_vec(), &w)
+            }
+            _ => 0.0,
+        };
+        let previous = self.state.rows.iter().rev().find(|r| r.traffic_class == class).map(|r| r.traffic_scale);
+        (self.scaling.scale(previous, rho), rho)
+    }
+
+    /// Passages the study will have (`growth.passes`; 1 for one passage).
+    pub fn passes(&self) -> usize {
+        self.passes
+    }
+
+    /// Passages done when the study was built (before this invocation).
+    pub fn first(&self) -> usize {
+        self.first
+    }
+
+    /// Why the study stopped before its planned passages (`growth.stop`).
+    pub fn stopped(&self) -> Option<&str> {
+        self.stopped.as_deref()
+    }
+
+    /// The state after the passages done.
+    pub fn state(&self) -> &RunState {
+        &self.state
+    }
+
+    /// The bound the adaptive update ratio keeps to (1).
+    pub fn update_bound(&self) -> f64 {
+        self.scaling.max_update_ratio()
+    }
+
+    /// The periodic rail grid (a single passage's rail grid).
+    pub fn grid(&self) -> &RailGrid {
+        &self.grid
+    }
+
+    /// The contact elements the fields are stored on.
+    pub fn elements(&self) -> &Elements {
+        &self.elements
+    }
+
+    /// Wavelengths of the spectra (m), longest first.
+    pub fn wavelengths(&self) -> &[f64] {
+        &self.waves
+    }
+
+    /// Hertz semi-axes (a, b) of the mean patch the contact-filtered line is
+    /// weighted with (m).
+    pub fn mean_patch(&self) -> (f64, f64) {
+        self.mean_patch
+    }
+
+    /// The traffic classes (empty for one passage).
+    pub fn classes(&self) -> &[TrafficClass] {
+        &self.classes
+    }
+}
+
+/// Why a growth study stops after its last row, by its `growth.stop` rule.
+fn stop_reason(growth: Option<&GrowthParams>, rows: &[PassRow]) -> Option<String> {
+    let StopRule::Saturation { rate } = growth?.stop else {
+        return None;
+    };
+    let last = rows.last()?;
+    let rms: Vec<f64> = rows.iter().map(|r| r.rms_corrugation).collect();
+    let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
+    super::stop::saturation(&rms, &traffic, last.contact_loss_steps, rate)
+}
+
+/// `passes/profile_contact` of a passage in the nonlinear profile contact
+/// with the dynamics of its nonlinear equivalent roughness.
+const PROFILE_NONLINEAR: f64 = 1.0;
+/// `passes/profile_contact` of a passage in the linear profile contact.
+const PROFILE_LINEAR: f64 = 2.0;
+/// `passes/profile_contact` of a passage in the nonlinear profile contact
+/// with the dynamics of the linear contact's equivalent roughness.
+const PROFILE_LINEAR_FILTER: f64 = 3.0;
+
+/// Whether a passage that failed with `e` ends a study that stops at
+/// saturation: the prescribed longitudinal force reached the friction limit
+/// (full sliding), which the growing dynamic force brings about before the
+/// wheel leaves the rail.
+fn sliding_stops(growth: Option<&GrowthParams>, e: &PassageError) -> bool {
+    matches!(growth.map(|g| g.stop), Some(StopRule::Saturation { .. }))
+        && matches!(e, PassageError::Tangential { source: ContactError::ForceExceedsFriction { .. }, .. })
+}

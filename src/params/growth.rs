@@ -1,0 +1,188 @@
+//! The growth study's parameters: the dynamics, the traffic (its scaling
+//! and classes), the initial roughness and the stop rule. Their models live
+//! in [`crate::growth`]; these are the typed values they receive.
+
+use crate::loads::ImposedLoads;
+
+/// Vehicle-track dynamics of a growth study.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DynamicsKind {
+    /// Only the imposed `load.harmonics` (no feedback of the profile).
+    Imposed,
+    /// Linear receptance model (wheel mass, Hertz spring, the `[track]`
+    /// smeared into a continuous support).
+    Receptance {
+        /// Unsprung mass per wheel (kg).
+        unsprung_mass: f64,
+    },
+    /// The Timoshenko rail on discrete supports (`[track]`), the
+    /// receptance depending on the wheel's place in the sleeper bay, with
+    /// the supports' parametric excitation.
+    Discrete {
+        /// Unsprung mass per wheel (kg).
+        unsprung_mass: f64,
+    },
+}
+
+impl std::fmt::Display for DynamicsKind {
+    /// The model in the config's words (`dynamics.model`).
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            DynamicsKind::Imposed => write!(f, "imposed (the imposed loads only, no feedback of the profile)"),
+            DynamicsKind::Receptance { unsprung_mass } => {
+                write!(f, "receptance (continuous track), unsprung mass {unsprung_mass} kg")
+            }
+            DynamicsKind::Discrete { unsprung_mass } => {
+                write!(f, "discrete (Timoshenko rail on discrete supports), unsprung mass {unsprung_mass} kg")
+            }
+        }
+    }
+}
+
+impl DynamicsKind {
+    /// The same model with another unsprung mass (kg).
+    pub fn with_unsprung_mass(self, mass: f64) -> Self {
+        match self {
+            DynamicsKind::Imposed => DynamicsKind::Imposed,
+            DynamicsKind::Receptance { .. } => DynamicsKind::Receptance { unsprung_mass: mass },
+            DynamicsKind::Discrete { .. } => DynamicsKind::Discrete { unsprung_mass: mass },
+        }
+    }
+}
+
+/// A multi-passage growth study on the periodic stretch [x_min, x_max).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GrowthParams {
+    /// Simulated passages.
+    pub passes: usize,
+    /// How many real passages one simulated passage stands for.
+    pub traffic: TrafficScaling,
+    /// Store the rail profile and wear every this many passages (and the last).
+    pub store_every: usize,
+    /// Rewrite the run file (a checkpoint) every this many passages.
+    pub checkpoint_every: usize,
+    /// Passages whose contact-patch history is stored.
+    pub contact_history: Vec<usize>,
+    /// Initial irregularity.
+    pub roughness: Roughness,
+    /// Dynamics model.
+    pub dynamics: DynamicsKind,
+    /// When the study stops before `passes`.
+    pub stop: StopRule,
+    /// The traffic classes (`[[traffic.mix]]`, shares summing to 1; one
+    /// class of the base config without `[traffic]`).
+    pub classes: Vec<TrafficClass>,
+}
+
+/// When a growth study stops before its planned passages (`growth.stop`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum StopRule {
+    /// Runs every planned passage.
+    #[default]
+    Never,
+    /// Stops after a passage in which the wheel left the rail, at a passage
+    /// whose dynamic force takes N below F_x / mu (full sliding: that
+    /// passage is not recorded), or once the corrugation has stopped
+    /// growing: its rms grew by less than `rate` (dB per 1e5 real
+    /// passages) over the last [`crate::growth::stop::SATURATION_WINDOW`]
+    /// passages.
+    Saturation {
+        /// Growth rate of the rms below which the corrugation counts as
+        /// saturated (dB per 1e5 real passages).
+        rate: f64,
+    },
+}
+
+/// How `m`, the real passages one simulated passage stands for, is chosen
+/// (the rule: [`crate::growth::traffic`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TrafficScaling {
+    /// The same `m` for every passage.
+    Fixed {
+        /// Real passages per simulated passage (1).
+        scale: f64,
+        /// Bound on `q` the run is checked against (1).
+        max_update_ratio: f64,
+    },
+    /// `m` chosen per passage to keep `q <= max_update_ratio`.
+    Adaptive {
+        /// The first passage's `m` (upper bound) (1).
+        initial: f64,
+        /// Largest `m` (1).
+        max: f64,
+        /// Bound on `q`, the relative profile change per update (1).
+        max_update_ratio: f64,
+    },
+}
+
+/// One class of traffic (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrafficClass {
+    /// Name (letters, digits, `_`, `-`), for the output and messages.
+    pub name: String,
+    /// Rolling speed V (m/s).
+    pub speed: f64,
+    /// Mean normal force (N).
+    pub normal_force: f64,
+    /// Mean longitudinal force on the wheel (N).
+    pub longitudinal_force: f64,
+    /// Unsprung mass per wheel (kg).
+    pub unsprung_mass: f64,
+    /// Share of the real wheel passages (1; the shares of a mix sum to 1).
+    pub share: f64,
+}
+
+impl TrafficClass {
+    /// The imposed loads as wheels of this class see them: the class's mean
+    /// normal and longitudinal force with the harmonics of `base`.
+    pub fn loads(&self, base: &ImposedLoads) -> ImposedLoads {
+        ImposedLoads { normal_force: self.normal_force, longitudinal_force: self.longitudinal_force, ..base.clone() }
+    }
+}
+
+/// One harmonic of the rail profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ProfileHarmonic {
+    /// Amplitude (m).
+    pub amplitude: f64,
+    /// Wavelength (m).
+    pub wavelength: f64,
+    /// Phase (rad): height = amplitude sin(2 pi X / wavelength + phase).
+    pub phase: f64,
+}
+
+/// The initial irregularity.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Roughness {
+    /// A smooth rail.
+    None,
+    /// Explicit harmonics.
+    Harmonics(Vec<ProfileHarmonic>),
+    /// Seeded random, band-limited roughness.
+    Random {
+        /// Seed of the generator.
+        seed: u64,
+        /// rms height (m).
+        rms: f64,
+        /// Shortest wavelength (m).
+        wavelength_min: f64,
+        /// Longest wavelength (m).
+        wavelength_max: f64,
+    },
+    /// Seeded random roughness with a one-third-octave level spectrum.
+    Levels {
+        /// Seed of the generator.
+        seed: u64,
+        /// The bands.
+        bands: Vec<LevelBand>,
+    },
+}
+
+/// One one-third-octave band of a roughness level spectrum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LevelBand {
+    /// Centre wavelength (m).
+    pub wavelength: f64,
+    /// rms roughness in the band, dB re 1 um.
+    pub level: f64,
+}
