@@ -12,4 +12,5 @@ bash scripts/setup.sh
 cargo build --release --quiet
 mkdir -p "$out"
 ./target/release/corrugation run --overwrite "$config" -o "$out/$name.h5" "$@"
-.venv/bin/corrugation-post figures "$out/$name.h5" --out "$out"
+.venv/bin/corrugation-post figures "$out/$name.h5" --out "$out" > /dev/null
+echo "run file: $out/$name.h5; figures: $(cd "$out" && ls *.png | tr '\n' ' ')(in $out/)"

@@ -201,6 +201,19 @@ fn fixed_grid_steps_divide_a_growth_stretch() {
 }
 
 #[test]
+fn a_string_key_takes_a_bare_word_in_every_config() {
+    // 54E1 is also a TOML float (540.0): the key's default says it is text,
+    // in a single-passage config without [track] as in a growth study.
+    for base in [BASE, include_str!("../configs/growth_discrete.toml")] {
+        let r = load_str(base, "base", &["track.rail=54E1".into()]).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(r.scene.track.rail_name, "54E1");
+    }
+    let e = errors(BASE, &["track.rail=60E1"]);
+    assert_eq!(e.len(), 1, "{e:?}");
+    assert!(e[0].starts_with("track.rail: = \"60E1\" is not allowed"), "{e:?}");
+}
+
+#[test]
 fn whole_numbers_written_as_floats_are_integers() {
     let r = load_str(BASE, "base", &["contact.elements_x=1e1".into(), "wear.substeps=4.0".into()]).unwrap();
     assert_eq!(r.scene.contact.elements_x, 10);
@@ -295,7 +308,7 @@ proptest! {
             prop_assert!(!e.is_empty(), "{set} was accepted");
         }
         if e.is_empty() {
-            let r = load_str(BASE, "base", &[set.clone()]).unwrap();
+            let r = load_str(BASE, "base", std::slice::from_ref(&set)).unwrap();
             prop_assert_eq!(value_at(&r.toml, key), Some(value), "{} not in the resolved config", set);
         }
     }

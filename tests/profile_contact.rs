@@ -327,3 +327,48 @@ fn linear_contact_on_a_flat_rail_is_the_hertz_chain_bit_for_bit() {
     assert!(linear.iter().zip(hertz.iter()).all(|(a, b)| a.to_bits() == b.to_bits()));
     assert!(hertz.iter().any(|v| *v != 0.0), "the passages wear the rail");
 }
+
+#[test]
+fn a_patch_that_outgrows_the_grid_names_the_grid_that_holds_it() {
+    // 20 um at 30 mm: the trough's curvature Delta k^2 = 0.88 1/m, 44 % of
+    // the wheel's 2A, lengthens the patch over it (Hertz with the curvature
+    // sum A - r''/2) beyond a grid sized for the smooth rail's patch.
+    let (delta, lambda) = (2e-5, 0.03);
+    let (dx, dy) = (2e-4, 5e-4);
+    let surface = || Some(RailContact::Profile(wave(delta, lambda)));
+    let patch = paper_shape(true).patch(N).unwrap();
+    let input = StepInput {
+        patch,
+        speed: 27.78,
+        dt: dx / 27.78,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.5 * lambda,
+    };
+    let mut tight = solver(dx, dy, 1.0);
+    tight.set_surface(surface()).unwrap();
+    let e = tight.step(&input).unwrap_err().to_string();
+    assert!(e.contains("reaches the edge of the potential-contact grid"), "{e}");
+    assert!(e.contains("set contact.profile_grid_scale to at least 1.40 times its value"), "{e}");
+    // The grid it names holds the patch.
+    let mut named = solver(dx, dy, 1.4);
+    named.set_surface(surface()).unwrap();
+    named.step(&input).unwrap();
+    // The estimate against the patch the normal problem gives: the local
+    // quadratic leaves out the cosine's quartic term, which flattens the
+    // trough towards the patch ends ((k a)^2 / 12 = 0.2 of the curvature
+    // there), so the estimate is long (8 % here), never short.
+    let k = 2.0 * PI / lambda;
+    let c = curvatures();
+    let local = Curvatures { a: c.a - 0.5 * delta * k * k, b: c.b };
+    let estimate = corrugation::hertz::HertzShape::new(local, STEEL).unwrap().patch(N).unwrap().a;
+    let p = named.normal_solution(0.5 * lambda, N).unwrap().pressure;
+    let g = named.grid();
+    let row = &p[(g.ny / 2) * g.nx..(g.ny / 2 + 1) * g.nx];
+    let length = row.iter().filter(|v| **v > 0.0).count() as f64 * dx;
+    eprintln!("patch length over the trough {length:.4e} m, local Hertz estimate {:.4e} m", 2.0 * estimate);
+    let excess = 2.0 * estimate / length - 1.0;
+    assert!((0.0..0.15).contains(&excess), "{length} vs {}", 2.0 * estimate);
+}

@@ -106,8 +106,17 @@ pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolv
     let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
         fail(vec![ConfigError::new("TOML syntax", e.to_string().trim().replace('\n', "\n    "))])
     })?;
-    // The file's config with defaults filled in says which keys hold strings.
-    let defaults = if overrides.is_empty() { Table::new() } else { read_scene(root.clone(), &mut Vec::new()).1 };
+    // The file's config with defaults filled in says which keys hold strings
+    // (the track's too where the config does not read it: a single passage).
+    let defaults = if overrides.is_empty() {
+        Table::new()
+    } else {
+        let mut d = read_scene(root.clone(), &mut Vec::new()).1;
+        if !d.contains_key("track") {
+            track::read(&mut Table::new(), &mut d, &mut Vec::new());
+        }
+        d
+    };
     let mut errors: Vec<ConfigError> =
         overrides.iter().filter_map(|o| overrides::apply(&mut root, o, &defaults).err()).collect();
     let (scene, resolved) = read_scene(root, &mut errors);
