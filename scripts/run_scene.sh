@@ -1,14 +1,20 @@
 #!/usr/bin/env bash
 # Sets up (scripts/setup.sh), builds in release, runs one scene and draws its
 # figures. Usage: scripts/run_scene.sh [CONFIG] [OUT_DIR] [--set k=v ...]
+# (OUT_DIR may be left out before the options).
 # Defaults: configs/paper_normal_30mm.toml, out/<config name>/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 config=${1:-configs/paper_normal_30mm.toml}
 name=$(basename "$config" .toml)
-out=${2:-out/$name}
-shift $(( $# > 2 ? 2 : $# ))
+shift $(( $# > 0 ? 1 : 0 ))
+out=out/$name
+if [[ $# -gt 0 && $1 != --* ]]; then
+  out=$1
+  shift
+fi
 bash scripts/setup.sh
+echo "building the release binary (about 2.5 min from a fresh clone, silent meanwhile)"
 cargo build --release --quiet
 mkdir -p "$out"
 ./target/release/corrugation run --overwrite "$config" -o "$out/$name.h5" "$@"

@@ -14,7 +14,7 @@ use crate::dynamics::discrete::DiscreteTrack;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
 use crate::hertz::{HertzPatch, HertzShape};
-use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
+use crate::params::{ContactGrid, ContactModel, DynamicsKind, NormalContact, Scene};
 use crate::passage::PassageSpec;
 use crate::rail_grid::RailGrid;
 use crate::wear::{CellDeposit, WearDeposit, WearKernel};
@@ -43,9 +43,9 @@ pub fn derive(scene: &Scene) -> Derived {
     let loads = &scene.loads;
     // On the fixed grid the patch moves exactly one element per step: the
     // last step is the first at or beyond passage.end.
-    let end = match scene.contact.grid {
-        ContactGrid::Fixed(f) => scene.start + ((scene.end - scene.start) / f.dx - 1e-9).ceil() * f.dx,
-        ContactGrid::Adapted => scene.end,
+    let end = match scene.contact.model.fixed_grid() {
+        Some(f) => scene.start + ((scene.end - scene.start) / f.dx - 1e-9).ceil() * f.dx,
+        None => scene.end,
     };
     let passage = PassageSpec {
         speed: scene.speed,
@@ -79,30 +79,24 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
     // the growth studies that may take it.
     let linear = scene.growth.is_some() && matches!(c.normal, NormalContact::Linear | NormalContact::Auto { .. });
     match c.model {
-        ContactModelKind::Fastsim => {
+        ContactModel::Fastsim { mesh, bound } => {
             let coefficients =
                 creep_coefficients(shape.aspect(), scene.material.elastic.poisson_ratio).expect("validated aspect");
-            let f = Fastsim::new(
-                c.elements_x,
-                c.elements_y,
-                c.fastsim_bound,
-                coefficients,
-                scene.material.elastic.shear_modulus(),
-            );
+            let f = Fastsim::new(mesh.nx, mesh.ny, bound, coefficients, scene.material.elastic.shear_modulus());
             Box::new(if linear { f.with_linear_contact(shape) } else { f })
         }
-        ContactModelKind::ExactTransient => {
+        ContactModel::ExactTransient(ContactGrid::Fixed(f)) => {
+            Box::new(FixedGrid::new(fixed_grid_spec(scene, shape, f)))
+        }
+        ContactModel::ExactTransient(ContactGrid::Adapted { mesh, solver }) => {
             let el = scene.material.elastic;
-            if let ContactGrid::Fixed(f) = c.grid {
-                return Box::new(FixedGrid::new(fixed_grid_spec(scene, shape, f)));
-            }
-            let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
+            let mesh = EllipseMesh::new(mesh.nx, mesh.ny);
             let exact = ExactElastic::new(&mesh, shape.aspect(), el.shear_modulus(), el.poisson_ratio);
             let t = Transient::new(mesh, ElasticModel::Exact(Box::new(exact)), PressureShape::Hertz, c.regularisation)
-                .with_solver(c.solver);
+                .with_solver(solver);
             Box::new(if linear { t.with_linear_contact(shape) } else { t })
         }
-        ContactModelKind::SimplifiedTransient => {
+        ContactModel::SimplifiedTransient { mesh, bound } => {
             let el = scene.material.elastic;
             let coefficients = creep_coefficients(shape.aspect(), el.poisson_ratio).expect("validated aspect");
             let g = el.shear_modulus();
@@ -110,8 +104,8 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
                 l1_unit: 8.0 / (3.0 * coefficients.c11 * g),
                 l2_unit: 8.0 / (3.0 * coefficients.c22 * g),
             };
-            let mesh = EllipseMesh::new(c.elements_x, c.elements_y);
-            let t = Transient::new(mesh, ElasticModel::Winkler(winkler), c.fastsim_bound, c.regularisation);
+            let mesh = EllipseMesh::new(mesh.nx, mesh.ny);
+            let t = Transient::new(mesh, ElasticModel::Winkler(winkler), bound, c.regularisation);
             Box::new(if linear { t.with_linear_contact(shape) } else { t })
         }
     }
@@ -173,17 +167,16 @@ pub fn build_deposit(elements: &Elements) -> Box<dyn WearKernel> {
     }
 }
 
-/// Number of contact elements the fields of a scene are stored on: the
-/// adapted mesh's `elements_x * elements_y`, or the fixed grid's (built
-/// without its influence coefficients).
-pub fn element_count(scene: &Scene) -> usize {
-    match scene.contact.grid {
-        ContactGrid::Fixed(f) if scene.contact.model == ContactModelKind::ExactTransient => {
-            let shape = derive(scene).shape;
-            let s = fixed_grid_spec(scene, &shape, f);
-            s.grid().len()
+impl ContactModel {
+    /// Number of contact elements the fields of `scene` (whose model this
+    /// is) are stored on: the adapted mesh's `elements_x * elements_y`, or
+    /// the fixed grid's (built without its influence coefficients).
+    pub fn elements(&self, scene: &Scene) -> usize {
+        match (self.mesh(), self.fixed_grid()) {
+            (Some(mesh), _) => mesh.len(),
+            (None, Some(f)) => fixed_grid_spec(scene, &derive(scene).shape, f).grid().len(),
+            (None, None) => unreachable!("a model is on a mesh or a grid"),
         }
-        _ => scene.contact.elements_x * scene.contact.elements_y,
     }
 }
 

@@ -9,7 +9,7 @@ use corrugation::contact::grid::convolution::smooth_padding;
 use corrugation::model_choice::{AccuracyMap, SAFETY, departures};
 use corrugation::params::TrafficScaling;
 use corrugation::params::{AutoChoice, Candidate};
-use corrugation::params::{ContactGrid, DynamicsKind, NormalContact};
+use corrugation::params::{DynamicsKind, NormalContact};
 
 /// What contact.model = "auto" chose and why.
 fn print_auto(a: &AutoChoice, normal: NormalContact) {
@@ -96,10 +96,7 @@ pub fn print_check(r: &Resolved) {
             mm(p.approach)
         );
     }
-    let fixed = match s.contact.grid {
-        ContactGrid::Fixed(f) => Some((f, fixed_grid_spec(s, &d.shape, f))),
-        ContactGrid::Adapted => None,
-    };
+    let fixed = s.contact.model.fixed_grid().map(|f| (f, fixed_grid_spec(s, &d.shape, f)));
     if let Some((f, spec)) = &fixed {
         let g = spec.grid();
         let in_contact = |a: f64, b: f64| std::f64::consts::PI * a * b / (f.dx * f.dy);
@@ -132,13 +129,13 @@ pub fn print_check(r: &Resolved) {
             f.scheme.name(),
             f.solver.resolve(f.friction_law).name()
         );
-    } else {
-        let el = 2.0 * d.patch_mean.a / s.contact.elements_x as f64;
+    } else if let Some(mesh) = s.contact.model.mesh() {
+        let el = 2.0 * d.patch_mean.a / mesh.nx as f64;
         println!(
             "mesh               {} x {} = {} elements; element length {:.4} mm at mean N",
-            s.contact.elements_x,
-            s.contact.elements_y,
-            s.contact.elements_x * s.contact.elements_y,
+            mesh.nx,
+            mesh.ny,
+            mesh.len(),
             mm(el)
         );
     }

@@ -8,7 +8,7 @@ use crate::build::{derive, fixed_grid_spec, periodic_grid};
 use crate::contact::grid::GridSolver;
 use crate::contact::transient::StepSolver;
 use crate::loads::LoadQuantity;
-use crate::params::{ContactGrid, ContactModelKind, DynamicsKind, NormalContact, Scene};
+use crate::params::{ContactGrid, ContactModel, ContactModelKind, DynamicsKind, NormalContact, Scene};
 
 /// What a scene is expected to cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,7 +34,7 @@ impl CostEstimate {
 /// The fixed grid's CPU time per step (s, 2 cores) of scene `s` with the
 /// tangential solver `solver` (Cg or GaussSeidel).
 fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, solver: GridSolver) -> f64 {
-    let ContactGrid::Fixed(f) = s.contact.grid else {
+    let Some(f) = s.contact.model.fixed_grid() else {
         return 0.0;
     };
     // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
@@ -83,7 +83,7 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, solver: GridSolver) -> 
 /// profile contact, CG from about 800 elements in contact), for exact
 /// Coulomb friction Gauss-Seidel (which CG does not solve).
 pub fn auto_grid_solver(s: &Scene) -> GridSolver {
-    let ContactGrid::Fixed(f) = s.contact.grid else {
+    let Some(f) = s.contact.model.fixed_grid() else {
         return GridSolver::GaussSeidel;
     };
     if f.solver != GridSolver::Auto || f.friction_law == crate::contact::friction::FrictionLaw::Coulomb {
@@ -97,51 +97,54 @@ pub fn auto_grid_solver(s: &Scene) -> GridSolver {
     }
 }
 
+impl ContactModel {
+    /// CPU time per contact step (s, 2 cores) of this model in scene `s`
+    /// (whose model it is), from measurements (README, Performance):
+    /// FASTSIM ~ 18 ns per element and solve, 25 solves; simplified-transient
+    /// ~ 3 us per element; the exact model with constant N ~ 60 ms at 400
+    /// elements, growing as N^3 (dense LU); with a varying N (harmonics or
+    /// track dynamics) 2.5 ms at 100 and 175 ms at 400 elements, both
+    /// fitted by 2.7e-9 N^3 s. The Gauss-Seidel solver
+    /// (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 11.8 ms at 400
+    /// elements (~N^1.15 while C fits in cache), ~N^2.2 beyond. Measured on
+    /// the old AMD development machine; the newer Intel one (README,
+    /// Performance) takes 0.45-0.6 of these times: an upper estimate. The
+    /// fixed grid: its step's fit ([`fixed_grid_step`]).
+    pub fn step_cost(&self, s: &Scene, d: &crate::build::Derived) -> f64 {
+        let n_el = self.mesh().map_or(0, |m| m.len()) as f64;
+        match *self {
+            ContactModel::ExactTransient(ContactGrid::Fixed(f)) => {
+                fixed_grid_step(s, d, f.solver.resolve(f.friction_law))
+            }
+            ContactModel::Fastsim { .. } => 25.0 * 18e-9 * n_el,
+            ContactModel::SimplifiedTransient { .. } => 3e-6 * n_el,
+            ContactModel::ExactTransient(ContactGrid::Adapted { solver: StepSolver::GaussSeidel, .. }) => {
+                if n_el <= 400.0 { 2.4e-3 * (n_el / 100.0).powf(1.15) } else { 11.8e-3 * (n_el / 400.0).powf(2.2) }
+            }
+            ContactModel::ExactTransient(ContactGrid::Adapted { .. }) => {
+                let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
+                    || s.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
+                if varying { 2.7e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
+            }
+        }
+    }
+}
+
 /// The cost model of `s`.
 pub fn estimate(s: &Scene) -> CostEstimate {
     let d = derive(s);
     let p = &d.passage;
     let g = if s.growth.is_some() { periodic_grid(s) } else { d.grid.clone() };
-    let fixed = match s.contact.grid {
-        ContactGrid::Fixed(f) => Some((f, fixed_grid_spec(s, &d.shape, f))),
-        ContactGrid::Adapted => None,
-    };
-    // Cost model from measurements on 2 cores (README, Performance), per
-    // step: wear ~ 20 ns per node visit; FASTSIM ~ 18 ns per element and
-    // solve, 25 solves; simplified-transient ~ 3 us per element; the exact
-    // model with constant N ~ 60 ms at 400 elements, growing as N^3 (dense
-    // LU); with a varying N (harmonics or track dynamics) 2.5 ms at 100 and
-    // 175 ms at 400 elements, both fitted by 2.7e-9 N^3 s. The Gauss-Seidel
-    // solver (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 11.8 ms at
-    // 400 elements (~N^1.15 while C fits in cache), ~N^2.2 beyond. Measured
-    // on the old AMD development machine; the newer Intel one (README,
-    // Performance) takes 0.45-0.6 of these times: an upper estimate.
-    let n_el = (s.contact.elements_x * s.contact.elements_y) as f64;
+    let fixed = s.contact.model.fixed_grid().map(|f| (f, fixed_grid_spec(s, &d.shape, f)));
     let nodes = std::f64::consts::PI * d.patch_max.a * d.patch_max.b / (g.dx * g.dy);
-    // The fixed grid: its step's fit ([`fixed_grid_step`]).
-    let fixed_step = fixed.as_ref().map(|(f, _)| fixed_grid_step(s, &d, f.solver.resolve(f.friction_law)));
-    let contact = match s.contact.model {
-        _ if fixed_step.is_some() => fixed_step.unwrap_or_default(),
-        ContactModelKind::Fastsim => 25.0 * 18e-9 * n_el,
-        ContactModelKind::SimplifiedTransient => 3e-6 * n_el,
-        ContactModelKind::ExactTransient if s.contact.solver == StepSolver::GaussSeidel => {
-            if n_el <= 400.0 {
-                2.4e-3 * (n_el / 100.0).powf(1.15)
-            } else {
-                11.8e-3 * (n_el / 400.0).powf(2.2)
-            }
-        }
-        ContactModelKind::ExactTransient => {
-            let varying = s.loads.harmonics.iter().any(|h| h.quantity == LoadQuantity::NormalForce)
-                || s.growth.as_ref().is_some_and(|g| g.dynamics != DynamicsKind::Imposed);
-            if varying { 2.7e-9 * n_el.powi(3) } else { 0.06 * (n_el / 400.0).powi(3) }
-        }
-    };
+    let contact = s.contact.model.step_cost(s, &d);
     // With "auto", the map's own measurement of the chosen model.
     // (per 0.2 mm rolled: per step of the fixed grid in proportion to its element).
     let contact =
         s.contact.auto.map_or(contact, |a| a.chosen.cpu_per_step * a.chosen.grid_dx().map_or(1.0, |dx| dx / 2e-4));
-    let deposit = if fixed_step.is_some() { 0.0 } else { p.substeps as f64 * nodes * 20e-9 };
+    // Wear ~ 20 ns per node visit (the fixed grid's cell deposit is in its
+    // step's fit).
+    let deposit = if fixed.is_some() { 0.0 } else { p.substeps as f64 * nodes * 20e-9 };
     let per_passage = p.n_steps() as f64 * (contact + deposit);
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
     // The discrete model tabulates its receptances once per traffic class
@@ -160,7 +163,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
         per_passage,
         passes,
         setup,
-        memory: memory(s, &g, p.n_steps(), n_el, fixed.as_ref().map(|(_, f)| f.grid().len())),
+        memory: memory(s, &g, p.n_steps(), fixed.as_ref().map(|(_, f)| f.grid().len())),
     }
 }
 
@@ -171,7 +174,8 @@ pub fn estimate(s: &Scene) -> CostEstimate {
 /// model's matrices (the adapted exact model's influence matrices and
 /// Newton Jacobian, about 40 N^2 bytes; the fixed grid's FFT tables, about
 /// 2 kB per element); all times 1.5.
-fn memory(s: &Scene, g: &crate::rail_grid::RailGrid, steps: usize, n_el: f64, grid_elements: Option<usize>) -> f64 {
+fn memory(s: &Scene, g: &crate::rail_grid::RailGrid, steps: usize, grid_elements: Option<usize>) -> f64 {
+    let n_el = s.contact.model.mesh().map_or(0, |m| m.len()) as f64;
     let nodes = (g.nx * g.ny) as f64;
     let (snapshots, histories) = match &s.growth {
         Some(gr) => {
@@ -184,7 +188,7 @@ fn memory(s: &Scene, g: &crate::rail_grid::RailGrid, steps: usize, n_el: f64, gr
     let history = (histories * steps) as f64 * (16.0 * 8.0 + fields);
     let solver = match grid_elements {
         Some(n) => 2e3 * n as f64,
-        None if s.contact.model == ContactModelKind::ExactTransient => 40.0 * n_el * n_el,
+        None if s.contact.model.kind() == ContactModelKind::ExactTransient => 40.0 * n_el * n_el,
         None => 1e3 * n_el,
     };
     1.5 * (30e6 + 2.0 * snapshots as f64 * nodes * 16.0 + history + solver)

@@ -251,6 +251,7 @@ fn watched<T, E>(
 ) -> Result<T, E> {
     let checkpoint = interrupt::Checkpoint::default();
     checkpoint.written(kept);
+    bar.set_file(out);
     interrupt::watch(out.to_path_buf(), &checkpoint, target);
     let result = work(&mut |e| {
         if let corrugation::run::Event::Checkpoint { done } = e {

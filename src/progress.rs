@@ -17,6 +17,8 @@ pub struct Progress {
     start: Instant,
     last_line: Option<Instant>,
     first_pass: Option<usize>,
+    /// The run file the checkpoints go to.
+    file: String,
 }
 
 impl Progress {
@@ -44,7 +46,13 @@ impl Progress {
             start: Instant::now(),
             last_line: None,
             first_pass: None,
+            file: "the run file".into(),
         }
+    }
+
+    /// Names the run file the checkpoints are written to.
+    pub fn set_file(&mut self, path: &std::path::Path) {
+        self.file = path.display().to_string();
     }
 
     /// Reports one event of the run.
@@ -116,7 +124,7 @@ impl Progress {
                 }
             }
             Event::Checkpoint { done } => {
-                let text = format!("checkpoint written after passage {done}");
+                let text = format!("checkpoint: {} holds passages 1-{done}", self.file);
                 match &self.bar {
                     Some(b) => b.println(text),
                     None => say!("{text}"),

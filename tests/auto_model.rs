@@ -54,14 +54,14 @@ fn the_choice_is_the_cheapest_within_the_tolerance_and_never_slower_than_exact()
         for tolerance in [0.17, 0.2, 0.25, 0.3, 0.4, 0.5, 0.8] {
             let scene = auto_scene(config, tolerance).unwrap_or_else(|e| panic!("{name} {tolerance}: {e}"));
             let a = scene.contact.auto.expect("auto");
-            assert_eq!(scene.contact.model, a.chosen.model);
+            assert_eq!(scene.contact.model.kind(), a.chosen.model);
             match a.chosen.grid_dx() {
                 Some(dx) => {
-                    let corrugation::params::ContactGrid::Fixed(f) = scene.contact.grid else { panic!("fixed grid") };
+                    let Some(f) = scene.contact.model.fixed_grid() else { panic!("fixed grid") };
                     assert_eq!((f.dx, scene.step_length), (dx, dx));
                 }
                 None => {
-                    assert_eq!((scene.contact.elements_x, scene.contact.elements_y), (a.chosen.mesh, a.chosen.mesh))
+                    assert_eq!(scene.contact.model.mesh().map(|m| (m.nx, m.ny)), Some((a.chosen.mesh, a.chosen.mesh)))
                 }
             }
             assert!(a.chosen.wear_error <= SAFETY * tolerance, "{name} {tolerance}");
@@ -89,7 +89,7 @@ fn the_chosen_model_meets_the_tolerance_against_the_reference() {
         let scene = auto_scene(config, tolerance).unwrap();
         let a = scene.contact.auto.unwrap();
         let error = wear_error(&scene, &reference(csv));
-        let model = scene.contact.model;
+        let model = scene.contact.model.kind();
         eprintln!("{name} tolerance {tolerance}: {}, wear error {error:.4}", a.chosen.label());
         assert!(error <= tolerance, "{name}: {error} > {tolerance}");
         // The prediction is the map's measurement of the same scene family.
@@ -131,7 +131,7 @@ fn auto_in_a_growth_study_fits_the_stretch_and_takes_the_consistent_chain() {
         &set.map(String::from),
     )
     .unwrap_or_else(|e| panic!("{e}"));
-    let corrugation::params::ContactGrid::Fixed(f) = r.scene.contact.grid else { panic!("a fixed grid") };
+    let Some(f) = r.scene.contact.model.fixed_grid() else { panic!("a fixed grid") };
     let steps = 0.12 / f.dx;
     assert!((steps - steps.round()).abs() < 1e-6 && f.dx <= 2.8e-4, "element {}", f.dx);
     // The consistent chain: the nonlinear profile contact on a grid 1.5

@@ -101,7 +101,7 @@ fn fixed_grid_keys() {
     let exact = "contact.model=exact-transient";
     // The step follows the element (the config's step_length sets dx) ...
     let r = load_str(BASE, "base", &[exact.into(), "contact.grid=fixed".into()]).unwrap();
-    let corrugation::params::ContactGrid::Fixed(f) = r.scene.contact.grid else { panic!("fixed grid") };
+    let Some(f) = r.scene.contact.model.fixed_grid() else { panic!("fixed grid") };
     assert_eq!((f.dx, r.scene.step_length), (2e-4, 2e-4));
     assert!(r.toml.contains("dx = 0.0002") && r.toml.contains("friction_law = \"regularised\""), "{}", r.toml);
     let again = load_str(&r.toml, "resolved", &[]).unwrap();
@@ -114,7 +114,7 @@ fn fixed_grid_keys() {
     // The fixed grid's keys on the adapted mesh are checked and unused (a
     // fixed-grid config switches back with --set contact.grid=adapted).
     let r = load_str(BASE, "base", &[exact.into(), "contact.dx=4e-4".into()]).unwrap();
-    assert_eq!((r.scene.contact.grid, r.scene.step_length), (corrugation::params::ContactGrid::Adapted, 2e-4));
+    assert_eq!((r.scene.contact.model.fixed_grid(), r.scene.step_length), (None, 2e-4));
     // (overrides, expected fragment of the single error)
     let corpus: &[(&[&str], &str)] = &[
         (
@@ -122,7 +122,7 @@ fn fixed_grid_keys() {
             "contact.grid: = \"fixed\" is a discretisation of the exact-transient model, not of contact.model = \"fastsim\"",
         ),
         (
-            &[exact, "contact.grid=fixed", "contact.dx=4e-4"],
+            &[exact, "contact.grid=fixed", "contact.dx=4e-4", "passage.step_length=2e-4"],
             "passage.step_length: = 0.0002 m must equal contact.dx = 0.0004 m",
         ),
         (
@@ -214,9 +214,80 @@ fn a_string_key_takes_a_bare_word_in_every_config() {
 }
 
 #[test]
+fn either_step_key_set_alone_sets_both_on_the_fixed_grid() {
+    // The file gives passage.step_length = 2e-4; one override of either key
+    // moves both (README, Configuration); two that differ are refused.
+    let fixed = ["contact.model=exact-transient", "contact.grid=fixed"].map(String::from);
+    for key in ["contact.dx", "passage.step_length"] {
+        let mut set = fixed.to_vec();
+        set.push(format!("{key}=2.5e-4"));
+        let r = load_str(BASE, "base", &set).unwrap_or_else(|e| panic!("{key}: {e}"));
+        assert_eq!(r.scene.step_length, 2.5e-4, "{key}");
+        assert!(r.scene.contact.model.fixed_grid().is_some_and(|f| f.dx == 2.5e-4), "{key}");
+    }
+    let mut set = fixed.to_vec();
+    set.extend(["contact.dx=2.5e-4".to_string(), "passage.step_length=3e-4".to_string()]);
+    let e = load_str(BASE, "base", &set).unwrap_err().to_string();
+    assert!(e.contains("passage.step_length: = 0.0003 m must equal contact.dx = 0.00025 m"), "{e}");
+    // On the adapted mesh contact.dx is unused and the step stays the file's.
+    let r = load_str(BASE, "base", &["contact.dx=2.5e-4".to_string()]).unwrap();
+    assert_eq!(r.scene.step_length, 2e-4);
+}
+
+#[test]
+fn each_choice_is_one_typed_value() {
+    use corrugation::contact::PressureShape;
+    use corrugation::contact::friction::FrictionLaw;
+    use corrugation::contact::grid::{GridScheme, GridSolver};
+    use corrugation::contact::transient::StepSolver;
+    use corrugation::params::{ContactGrid, ContactModel, Mesh};
+    let scene =
+        |set: &[&str]| load_str(BASE, "base", &set.iter().map(|s| s.to_string()).collect::<Vec<_>>()).unwrap().scene;
+    let mesh = Mesh { nx: 12, ny: 14 };
+    let m = ["contact.elements_x=12", "contact.elements_y=14"];
+    assert_eq!(
+        scene(&[&m[..], &["contact.fastsim_bound=elliptic"]].concat()).contact.model,
+        ContactModel::Fastsim { mesh, bound: PressureShape::Hertz }
+    );
+    assert_eq!(
+        scene(&[&m[..], &["contact.model=simplified-transient"]].concat()).contact.model,
+        ContactModel::SimplifiedTransient { mesh, bound: PressureShape::Parabolic }
+    );
+    assert_eq!(
+        scene(&[&m[..], &["contact.model=exact-transient", "contact.solver=newton"]].concat()).contact.model,
+        ContactModel::ExactTransient(ContactGrid::Adapted { mesh, solver: StepSolver::Newton })
+    );
+    // The adapted mesh takes Gauss-Seidel for the fixed grid's solver names.
+    assert_eq!(
+        scene(&[&m[..], &["contact.model=exact-transient", "contact.solver=cg"]].concat()).contact.model,
+        ContactModel::ExactTransient(ContactGrid::Adapted { mesh, solver: StepSolver::GaussSeidel })
+    );
+    let fixed = scene(&[
+        "contact.model=exact-transient",
+        "contact.grid=fixed",
+        "contact.friction_law=coulomb",
+        "contact.scheme=third-order",
+        "contact.solver=gauss-seidel",
+    ]);
+    let f = fixed.contact.model.fixed_grid().expect("a fixed grid");
+    assert_eq!(
+        (f.friction_law, f.scheme, f.solver),
+        (FrictionLaw::Coulomb, GridScheme::ThirdOrder, GridSolver::GaussSeidel)
+    );
+    assert_eq!(fixed.contact.model.mesh(), None);
+    // Every name a variant has parses back to it.
+    for law in [FrictionLaw::Regularised, FrictionLaw::Coulomb] {
+        assert_eq!(law.name().parse::<FrictionLaw>().unwrap(), law);
+    }
+    for s in [GridSolver::Auto, GridSolver::Cg, GridSolver::GaussSeidel] {
+        assert_eq!(s.name().parse::<GridSolver>().unwrap(), s);
+    }
+}
+
+#[test]
 fn whole_numbers_written_as_floats_are_integers() {
     let r = load_str(BASE, "base", &["contact.elements_x=1e1".into(), "wear.substeps=4.0".into()]).unwrap();
-    assert_eq!(r.scene.contact.elements_x, 10);
+    assert_eq!(r.scene.contact.model.mesh().map(|m| m.nx), Some(10));
     assert_eq!(r.scene.wear_substeps, 4);
     assert!(r.toml.contains("elements_x = 10\n"), "{}", r.toml);
     let e = errors(BASE, &["contact.elements_x=1e3"]);
@@ -261,7 +332,7 @@ fn resolved_config_round_trips() {
     let r = load_str(BASE, "base", &["contact.elements_x=12".into()]).unwrap();
     let again = load_str(&r.toml, "resolved", &[]).unwrap();
     assert_eq!(again.scene, r.scene);
-    assert_eq!(r.scene.contact.elements_x, 12);
+    assert_eq!(r.scene.contact.model.mesh().map(|m| m.nx), Some(12));
     assert!(r.toml.contains("substeps = 4"), "defaults are written out");
 }
 

@@ -7,7 +7,8 @@ use crate::contact::PressureShape;
 use crate::contact::friction::FrictionLaw;
 use crate::contact::grid::{GridScheme, GridSolver};
 use crate::contact::transient::StepSolver;
-use crate::params::{ContactGrid, ContactModelKind, FixedGridParams, NormalContact};
+use crate::params::{ContactModelKind, FixedGridParams, GridKind, NormalContact, NormalKind};
+use strum::VariantNames;
 use toml::{Table, Value};
 
 /// Default element length of the fixed grid along x (m), and so its step.
@@ -55,10 +56,10 @@ pub(super) struct FixedKeys {
 pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError>) -> ContactKeys {
     let mut s = Section::new(root, "", "contact", errors);
     let names = ContactModelKind::ALL.map(ContactModelKind::name);
-    let model = s.choice("model", Some("fastsim"), &[&names[..], &[AUTO]].concat());
+    let model = s.choice("model", Some(ContactModelKind::Fastsim.name()), &[&names[..], &[AUTO]].concat());
     let auto = model.as_deref() == Some(AUTO);
-    let grid = s.choice("grid", Some("adapted"), &["adapted", "fixed"]);
-    let fixed = grid.as_deref() == Some("fixed");
+    let grid = s.choice("grid", Some(GridKind::Adapted.into()), GridKind::VARIANTS);
+    let fixed = grid.as_deref().and_then(|g| g.parse().ok()) == Some(GridKind::Fixed);
     // "auto" chooses the mesh and reads a tolerance; the other models take a
     // mesh and have no tolerance. The fixed grid ignores the adapted mesh's
     // keys and the other way round (so that `--set contact.grid=...`
@@ -79,10 +80,14 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         (s.usize("elements_x", Some(20), 2, 200), s.usize("elements_y", Some(20), 2, 200), Some(0.0))
     };
     let eps = s.f64("regularisation", Some(1e-5), Range::Positive);
-    let bound = s.choice("fastsim_bound", Some("parabolic"), &["parabolic", "elliptic"]);
-    let solver = s.choice("solver", Some("auto"), &["auto", "gauss-seidel", "newton", "cg"]);
-    let normal = s.choice("normal", Some("auto"), &["auto", "linear", "profile", "hertz"]);
-    let profile = matches!(normal.as_deref(), Some("profile" | "auto"));
+    let bound = s.choice("fastsim_bound", Some(PressureShape::Parabolic.into()), PressureShape::VARIANTS);
+    // One key names the fixed grid's solvers and the adapted mesh's.
+    let mut solvers: Vec<&str> = GridSolver::VARIANTS.to_vec();
+    solvers.extend(StepSolver::VARIANTS.iter().filter(|s| !GridSolver::VARIANTS.contains(s)));
+    let solver = s.choice("solver", Some(GridSolver::Auto.name()), &solvers);
+    let normal = s.choice("normal", Some(NormalKind::Auto.into()), NormalKind::VARIANTS);
+    let normal_kind = normal.as_deref().and_then(|n| n.parse::<NormalKind>().ok());
+    let profile = matches!(normal_kind, Some(NormalKind::Profile | NormalKind::Auto));
     let length_range = Range::Closed(1.0, 4.0);
     let grid_scale = if profile && (fixed || auto) {
         s.f64("profile_grid_scale", Some(DEFAULT_PROFILE_GRID_SCALE), length_range)
@@ -96,8 +101,8 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         let given = s.has("dx");
         let dx = s.f64("dx", Some(DEFAULT_GRID_DX), Range::OpenClosed(0.0, 0.01));
         let dy = s.f64("dy", Some(DEFAULT_GRID_DY), Range::OpenClosed(0.0, 0.01));
-        let law = s.choice("friction_law", Some("regularised"), &["regularised", "coulomb"]);
-        let scheme = s.choice("scheme", Some("second-order"), &["second-order", "first-order", "third-order"]);
+        let law = s.choice("friction_law", Some(FrictionLaw::default().name()), FrictionLaw::VARIANTS);
+        let scheme = s.choice("scheme", Some(GridScheme::default().name()), GridScheme::VARIANTS);
         Some(FixedKeys { dx, dx_given: given, dy, law, scheme })
     } else {
         // The fixed grid's keys on the adapted mesh: checked, kept in the
@@ -109,10 +114,10 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
             }
         }
         if s.has("friction_law") {
-            s.choice("friction_law", None, &["regularised", "coulomb"]);
+            s.choice("friction_law", None, FrictionLaw::VARIANTS);
         }
         if s.has("scheme") {
-            s.choice("scheme", None, &["second-order", "first-order", "third-order"]);
+            s.choice("scheme", None, GridScheme::VARIANTS);
         }
         None
     };
@@ -121,24 +126,20 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
 }
 
 /// The normal contact named by `contact.normal` (None when invalid), for a
-/// scene on `grid` (`chosen` by `contact.model = "auto"`).
+/// scene on the fixed grid or not (`chosen` by `contact.model = "auto"`).
 pub(super) fn normal_contact(
     normal: Option<&str>,
     grid_scale: Option<f64>,
-    grid: &ContactGrid,
+    fixed: bool,
     chosen: bool,
     errors: &mut Vec<ConfigError>,
 ) -> Option<NormalContact> {
-    let grid_scale = match grid {
-        ContactGrid::Fixed(_) => grid_scale?,
-        ContactGrid::Adapted => 1.0,
-    };
-    let fixed = matches!(grid, ContactGrid::Fixed(_));
+    let grid_scale = if fixed { grid_scale? } else { 1.0 };
     // With contact.model = "auto" the grid is the choice's, not the key's.
     let by_auto = if chosen { " (contact.model = \"auto\" chose it)" } else { "" };
-    Some(match normal? {
-        "hertz" => NormalContact::Hertz,
-        "linear" if fixed => {
+    Some(match normal?.parse::<NormalKind>().ok()? {
+        NormalKind::Hertz => NormalContact::Hertz,
+        NormalKind::Linear if fixed => {
             errors.push(ConfigError::new(
                 "contact.normal",
                 format!(
@@ -149,7 +150,7 @@ pub(super) fn normal_contact(
             ));
             return None;
         }
-        "profile" if !fixed => {
+        NormalKind::Profile if !fixed => {
             errors.push(ConfigError::new(
                 "contact.normal",
                 format!(
@@ -159,25 +160,26 @@ pub(super) fn normal_contact(
             ));
             return None;
         }
-        "linear" => NormalContact::Linear,
-        "profile" => NormalContact::Profile { grid_scale },
-        _ => NormalContact::Auto { grid_scale },
+        NormalKind::Linear => NormalContact::Linear,
+        NormalKind::Profile => NormalContact::Profile { grid_scale },
+        NormalKind::Auto => NormalContact::Auto { grid_scale },
     })
 }
 
 /// The step length of a fixed-grid passage: `passage.step_length` and
 /// `contact.dx` must be equal (the patch moves one element per step); one
 /// of them given sets the other. Patches `resolved` so that it records
-/// both. Returns the fixed-grid parameters (None when invalid).
+/// both. Returns the fixed-grid parameters, if the grid is fixed (None when
+/// invalid).
 pub(super) fn reconcile_step(
     keys: &ContactKeys,
     step_length: Option<f64>,
     step_given: bool,
     resolved: &mut Table,
     errors: &mut Vec<ConfigError>,
-) -> Option<ContactGrid> {
+) -> Option<Option<FixedGridParams>> {
     let Some(f) = &keys.fixed else {
-        return Some(ContactGrid::Adapted);
+        return Some(None);
     };
     let (dx, dy, law, scheme) = (f.dx?, f.dy?, f.law.as_deref()?, f.scheme.as_deref()?);
     let dx = match (f.dx_given, step_given, step_length) {
@@ -199,23 +201,19 @@ pub(super) fn reconcile_step(
             t.insert(key.into(), Value::Float(dx));
         }
     }
-    Some(ContactGrid::Fixed(FixedGridParams {
+    Some(Some(FixedGridParams {
         dx,
         dy,
-        friction_law: if law == "coulomb" { FrictionLaw::Coulomb } else { FrictionLaw::Regularised },
-        scheme: match scheme {
-            "first-order" => GridScheme::FirstOrder,
-            "third-order" => GridScheme::ThirdOrder,
-            _ => GridScheme::SecondOrder,
-        },
+        friction_law: law.parse().expect("a validated choice"),
+        scheme: scheme.parse().expect("a validated choice"),
         solver: GridSolver::Auto,
     }))
 }
 
 /// Checks that combine the model with its grid and solver.
-pub(super) fn check_model(model: &str, grid: &ContactGrid, solver: &str, errors: &mut Vec<ConfigError>) {
-    if let ContactGrid::Fixed(f) = grid {
-        let law = Some(f.friction_law.name());
+pub(super) fn check_model(model: &str, grid: Option<&FixedGridParams>, solver: &str, errors: &mut Vec<ConfigError>) {
+    let solver = (solver.parse::<GridSolver>().ok(), solver.parse::<StepSolver>().ok());
+    if let Some(f) = grid {
         if model != ContactModelKind::ExactTransient.name() {
             errors.push(ConfigError::new(
                 "contact.grid",
@@ -225,7 +223,7 @@ pub(super) fn check_model(model: &str, grid: &ContactGrid, solver: &str, errors:
                 ),
             ));
         }
-        if solver == "newton" {
+        if solver.1 == Some(StepSolver::Newton) {
             errors.push(ConfigError::new(
                 "contact.solver",
                 "= \"newton\" is the adapted mesh's reference solver (dense Jacobian); allowed with contact.grid = \
@@ -233,7 +231,7 @@ pub(super) fn check_model(model: &str, grid: &ContactGrid, solver: &str, errors:
                     .into(),
             ));
         }
-        if solver == "cg" && law == Some("coulomb") {
+        if solver.0 == Some(GridSolver::Cg) && f.friction_law == FrictionLaw::Coulomb {
             errors.push(ConfigError::new(
                 "contact.solver",
                 "= \"cg\" solves the regularised friction law; with contact.friction_law = \"coulomb\" allowed: \
@@ -250,19 +248,13 @@ pub(super) fn check_model(model: &str, grid: &ContactGrid, solver: &str, errors:
 /// The fixed grid's tangential solver named by `contact.solver` (`auto`
 /// for `newton`, which [`check_model`] refuses on the fixed grid).
 pub(super) fn grid_solver(solver: &str) -> GridSolver {
-    match solver {
-        "cg" => GridSolver::Cg,
-        "gauss-seidel" => GridSolver::GaussSeidel,
-        _ => GridSolver::Auto,
-    }
+    solver.parse().unwrap_or(GridSolver::Auto)
 }
 
-/// The FASTSIM traction bound and the step solver named by their keys.
+/// The FASTSIM traction bound and the adapted mesh's step solver named by
+/// their keys (Gauss-Seidel for the fixed grid's `auto` and `cg`).
 pub(super) fn bound_and_solver(bound: &str, solver: &str) -> (PressureShape, StepSolver) {
-    (
-        if bound == "elliptic" { PressureShape::Hertz } else { PressureShape::Parabolic },
-        if solver == "newton" { StepSolver::Newton } else { StepSolver::GaussSeidel },
-    )
+    (bound.parse().expect("a validated choice"), solver.parse().unwrap_or(StepSolver::GaussSeidel))
 }
 
 /// Largest potential-contact grid along x and y (elements): the folded
@@ -272,12 +264,9 @@ pub const MAX_GRID: (usize, usize) = (400, 200);
 
 /// The fixed grid of a valid scene must fit [`MAX_GRID`].
 pub(super) fn check_grid_size(scene: &crate::params::Scene, errors: &mut Vec<ConfigError>) {
-    let ContactGrid::Fixed(f) = scene.contact.grid else {
+    let Some(f) = scene.contact.model.fixed_grid() else {
         return;
     };
-    if scene.contact.model != ContactModelKind::ExactTransient {
-        return;
-    }
     let shape = crate::build::derive(scene).shape;
     let s = crate::build::fixed_grid_spec(scene, &shape, f);
     let g = s.grid();
@@ -299,7 +288,7 @@ pub(super) fn check_grid_size(scene: &crate::params::Scene, errors: &mut Vec<Con
 /// its wear, all at the wrap point, drives every harmonic (0.5 dB per 1e5
 /// passages at 17 mm with 0.28 mm steps on 120 mm, scripts/growth_accuracy.sh).
 pub(super) fn check_periodic_steps(scene: &crate::params::Scene, errors: &mut Vec<ConfigError>) {
-    let (ContactGrid::Fixed(f), Some(_)) = (scene.contact.grid, &scene.growth) else {
+    let (Some(f), Some(_)) = (scene.contact.model.fixed_grid(), &scene.growth) else {
         return;
     };
     let length = scene.rail.x_max - scene.rail.x_min;

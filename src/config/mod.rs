@@ -23,7 +23,8 @@ use crate::hertz::{Elastic, HertzShape};
 use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};
 use crate::model_choice::FIXED_ASPECT;
 use crate::params::{
-    ContactGrid, ContactModelKind, ContactParams, FixedGridParams, Geometry, Material, OutputParams, RailParams, Scene,
+    ContactGrid, ContactModel, ContactModelKind, ContactParams, FixedGridParams, Geometry, Material, Mesh,
+    OutputParams, RailParams, Scene,
 };
 pub use auto::AUTO;
 pub use contact::{DEFAULT_GRID_DX, DEFAULT_GRID_DY};
@@ -119,12 +120,30 @@ pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolv
     };
     let mut errors: Vec<ConfigError> =
         overrides.iter().filter_map(|o| overrides::apply(&mut root, o, &defaults).err()).collect();
+    overridden_step_sets_both(&mut root, overrides);
     let (scene, resolved) = read_scene(root, &mut errors);
     match scene {
         Some(scene) if errors.is_empty() => {
             Ok(Resolved { scene, toml: toml::to_string(&resolved).expect("resolved config serialises") })
         }
         _ => Err(fail(errors)),
+    }
+}
+
+/// On the fixed grid the step is the element: `--set contact.dx` or
+/// `--set passage.step_length` alone sets both, so the file's value of the
+/// other key, which the override would contradict, is dropped.
+fn overridden_step_sets_both(root: &mut Table, overrides: &[String]) {
+    let grid = root.get("contact").and_then(|c| c.get("grid")).and_then(Value::as_str);
+    let fixed = grid.and_then(|g| g.parse().ok()) == Some(crate::params::GridKind::Fixed);
+    let set = |key: &str| overrides.iter().any(|o| o.split_once('=').is_some_and(|(k, _)| k.trim() == key));
+    let other = match (set("contact.dx"), set("passage.step_length")) {
+        (true, false) => ("passage", "step_length"),
+        (false, true) => ("contact", "dx"),
+        _ => return,
+    };
+    if fixed && let Some(Value::Table(t)) = root.get_mut(other.0) {
+        t.remove(other.1);
     }
 }
 
@@ -219,13 +238,12 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let loads = ImposedLoads { normal_force: normal, longitudinal_force: longitudinal, harmonics };
     check_loads(&loads, mu, dx, errors);
 
-    let Some(mut contact_grid) = contact::reconcile_step(&contact, step_length, step_given, &mut resolved, errors)
-    else {
+    let Some(mut fixed_grid) = contact::reconcile_step(&contact, step_length, step_given, &mut resolved, errors) else {
         return (None, resolved);
     };
-    let step_length = match contact_grid {
-        ContactGrid::Fixed(f) => Some(f.dx),
-        ContactGrid::Adapted => step_length,
+    let step_length = match fixed_grid {
+        Some(f) => Some(f.dx),
+        None => step_length,
     };
     let contact::ContactKeys { model, nx, ny, tolerance, eps, bound, solver, normal: normal_key, grid_scale, .. } =
         contact;
@@ -234,8 +252,8 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     else {
         return (None, resolved);
     };
-    contact::check_model(&model, &contact_grid, &solver, errors);
-    if let ContactGrid::Fixed(f) = &mut contact_grid {
+    contact::check_model(&model, fixed_grid.as_ref(), &solver, errors);
+    if let Some(f) = &mut fixed_grid {
         f.solver = contact::grid_solver(&solver);
     }
     let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(mut step_length)) =
@@ -295,7 +313,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     }
     let (fastsim_bound, step_solver) = contact::bound_and_solver(&bound, &solver);
     let (model, nx, ny, auto) = if model == AUTO {
-        if solver == "newton" {
+        if step_solver == crate::contact::transient::StepSolver::Newton {
             errors.push(ConfigError::new(
                 "contact.solver",
                 "= \"newton\" cannot go with contact.model = \"auto\": the map's costs are those of the \
@@ -319,7 +337,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
                 // finer element that does (at least as accurate).
                 let length = x_max - x_min;
                 let dx = if growth.is_some() { length / (length / dx - 1e-9).ceil() } else { dx };
-                contact_grid = ContactGrid::Fixed(FixedGridParams {
+                fixed_grid = Some(FixedGridParams {
                     dx,
                     dy: FIXED_ASPECT * dx,
                     friction_law: FrictionLaw::Regularised,
@@ -333,12 +351,21 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         };
         (chosen.model, mesh, mesh, Some(choice))
     } else {
-        (ContactModelKind::ALL.into_iter().find(|m| m.name() == model).expect("validated choice"), nx, ny, None)
+        (model.parse().expect("a validated choice"), nx, ny, None)
     };
     let Some(normal_contact) =
-        contact::normal_contact(normal_key.as_deref(), grid_scale, &contact_grid, auto.is_some(), errors)
+        contact::normal_contact(normal_key.as_deref(), grid_scale, fixed_grid.is_some(), auto.is_some(), errors)
     else {
         return (None, resolved);
+    };
+    let mesh = Mesh { nx, ny };
+    let contact_model = match (model, fixed_grid) {
+        (ContactModelKind::Fastsim, _) => ContactModel::Fastsim { mesh, bound: fastsim_bound },
+        (ContactModelKind::SimplifiedTransient, _) => ContactModel::SimplifiedTransient { mesh, bound: fastsim_bound },
+        (ContactModelKind::ExactTransient, Some(f)) => ContactModel::ExactTransient(ContactGrid::Fixed(f)),
+        (ContactModelKind::ExactTransient, None) => {
+            ContactModel::ExactTransient(ContactGrid::Adapted { mesh, solver: step_solver })
+        }
     };
     let scene = Scene {
         material,
@@ -347,17 +374,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         creepage_y,
         spin,
         loads,
-        contact: ContactParams {
-            model,
-            elements_x: nx,
-            elements_y: ny,
-            regularisation: eps,
-            fastsim_bound,
-            solver: step_solver,
-            auto,
-            grid: contact_grid,
-            normal: normal_contact,
-        },
+        contact: ContactParams { model: contact_model, regularisation: eps, auto, normal: normal_contact },
         k_over_h,
         wear_substeps: substeps,
         start,
@@ -374,9 +391,9 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     // contact.solver = "auto" on the fixed grid: the cheaper tangential
     // solver by the cost model (the config keeps "auto").
     let mut scene = scene;
-    if errors.is_empty() && scene.contact.model == ContactModelKind::ExactTransient {
+    if errors.is_empty() && scene.contact.model.fixed_grid().is_some() {
         let choice = crate::cost::auto_grid_solver(&scene);
-        if let ContactGrid::Fixed(f) = &mut scene.contact.grid {
+        if let ContactModel::ExactTransient(ContactGrid::Fixed(f)) = &mut scene.contact.model {
             f.solver = choice;
         }
     }

@@ -70,7 +70,8 @@ impl Law {
 
 /// The friction law a config names (`contact.friction_law`), without its
 /// parameter.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, strum::EnumString, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "kebab-case")]
 pub enum FrictionLaw {
     /// The paper's regularised Coulomb law (Eq. 6), with `contact.regularisation`.
     #[default]
@@ -82,10 +83,7 @@ pub enum FrictionLaw {
 impl FrictionLaw {
     /// Config name (`contact.friction_law`).
     pub fn name(self) -> &'static str {
-        match self {
-            FrictionLaw::Regularised => "regularised",
-            FrictionLaw::Coulomb => "coulomb",
-        }
+        self.into()
     }
 }
 

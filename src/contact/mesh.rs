@@ -86,13 +86,17 @@ impl EllipseMesh {
 }
 
 /// Normal pressure distribution assumed over the patch.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Named as FASTSIM's traction bound (`contact.fastsim_bound`):
+/// "parabolic", "elliptic".
+#[derive(Debug, Clone, Copy, PartialEq, Eq, strum::EnumString, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "lowercase")]
 pub enum PressureShape {
-    /// Hertz: p3 proportional to sqrt(1 - xi^2 - eta^2).
-    Hertz,
     /// Kalker's parabolic distribution of FASTSIM: p3 proportional to
     /// 1 - xi^2 - eta^2.
     Parabolic,
+    /// Hertz: p3 proportional to sqrt(1 - xi^2 - eta^2).
+    #[strum(serialize = "elliptic")]
+    Hertz,
 }
 
 /// Pressure at the element centres (Pa), scaled so that its discrete

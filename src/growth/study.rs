@@ -31,7 +31,7 @@ use crate::contact::{ContactError, Elements, TangentialSolver};
 use crate::dynamics::TrackDynamics;
 use crate::metrics::{centre_row, rms_corrugation};
 use crate::model_choice::hertz_validity::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
-use crate::params::{ContactGrid, GrowthParams, NormalContact, Scene, StopRule, TrafficClass, TrafficScaling};
+use crate::params::{GrowthParams, NormalContact, Scene, StopRule, TrafficClass, TrafficScaling};
 use crate::passage::{PassageError, PassageSpec, run_passage};
 use crate::rail_grid::RailGrid;
 use crate::wear::WearKernel;
@@ -199,10 +199,10 @@ impl<'a> Study<'a> {
         };
         let hertz_check = HertzCheck {
             active: scene.contact.normal == NormalContact::Hertz && has_dynamics,
-            fixed: matches!(scene.contact.grid, ContactGrid::Fixed(_)),
-            from: match scene.contact.grid {
-                ContactGrid::Fixed(f) => PROFILE_NOISE_AMPLITUDE * f.dx / PROFILE_NOISE_ELEMENT,
-                ContactGrid::Adapted => PROFILE_NOISE_AMPLITUDE,
+            fixed: scene.contact.model.fixed_grid().is_some(),
+            from: match scene.contact.model.fixed_grid() {
+                Some(f) => PROFILE_NOISE_AMPLITUDE * f.dx / PROFILE_NOISE_ELEMENT,
+                None => PROFILE_NOISE_AMPLITUDE,
             },
         };
         // A study that stopped (growth.stop) stays stopped when resumed: the
@@ -426,9 +426,7 @@ impl<'a> Study<'a> {
     /// nonlinear profile contact on the fixed grid.
     fn normal_contact(&self) -> NormalContact {
         match self.scene.contact.normal {
-            NormalContact::Auto { .. } if !matches!(self.scene.contact.grid, ContactGrid::Fixed(_)) => {
-                NormalContact::Linear
-            }
+            NormalContact::Auto { .. } if self.scene.contact.model.fixed_grid().is_none() => NormalContact::Linear,
             normal => normal,
         }
     }

@@ -230,7 +230,7 @@ pub fn departures(scene: &crate::params::Scene) -> Vec<String> {
     if !(1e-6..=1e-4).contains(&eps) {
         notes.push(format!("contact.regularisation = {eps:e} m/s (map: 1e-5; wear moves ~10 % per decade above 1e-4)"));
     }
-    let adapted = scene.contact.grid == crate::params::ContactGrid::Adapted;
+    let adapted = scene.contact.model.fixed_grid().is_none();
     if adapted && !(1.3e-4..=3e-4).contains(&scene.step_length) {
         notes.push(format!("passage.step_length = {:e} m (map: 2e-4; the error grows with V dt)", scene.step_length));
     }

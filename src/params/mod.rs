@@ -17,7 +17,8 @@ pub use growth::{
 };
 
 /// Tangential contact model.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, strum::EnumString, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "kebab-case")]
 pub enum ContactModelKind {
     /// Kalker's FASTSIM (steady, simplified theory).
     Fastsim,
@@ -30,11 +31,7 @@ pub enum ContactModelKind {
 impl ContactModelKind {
     /// Config name of the model.
     pub fn name(self) -> &'static str {
-        match self {
-            ContactModelKind::Fastsim => "fastsim",
-            ContactModelKind::ExactTransient => "exact-transient",
-            ContactModelKind::SimplifiedTransient => "simplified-transient",
-        }
+        self.into()
     }
 
     /// All models, in the order of the config documentation.
@@ -74,38 +71,122 @@ impl Geometry {
     }
 }
 
-/// Contact model and its discretisation.
+/// The contact: the tangential model with its discretisation, and what
+/// the normal problem sees of the rail.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactParams {
-    /// The tangential model.
-    pub model: ContactModelKind,
-    /// Elements per strip along x.
-    pub elements_x: usize,
-    /// Strips along y.
-    pub elements_y: usize,
+    /// The tangential model and its discretisation.
+    pub model: ContactModel,
     /// Regularisation velocity eps of the Coulomb law (m/s), transient models.
     pub regularisation: f64,
-    /// Traction bound of FASTSIM.
-    pub fastsim_bound: PressureShape,
-    /// How the exact-transient model solves each step (Gauss-Seidel, or the
-    /// Newton-Raphson reference).
-    pub solver: StepSolver,
     /// What `contact.model = "auto"` chose (None when the config names the
     /// model).
     pub auto: Option<AutoChoice>,
-    /// The discretisation of the exact-transient model.
-    pub grid: ContactGrid,
     /// What the normal problem sees of the rail.
     pub normal: NormalContact,
 }
 
-/// How the exact-transient model discretises the contact area.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// A patch-adapted mesh (`contact.elements_x` x `contact.elements_y`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Mesh {
+    /// Elements per strip along x.
+    pub nx: usize,
+    /// Strips along y.
+    pub ny: usize,
+}
+
+impl Mesh {
+    /// Number of elements.
+    pub fn len(&self) -> usize {
+        self.nx * self.ny
+    }
+
+    /// Whether the mesh has no elements.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+/// The tangential contact model with its discretisation
+/// (`contact.model`, `contact.grid` and their keys): one value per valid
+/// combination, so that only the exact model can be on the fixed grid.
+/// Its element count is [`ContactModel::elements`] (`crate::build`), its
+/// cost `crate::cost`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactModel {
+    /// Kalker's FASTSIM on the adapted mesh, with its traction bound.
+    Fastsim {
+        /// The mesh.
+        mesh: Mesh,
+        /// Traction bound (`contact.fastsim_bound`).
+        bound: PressureShape,
+    },
+    /// The paper's time stepping with the simplified (Winkler) elastic
+    /// model on the adapted mesh, with FASTSIM's traction bound.
+    SimplifiedTransient {
+        /// The mesh.
+        mesh: Mesh,
+        /// Traction bound (`contact.fastsim_bound`).
+        bound: PressureShape,
+    },
+    /// The paper's non-stationary model with Kalker's exact theory, on the
+    /// adapted mesh or the fixed grid.
+    ExactTransient(ContactGrid),
+}
+
+impl ContactModel {
+    /// Which model.
+    pub fn kind(&self) -> ContactModelKind {
+        match self {
+            ContactModel::Fastsim { .. } => ContactModelKind::Fastsim,
+            ContactModel::SimplifiedTransient { .. } => ContactModelKind::SimplifiedTransient,
+            ContactModel::ExactTransient(_) => ContactModelKind::ExactTransient,
+        }
+    }
+
+    /// Config name of the model.
+    pub fn name(&self) -> &'static str {
+        self.kind().name()
+    }
+
+    /// The fixed grid, if the model is on one.
+    pub fn fixed_grid(&self) -> Option<FixedGridParams> {
+        match self {
+            ContactModel::ExactTransient(ContactGrid::Fixed(f)) => Some(*f),
+            _ => None,
+        }
+    }
+
+    /// The adapted mesh, if the model is on one.
+    pub fn mesh(&self) -> Option<Mesh> {
+        match *self {
+            ContactModel::Fastsim { mesh, .. }
+            | ContactModel::SimplifiedTransient { mesh, .. }
+            | ContactModel::ExactTransient(ContactGrid::Adapted { mesh, .. }) => Some(mesh),
+            ContactModel::ExactTransient(ContactGrid::Fixed(_)) => None,
+        }
+    }
+}
+
+/// How the exact-transient model discretises the contact area; its names
+/// (`contact.grid`) are those of [`GridKind`].
+#[derive(Debug, Clone, Copy, PartialEq, strum::EnumDiscriminants)]
+#[strum_discriminants(
+    name(GridKind),
+    derive(strum::EnumString, strum::IntoStaticStr, strum::VariantNames),
+    strum(serialize_all = "lowercase"),
+    doc = "The kind of [`ContactGrid`], named as `contact.grid`."
+)]
 pub enum ContactGrid {
     /// The paper's Paul-Hashemi mesh adapted to the Hertz ellipse of every
-    /// step (`elements_x` x `elements_y`).
-    #[default]
-    Adapted,
+    /// step, solved by `solver` (Gauss-Seidel, or the Newton-Raphson
+    /// reference).
+    Adapted {
+        /// The mesh.
+        mesh: Mesh,
+        /// How each step is solved (`contact.solver`).
+        solver: StepSolver,
+    },
     /// A fixed potential-contact grid of uniform elements (CONTACT's
     /// discretisation).
     Fixed(FixedGridParams),
@@ -126,15 +207,27 @@ pub struct FixedGridParams {
     pub solver: GridSolver,
 }
 
-/// What the normal contact sees of the rail (`contact.normal`).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// What the normal contact sees of the rail (`contact.normal`); its
+/// names are those of [`NormalKind`].
+#[derive(Debug, Clone, Copy, PartialEq, strum::EnumDiscriminants)]
+#[strum_discriminants(
+    name(NormalKind),
+    derive(strum::EnumString, strum::IntoStaticStr, strum::VariantNames),
+    strum(serialize_all = "lowercase"),
+    doc = "The kind of [`NormalContact`], named as `contact.normal`."
+)]
 pub enum NormalContact {
-    /// The quadratic gap of the curvatures: Hertz's contact (the paper's
-    /// chain), the profile entering through the dynamic force only
-    /// (weighted across the patch by the Hertz line load, unfiltered along
-    /// it). Kept for comparison: it lacks the contact's own response to
-    /// the corrugation.
-    Hertz,
+    /// The consistent chain, the default: on the adapted mesh the linear
+    /// contact; on the fixed grid the nonlinear profile contact, whose
+    /// dynamics see the linear contact's equivalent roughness (the
+    /// flat-punch average, no normal solves) while the corrugation's
+    /// curvature is small against the wheel's, the nonlinear equivalent
+    /// roughness beyond.
+    Auto {
+        /// Size of the potential-contact grid (as for `Profile`; 1 on the
+        /// adapted mesh) (1).
+        grid_scale: f64,
+    },
     /// The linearised profile contact of the adapted mesh
     /// ([`crate::contact::linear`]): the patch moved and stretched to first
     /// order with the corrugation under it, the rest of the normal
@@ -149,28 +242,18 @@ pub enum NormalContact {
         /// the largest Hertz patch (1).
         grid_scale: f64,
     },
-    /// The consistent chain, the default: on the adapted mesh the linear
-    /// contact; on the fixed grid the nonlinear profile contact, whose
-    /// dynamics see the linear contact's equivalent roughness (the
-    /// flat-punch average, no normal solves) while the corrugation's
-    /// curvature is small against the wheel's, the nonlinear equivalent
-    /// roughness beyond.
-    Auto {
-        /// Size of the potential-contact grid (as for `Profile`; 1 on the
-        /// adapted mesh) (1).
-        grid_scale: f64,
-    },
+    /// The quadratic gap of the curvatures: Hertz's contact (the paper's
+    /// chain), the profile entering through the dynamic force only
+    /// (weighted across the patch by the Hertz line load, unfiltered along
+    /// it). Kept for comparison: it lacks the contact's own response to
+    /// the corrugation.
+    Hertz,
 }
 
 impl NormalContact {
     /// Config name (`contact.normal`).
     pub fn name(self) -> &'static str {
-        match self {
-            NormalContact::Hertz => "hertz",
-            NormalContact::Linear => "linear",
-            NormalContact::Profile { .. } => "profile",
-            NormalContact::Auto { .. } => "auto",
-        }
+        NormalKind::from(self).into()
     }
 
     /// Size of the potential-contact grid relative to the largest Hertz

@@ -16,7 +16,7 @@
 //! (every passage starts with a run-in from a reset solver), so a resumed
 //! run computes bit for bit what the uninterrupted run would have.
 
-use crate::build::{element_count, study_grid};
+use crate::build::study_grid;
 use crate::config::{ConfigErrors, Resolved, load_str};
 use crate::growth::spectrum::wavelengths;
 pub use crate::growth::state::RunState;
@@ -168,7 +168,7 @@ pub fn resume(
         return Err(ResumeError::NotGrowth { path: path.to_owned() });
     };
     let grid = study_grid(scene);
-    let elements = element_count(scene);
+    let elements = scene.contact.model.elements(scene);
     let layout = StateLayout {
         grid_shape: (grid.ny, grid.nx),
         wavelengths: wavelengths(grid.nx, grid.dx).len(),

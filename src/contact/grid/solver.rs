@@ -45,28 +45,26 @@ pub const GRID_FORCE_TOLERANCE: f64 = 1e-8;
 impl GridScheme {
     /// Config name (`contact.scheme`).
     pub fn name(self) -> &'static str {
-        match self {
-            GridScheme::FirstOrder => "first-order",
-            GridScheme::SecondOrder => "second-order",
-            GridScheme::ThirdOrder => "third-order",
-        }
+        self.into()
     }
 }
 
 /// The backward difference of the material derivative.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, strum::EnumString, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "kebab-case")]
 pub enum GridScheme {
-    /// `(u - u_o)/dt` (CONTACT).
-    FirstOrder,
     /// `(3 u - 4 u_o + u_oo)/(2 dt)`.
     #[default]
     SecondOrder,
+    /// `(u - u_o)/dt` (CONTACT).
+    FirstOrder,
     /// `(11 u - 18 u_o + 9 u_oo - 2 u_ooo)/(6 dt)`.
     ThirdOrder,
 }
 
 /// The tangential solver of the fixed grid (`contact.solver`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, strum::EnumString, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "kebab-case")]
 pub enum GridSolver {
     /// The cheaper of the two by the cost model for the regularised law
     /// (the config resolves it: `cost::auto_grid_solver`), Gauss-Seidel
@@ -96,11 +94,7 @@ impl GridSolver {
 
     /// Config name (`contact.solver`).
     pub fn name(self) -> &'static str {
-        match self {
-            GridSolver::Auto => "auto",
-            GridSolver::Cg => "cg",
-            GridSolver::GaussSeidel => "gauss-seidel",
-        }
+        self.into()
     }
 }
 

@@ -123,7 +123,8 @@ struct History {
 /// How the nonlinear system of a step is solved. [`Transient::new`] starts
 /// with the reference, Newton; configs default to Gauss-Seidel
 /// (`contact.solver`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, strum::EnumString, strum::IntoStaticStr, strum::VariantNames)]
+#[strum(serialize_all = "kebab-case")]
 pub enum StepSolver {
     /// Newton-Raphson on all slips with a dense LU (the reference).
     #[default]
