@@ -14,7 +14,7 @@ if [[ $# -gt 0 && $1 != --* ]]; then
   shift
 fi
 bash scripts/setup.sh
-echo "building the release binary (about 2.5 min from a fresh clone, silent meanwhile)"
+echo "building the release binary (a few minutes from a fresh clone, silent meanwhile)"
 cargo build --release --quiet
 mkdir -p "$out"
 ./target/release/corrugation run --overwrite "$config" -o "$out/$name.h5" "$@"

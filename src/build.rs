@@ -169,20 +169,18 @@ pub fn build_deposit(elements: &Elements) -> Box<dyn WearKernel> {
 
 impl ContactModel {
     /// Number of contact elements the fields of `scene` (whose model this
-    /// is) are stored on: the adapted mesh's `elements_x * elements_y`, or
-    /// the fixed grid's (built without its influence coefficients).
+    /// is) are stored on: the adapted mesh's, or the fixed grid's (built
+    /// without its influence coefficients).
     pub fn elements(&self, scene: &Scene) -> usize {
-        match (self.mesh(), self.fixed_grid()) {
-            (Some(mesh), _) => mesh.len(),
-            (None, Some(f)) => fixed_grid_spec(scene, &derive(scene).shape, f).grid().len(),
-            (None, None) => unreachable!("a model is on a mesh or a grid"),
+        match *self {
+            ContactModel::ExactTransient(ContactGrid::Fixed(f)) => {
+                fixed_grid_spec(scene, &derive(scene).shape, f).grid().len()
+            }
+            ContactModel::Fastsim { mesh, .. }
+            | ContactModel::SimplifiedTransient { mesh, .. }
+            | ContactModel::ExactTransient(ContactGrid::Adapted { mesh, .. }) => mesh.len(),
         }
     }
-}
-
-/// Contact steps per passage of a scene.
-pub fn steps_per_passage(scene: &Scene) -> usize {
-    derive(scene).passage.n_steps()
 }
 
 /// The rail grid of a scene's run file: periodic for a growth study.

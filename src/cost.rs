@@ -109,7 +109,7 @@ impl ContactModel {
     /// elements (~N^1.15 while C fits in cache), ~N^2.2 beyond. Measured on
     /// the old AMD development machine; the newer Intel one (README,
     /// Performance) takes 0.45-0.6 of these times: an upper estimate. The
-    /// fixed grid: its step's fit ([`fixed_grid_step`]).
+    /// fixed grid: its step's fit (`fixed_grid_step`).
     pub fn step_cost(&self, s: &Scene, d: &crate::build::Derived) -> f64 {
         let n_el = self.mesh().map_or(0, |m| m.len()) as f64;
         match *self {

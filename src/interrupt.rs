@@ -9,25 +9,42 @@ use signal_hook::iterator::Signals;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
 
 /// The file was written in full (no checkpoint left to continue).
 const WRITTEN: usize = usize::MAX;
 
+/// Longest wait for a file being written before the signal is answered.
+const WRITE_WAIT: Duration = Duration::from_secs(30);
+
 /// The passages the run file holds as a checkpoint (0: none yet), kept up
-/// to date by the run's events.
+/// to date by the run's events, and whether the file is being rewritten
+/// (then what it holds is only known once the write is over).
 #[derive(Clone, Default)]
-pub struct Checkpoint(Arc<AtomicUsize>);
+pub struct Checkpoint(Arc<AtomicUsize>, Arc<AtomicBool>);
 
 impl Checkpoint {
+    /// The run file is being rewritten.
+    pub fn writing(&self) {
+        self.1.store(true, Ordering::SeqCst);
+    }
+
     /// A checkpoint of `done` passages was written.
     pub fn written(&self, done: usize) {
         self.0.store(done, Ordering::SeqCst);
+        self.1.store(false, Ordering::SeqCst);
+    }
+
+    /// No write is under way any more (one failed: the file is as it was).
+    pub fn settled(&self) {
+        self.1.store(false, Ordering::SeqCst);
     }
 
     /// The run file was written in full.
     pub fn finished(&self) {
         self.0.store(WRITTEN, Ordering::SeqCst);
+        self.1.store(false, Ordering::SeqCst);
     }
 }
 
@@ -40,9 +57,16 @@ pub fn watch(out: PathBuf, checkpoint: &Checkpoint, target: Option<usize>) {
         // Without the handler the default action (end the process) stays.
         return;
     };
-    let kept = checkpoint.0.clone();
+    let (kept, writing) = (checkpoint.0.clone(), checkpoint.1.clone());
     std::thread::spawn(move || {
         if let Some(signal) = signals.forever().next() {
+            // A write under way is let finish (it is atomic: the file is
+            // then either the old checkpoint or the new one, and the
+            // message says which).
+            let clock = Instant::now();
+            while writing.load(Ordering::SeqCst) && clock.elapsed() < WRITE_WAIT {
+                std::thread::sleep(Duration::from_millis(2));
+            }
             let name = if signal == SIGINT { "SIGINT" } else { "SIGTERM" };
             let clear = if std::io::stderr().is_terminal() { "\r\x1b[2K" } else { "" };
             // A half-written file of this process is of no use.

@@ -254,13 +254,18 @@ fn watched<T, E>(
     bar.set_file(out);
     interrupt::watch(out.to_path_buf(), &checkpoint, target);
     let result = work(&mut |e| {
-        if let corrugation::run::Event::Checkpoint { done } = e {
-            checkpoint.written(done);
+        match e {
+            corrugation::run::Event::Writing { .. } => checkpoint.writing(),
+            corrugation::run::Event::Checkpoint { done } => checkpoint.written(done),
+            _ => {}
         }
         bar.event(e)
     });
     if result.is_ok() {
         checkpoint.finished();
+    } else {
+        // A failed write leaves the file as it was.
+        checkpoint.settled();
     }
     bar.finish();
     result

@@ -123,6 +123,7 @@ impl Progress {
                     None => say!("{text}"),
                 }
             }
+            Event::Writing { .. } => {}
             Event::Checkpoint { done } => {
                 let text = format!("checkpoint: {} holds passages 1-{done}", self.file);
                 match &self.bar {

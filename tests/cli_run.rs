@@ -141,7 +141,7 @@ fn bad_config_exits_2_and_keeps_existing_output() {
     // A missing run file to resume: the file system's words, not HDF5's.
     let missing = Path::new(env!("CARGO_TARGET_TMPDIR")).join("no_such_run.h5");
     let o = corrugation(&["resume", missing.to_str().unwrap()]);
-    assert_ne!(o.status.code(), Some(0));
+    assert_eq!(o.status.code(), Some(2));
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains(&format!("cannot resume from {}: No such file or directory", missing.display())), "{err}");
     assert!(!err.contains("H5F"), "{err}");

@@ -11,6 +11,7 @@ use corrugation::dynamics::receptance::WheelParams;
 use corrugation::dynamics::track::TrackConfig;
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};
+use num_complex::Complex64;
 use std::f64::consts::PI;
 
 /// Amplitude of harmonic `k` of a periodic signal.
@@ -170,4 +171,49 @@ fn forced_wear_is_left_out_of_the_update_bound() {
     let rms = |v: &[f64]| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
     let diff: Vec<f64> = ca.iter().zip(&cb).map(|(x, y)| x - y).collect();
     assert!(rms(&diff) <= 0.03 * rms(&cb), "change {:e} vs {:e} (diff {:e})", rms(&ca), rms(&cb), rms(&diff));
+}
+
+#[test]
+fn transfer_receptances_are_reciprocal_periodic_and_carried_by_the_supports() {
+    // The displacement at x0 + L under a unit force at x0 (eq. 4 of
+    // dynamics::discrete): the point receptance at L = 0, the same with
+    // force and watch point exchanged (Maxwell-Betti), the same one bay on,
+    // and, where the rail's inertia is negligible (1 Hz), the supports'
+    // reactions k_s w(x_n) add up to the load.
+    let t = DiscreteTrack::new(&TrackConfig::default());
+    let d = t.spacing;
+    for (f, x0) in [(300.0, 0.13), (1100.0, 0.3)] {
+        let w = 2.0 * PI * f;
+        let (ls, rel) = ([0.0, 0.85, 2.5], |a: Complex64, b: Complex64| (a - b).norm() / b.norm());
+        let forward = t.transfer_receptances(x0, &ls, w);
+        assert!(rel(forward[0], t.receptance(x0, w)) < 1e-12, "{f} Hz: L = 0 is the point receptance");
+        for (l, a) in ls.iter().zip(&forward).skip(1) {
+            let back = t.transfer_receptances(x0 + l, &[-l], w)[0];
+            assert!(rel(back, *a) < 1e-9, "{f} Hz, L = {l}: reciprocity {back} vs {a}");
+            let on = t.transfer_receptances(x0 + d, &[*l], w)[0];
+            assert!(rel(on, *a) < 1e-9, "{f} Hz, L = {l}: one bay on {on} vs {a}");
+        }
+    }
+    let w = 2.0 * PI;
+    let x0 = 0.13;
+    let supports: Vec<f64> = (-30..=30).map(|n| n as f64 * d - x0).collect();
+    let carried: Complex64 =
+        t.transfer_receptances(x0, &supports, w).iter().sum::<Complex64>() * t.support_stiffness(w);
+    assert!((carried - 1.0).norm() < 1e-4, "the supports carry {carried} of the load");
+}
+
+#[test]
+fn the_smeared_track_transfer_receptance_carries_the_load() {
+    // Hetenyi's beam on a Winkler foundation: the foundation carries the
+    // load, s int w dx = 1, and the transfer receptance is the point one at
+    // L = 0 and even in L (trapezoid over +-20 m, 0.5 mm).
+    use corrugation::dynamics::receptance::winkler_transfer_receptance;
+    let (ei, s) = (6.42e6, 1.1e8);
+    let net = Complex64::new(s, 0.0);
+    let h = 5e-4;
+    let integral: Complex64 = (-40_000..=40_000).map(|i| winkler_transfer_receptance(ei, net, i as f64 * h) * h).sum();
+    assert!((integral * s - 1.0).norm() < 1e-6, "carried {}", integral * s);
+    let point = corrugation::dynamics::receptance::winkler_point_receptance(ei, net);
+    assert_eq!(winkler_transfer_receptance(ei, net, 0.0), point);
+    assert_eq!(winkler_transfer_receptance(ei, net, -0.7), winkler_transfer_receptance(ei, net, 0.7));
 }

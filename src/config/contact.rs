@@ -145,7 +145,8 @@ pub(super) fn normal_contact(
                 format!(
                     "= \"linear\" is the adapted mesh's first-order contact (the mesh moved with the contact); the \
                      fixed grid{by_auto} moves the patch over its elements by the nonlinear normal problem itself: \
-                     allowed with contact.grid = \"fixed\": auto, profile, hertz"
+                     allowed with contact.grid = \"fixed\": {}",
+                    allowed_normal(NormalKind::Linear)
                 ),
             ));
             return None;
@@ -155,7 +156,8 @@ pub(super) fn normal_contact(
                 "contact.normal",
                 format!(
                     "= \"profile\" solves the discrete (nonlinear) normal problem on the rail profile, which needs \
-                     contact.grid = \"fixed\"; allowed with contact.grid = \"adapted\"{by_auto}: auto, linear, hertz"
+                     contact.grid = \"fixed\"; allowed with contact.grid = \"adapted\"{by_auto}: {}",
+                    allowed_normal(NormalKind::Profile)
                 ),
             ));
             return None;
@@ -164,6 +166,17 @@ pub(super) fn normal_contact(
         NormalKind::Profile => NormalContact::Profile { grid_scale },
         NormalKind::Auto => NormalContact::Auto { grid_scale },
     })
+}
+
+/// The `contact.normal` names but `not` (the one the grid does not take).
+fn allowed_normal(not: NormalKind) -> String {
+    let not: &str = not.into();
+    NormalKind::VARIANTS.iter().filter(|n| **n != not).copied().collect::<Vec<_>>().join(", ")
+}
+
+/// The fixed grid's `contact.solver` names.
+pub(super) fn grid_solvers() -> String {
+    GridSolver::VARIANTS.join(", ")
 }
 
 /// The step length of a fixed-grid passage: `passage.step_length` and
@@ -226,9 +239,11 @@ pub(super) fn check_model(model: &str, grid: Option<&FixedGridParams>, solver: &
         if solver.1 == Some(StepSolver::Newton) {
             errors.push(ConfigError::new(
                 "contact.solver",
-                "= \"newton\" is the adapted mesh's reference solver (dense Jacobian); allowed with contact.grid = \
-                 \"fixed\": auto, cg, gauss-seidel"
-                    .into(),
+                format!(
+                    "= \"newton\" is the adapted mesh's reference solver (dense Jacobian); allowed with contact.grid \
+                     = \"fixed\": {}",
+                    grid_solvers()
+                ),
             ));
         }
         if solver.0 == Some(GridSolver::Cg) && f.friction_law == FrictionLaw::Coulomb {

@@ -142,7 +142,16 @@ fn overridden_step_sets_both(root: &mut Table, overrides: &[String]) {
         (false, true) => ("contact", "dx"),
         _ => return,
     };
-    if fixed && let Some(Value::Table(t)) = root.get_mut(other.0) {
+    // Only a valid value replaces the file's other key (an invalid one is
+    // reported as such, and the file's key stays).
+    let given = if other.0 == "passage" { ("contact", "dx") } else { ("passage", "step_length") };
+    let value = root.get(given.0).and_then(|t| t.get(given.1));
+    let valid =
+        value.and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).is_some_and(|v| v > 0.0 && v <= 0.01);
+    if fixed
+        && valid
+        && let Some(Value::Table(t)) = root.get_mut(other.0)
+    {
         t.remove(other.1);
     }
 }
@@ -316,9 +325,11 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         if step_solver == crate::contact::transient::StepSolver::Newton {
             errors.push(ConfigError::new(
                 "contact.solver",
-                "= \"newton\" cannot go with contact.model = \"auto\": the map's costs are those of the \
-                 gauss-seidel solver (same results, 7x faster at 20 x 20); allowed: auto, gauss-seidel, cg"
-                    .into(),
+                format!(
+                    "= \"newton\" cannot go with contact.model = \"auto\": the map's costs are those of the \
+                     gauss-seidel solver (same results, 7x faster at 20 x 20); allowed: {}",
+                    contact::grid_solvers()
+                ),
             ));
         }
         let Some(shape) = shape.as_ref() else {

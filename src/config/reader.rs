@@ -148,9 +148,7 @@ impl<'a> Section<'a> {
         let expect = format!("an integer in [{lo}, {hi}]");
         let v = self.take(key, default.map(|d| d as i64), &expect, |v| match v {
             Value::Integer(i) => Ok(i),
-            // A whole number written as a float (`1e3`, `1000.0`) is that
-            // integer; beyond 2^53 a float no longer holds every integer.
-            Value::Float(x) if x.fract() == 0.0 && x.abs() <= 2f64.powi(53) => Ok(x as i64),
+            Value::Float(x) if whole(x) => Ok(x as i64),
             other => Err(other),
         })?;
         if v < lo as i64 || v > hi as i64 {
@@ -204,7 +202,7 @@ impl<'a> Section<'a> {
             Some(Value::Array(a)) => {
                 let mut out = Vec::new();
                 for item in a {
-                    match item.as_integer() {
+                    match item.as_integer().or(item.as_float().filter(|x| whole(*x)).map(|x| x as i64)) {
                         Some(i) if (0..=hi as i64).contains(&i) => out.push(i as usize),
                         _ => {
                             self.error(key, format!("contains `{item}`; expected {expect}"));
@@ -264,4 +262,11 @@ impl<'a> Section<'a> {
         }
         self.resolved
     }
+}
+
+/// Whether a float is a whole number written as a float (`1e3`, `1000.0`),
+/// taken as that integer: below 2^52, where the float still holds the
+/// halves (beyond, TOML has already rounded what was written).
+fn whole(x: f64) -> bool {
+    x.fract() == 0.0 && x.abs() < 2f64.powi(52)
 }

@@ -34,7 +34,13 @@
 //! alpha(x0) = 1/(2 pi) int_{-pi/d}^{pi/d} [T(kappa, 0)
 //!             - k_s T(kappa, x0) T(kappa, -x0) / (d + k_s T(kappa, 0))] d kappa   (3)
 //! ```
-//! the free rail's receptance less what the supports take back. The sums
+//! the free rail's receptance less what the supports take back. Where the
+//! rail is watched at `x1` instead of at the load, the transfer receptance
+//! ```text
+//! alpha(x1; x0) = 1/(2 pi) int [T(kappa, x1 - x0)
+//!                 - k_s T(kappa, x1) T(kappa, -x0) / (d + k_s T(kappa, 0))] d kappa   (4)
+//! ```
+//! (reciprocal: `alpha(x1; x0) = alpha(x0; x1)`). The sums
 //! run over `|j| <= J` with the tail of `T(kappa, 0)` (`alpha^ ~ 1 /
 //! (kGA k^2)`) added in closed form; the integral is the midpoint rule.
 
@@ -156,6 +162,49 @@ impl DiscreteTrack {
                 let shift = Complex64::from_polar(1.0, kappa * x0);
                 let (tp, tm) = (tp * shift, tm * shift.conj());
                 *sum += t0 - ks * tp * tm / (d + ks * t0);
+            }
+        }
+        sums.iter().map(|s| s / (2.0 * PI) * (g / ZONE_POINTS as f64)).collect()
+    }
+
+    /// The transfer receptances (m/N) at angular frequency `omega` (rad/s):
+    /// the rail's displacement at `x0 + L` for each `L` of `distances` (m)
+    /// under a unit force at `x0` (m from a support), eq. 4; at `L = 0` the
+    /// point receptance of [`Self::receptances`]. The tail of the lattice
+    /// sum is added where `L` is a whole number of bays (where its terms do
+    /// not oscillate); elsewhere it is below 1e-3 of the receptance.
+    pub fn transfer_receptances(&self, x0: f64, distances: &[f64], omega: f64) -> Vec<Complex64> {
+        let d = self.spacing;
+        let ks = self.support_stiffness(omega);
+        let g = 2.0 * PI / d;
+        let js: Vec<i64> = (-LATTICE_TERMS..=LATTICE_TERMS).collect();
+        let phases =
+            |x: f64| -> Vec<Complex64> { js.iter().map(|&j| Complex64::from_polar(1.0, g * j as f64 * x)).collect() };
+        let source = phases(x0);
+        let watched: Vec<Vec<Complex64>> = distances.iter().map(|&l| phases(x0 + l)).collect();
+        let free: Vec<Vec<Complex64>> = distances.iter().map(|&l| phases(l)).collect();
+        let kga = Complex64::new(1.0, self.rail_loss_factor) * self.rail.shear_stiffness;
+        let tail = d * d / (2.0 * PI * PI * (LATTICE_TERMS as f64 + 0.5)) / kga;
+        let whole_bays: Vec<bool> = distances.iter().map(|&l| ((l / d) - (l / d).round()).abs() < 1e-12).collect();
+        let mut sums = vec![Complex64::new(0.0, 0.0); distances.len()];
+        let mut a = vec![Complex64::new(0.0, 0.0); js.len()];
+        for q in 0..ZONE_POINTS {
+            let kappa = -PI / d + (q as f64 + 0.5) * g / ZONE_POINTS as f64;
+            let mut t0 = tail;
+            for (ai, &j) in a.iter_mut().zip(&js) {
+                *ai = self.spectral(kappa + g * j as f64, omega);
+                t0 += *ai;
+            }
+            // T(kappa, -x0), the source's side of the supports' response.
+            let tm = a.iter().zip(&source).map(|(ai, ph)| ai * ph.conj()).sum::<Complex64>()
+                * Complex64::from_polar(1.0, -kappa * x0);
+            for (k, &l) in distances.iter().enumerate() {
+                let tp = a.iter().zip(&watched[k]).map(|(ai, ph)| ai * ph).sum::<Complex64>()
+                    * Complex64::from_polar(1.0, kappa * (x0 + l));
+                let shift = Complex64::from_polar(1.0, kappa * l);
+                let tail_l = if whole_bays[k] { tail * shift } else { Complex64::new(0.0, 0.0) };
+                let tl = a.iter().zip(&free[k]).map(|(ai, ph)| ai * ph).sum::<Complex64>() * shift + tail_l;
+                sums[k] += tl - ks * tp * tm / (d + ks * t0);
             }
         }
         sums.iter().map(|s| s / (2.0 * PI) * (g / ZONE_POINTS as f64)).collect()

@@ -182,6 +182,21 @@ pub fn winkler_point_receptance(ei: f64, net_stiffness: Complex64) -> Complex64 
     1.0 / (8.0 * ei * beta * beta * beta)
 }
 
+/// Transfer receptance (m/N) of the same beam: the displacement at distance
+/// `distance` (m, either side) from a unit force,
+/// `exp(-beta |x|) (cos beta |x| + sin beta |x|) / (8 EI beta^3)` (module
+/// docs, eq. 4; Hetenyi 1946 in the static case), `beta` as in
+/// [`winkler_point_receptance`], which it equals at `distance = 0`.
+pub fn winkler_transfer_receptance(ei: f64, net_stiffness: Complex64, distance: f64) -> Complex64 {
+    let mut b4 = net_stiffness / (4.0 * ei);
+    if b4.im == 0.0 {
+        b4.im = 0.0;
+    }
+    let beta = b4.sqrt().sqrt();
+    let bx = beta * distance.abs();
+    (-bx).exp() * (bx.cos() + bx.sin()) / (8.0 * ei * beta * beta * beta)
+}
+
 /// Rail and two-layer support, as continuous properties per rail length.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TrackParams {
@@ -273,6 +288,14 @@ impl TrackParams {
     pub fn rail_receptance(&self, omega: f64) -> Complex64 {
         let net = self.foundation_stiffness(omega) - self.rail_mass * omega * omega;
         winkler_point_receptance(self.bending_stiffness, net)
+    }
+
+    /// Rail transfer receptance (m/N) at distance `distance` (m) from the
+    /// force, at angular frequency `omega` (rad/s, >= 0):
+    /// [`winkler_transfer_receptance`].
+    pub fn rail_transfer_receptance(&self, omega: f64, distance: f64) -> Complex64 {
+        let net = self.foundation_stiffness(omega) - self.rail_mass * omega * omega;
+        winkler_transfer_receptance(self.bending_stiffness, net, distance)
     }
 
     /// Static, undamped rail point receptance (m/N): Hetenyi's

@@ -85,6 +85,13 @@ pub enum Event {
         /// Why.
         reason: String,
     },
+    /// The run file is about to be rewritten with `done` passages
+    /// (reported by the run, which keeps the file; a `Checkpoint` follows a
+    /// checkpoint's write).
+    Writing {
+        /// Passages the file will hold.
+        done: usize,
+    },
     /// The run file was rewritten after `done` passages (reported by the
     /// run, which keeps the file).
     Checkpoint {
@@ -240,7 +247,8 @@ impl<'a> Study<'a> {
     /// Runs the next passage and updates the profile: appends its row (and
     /// its rail snapshot and patch history where the study stores them).
     /// `Ok(None)` when the passage ended the study instead (full sliding at
-    /// saturation; [`Study::stopped`] says why).
+    /// saturation; [`Study::stopped`] says why), or the study had ended
+    /// already ([`Study::next_pass`] is `None`).
     pub fn advance(&mut self, progress: &mut dyn FnMut(Event)) -> Result<Option<Advanced>, PassageFailed> {
         let Some(pass) = self.next_pass() else { return Ok(None) };
         let fail = |source| PassageFailed { pass, source };
@@ -472,7 +480,8 @@ impl<'a> Study<'a> {
         &self.state
     }
 
-    /// The bound the adaptive update ratio keeps to (1).
+    /// The bound on the update ratio (1): the adaptive scaling keeps to it,
+    /// a fixed scale is checked against it.
     pub fn update_bound(&self) -> f64 {
         self.scaling.max_update_ratio()
     }

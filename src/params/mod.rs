@@ -37,11 +37,6 @@ impl ContactModelKind {
     /// All models, in the order of the config documentation.
     pub const ALL: [ContactModelKind; 3] =
         [ContactModelKind::ExactTransient, ContactModelKind::SimplifiedTransient, ContactModelKind::Fastsim];
-
-    /// Whether the model carries a contact history between steps.
-    pub fn is_transient(self) -> bool {
-        self != ContactModelKind::Fastsim
-    }
 }
 
 /// Materials and friction.

@@ -236,10 +236,12 @@ fn continue_run(
             && pass + 1 < study.passes()
             && study.stopped().is_none()
         {
+            progress(Event::Writing { done: pass + 1 });
             write(&study)?;
             progress(Event::Checkpoint { done: pass + 1 });
         }
     }
+    progress(Event::Writing { done: study.state().rows.len() });
     write(&study)?;
     let rows = &study.state().rows;
     Ok(RunSummary {

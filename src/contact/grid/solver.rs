@@ -72,13 +72,13 @@ pub enum GridSolver {
     /// CG for the regularised law.
     #[default]
     Auto,
+    /// Element-wise nonlinear Gauss-Seidel ([`super::tangential`]), the
+    /// reference.
+    GaussSeidel,
     /// Newton with projected CG inner solves, every iteration one FFT
     /// product ([`super::cg`]); the regularised law (config refuses it with
     /// exact Coulomb friction).
     Cg,
-    /// Element-wise nonlinear Gauss-Seidel ([`super::tangential`]), the
-    /// reference.
-    GaussSeidel,
 }
 
 impl GridSolver {
