@@ -165,6 +165,15 @@ pub fn print_check(r: &Resolved) {
         mm(g.dx),
         mm(g.dy)
     );
+    if s.vehicle.wheels.len() > 1 {
+        println!(
+            "vehicle            {} wheels at {:?} m behind the leading one: `corrugation track` writes the transfer \
+             receptances at their distances {:?} m; `run` rolls one wheel so far (refused)",
+            s.vehicle.wheels.len(),
+            s.vehicle.wheels,
+            s.vehicle.distances()
+        );
+    }
     let cost = corrugation::cost::estimate(s);
     if let Some(g) = &s.growth {
         match g.traffic {

@@ -176,12 +176,18 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
         ) => unsprung_mass,
         _ => corrugation::dynamics::receptance::FREIGHT_UNSPRUNG_MASS,
     };
-    let r = corrugation::dynamics::track_response::track_response(&s.track, WheelParams { unsprung_mass: mass }, k_h);
+    let distances = s.vehicle.distances();
+    let r = corrugation::dynamics::track_response::track_response(
+        &s.track,
+        WheelParams { unsprung_mass: mass },
+        k_h,
+        &distances,
+    );
     match corrugation::output::track_file::write_track_file(out, &r, s.track.rail_name, &resolved.toml) {
         Ok(()) => {
             say!(
                 "wrote {}: {} rail on {} m sleeper spacing; pinned-pinned {:.0} Hz (simply supported span {:.0} Hz), \
-                 rail on pad {:.0} Hz, track on ballast {:.0} Hz; contact spring {:.3e} N/m, wheel {mass} kg",
+                 rail on pad {:.0} Hz, track on ballast {:.0} Hz; contact spring {:.3e} N/m, wheel {mass} kg{}",
                 out.display(),
                 s.track.rail_name,
                 s.track.sleeper_spacing,
@@ -189,7 +195,12 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
                 r.span_frequency,
                 r.rail_on_pad,
                 r.track_on_ballast,
-                k_h
+                k_h,
+                if distances.is_empty() {
+                    String::new()
+                } else {
+                    format!("; transfer receptances between the wheels at {distances:?} m")
+                }
             );
             ExitCode::SUCCESS
         }
@@ -302,6 +313,10 @@ fn run(resolved: &Resolved, out: &Path) -> ExitCode {
         Ok(s) => {
             report(&s, out);
             ExitCode::SUCCESS
+        }
+        Err(e @ corrugation::run::RunError::SeveralWheels(_)) => {
+            say!("error: {e}");
+            ExitCode::from(2)
         }
         Err(e) => {
             say!("error: {e}");

@@ -93,3 +93,58 @@ fn bad_track_keys() {
         assert!(e[0].contains(expected), "{set:?}:\n  got      {}\n  expected {expected}", e[0]);
     }
 }
+
+#[test]
+fn the_vehicle_section_places_the_wheels() {
+    // One wheel without [vehicle]; a bogie's and a car's distances; the
+    // wheels must start at the leading one and run backwards.
+    assert_eq!(load(&[]).unwrap().scene.vehicle.wheels, vec![0.0]);
+    let bogie = load(&["vehicle.wheels=[0.0, 2.5]"]).unwrap().scene.vehicle;
+    assert_eq!(bogie.distances(), vec![2.5]);
+    let car = load(&["vehicle.wheels=[0, 2.5, 17.5, 20.0]"]).unwrap().scene.vehicle;
+    assert_eq!(car.distances(), vec![2.5, 15.0, 17.5, 20.0]);
+    for (set, expected) in [
+        ("vehicle.wheels=[1.0, 2.5]", "vehicle.wheels: starts at 1 m; the first is the leading wheel, at 0 m"),
+        ("vehicle.wheels=[0.0, 2.5, 2.5]", "vehicle.wheels: must increase: wheel 3 at 2.5 m is not behind wheel 2"),
+        ("vehicle.wheels=[0.0, 60.0]", "vehicle.wheels: contains `60.0`; expected a list of 1 to 8 numbers"),
+        ("vehicle.wheels=[]", "vehicle.wheels: expected a list of 1 to 8 numbers"),
+        ("vehicle.axles=2", "vehicle.axles: unknown key"),
+    ] {
+        let e = errors(&[set]);
+        assert_eq!(e.len(), 1, "{set}: {e:?}");
+        assert!(e[0].starts_with(expected), "{set}: {}", e[0]);
+    }
+}
+
+#[test]
+fn track_writes_the_transfer_between_the_wheels_and_run_refuses_them() {
+    use corrugation::dynamics::discrete::DiscreteTrack;
+    use corrugation::output::netcdf::read_f64;
+    let dir = tempfile::tempdir().unwrap();
+    let config = dir.path().join("bogie.toml");
+    std::fs::write(&config, format!("{GROWTH}\n[vehicle]\nwheels = [0.0, 2.5]\n")).unwrap();
+    let out = dir.path().join("bogie_track.h5");
+    let bin = env!("CARGO_BIN_EXE_corrugation");
+    let o = std::process::Command::new(bin).arg("track").arg(&config).arg("-o").arg(&out).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // The file's transfer at 2.5 m from a force above a sleeper and at
+    // mid-span is the discrete track's, at every 60th frequency.
+    let (f, re, im) = (
+        read_f64(&out, "track", "frequency").unwrap(),
+        read_f64(&out, "track", "transfer_real").unwrap(),
+        read_f64(&out, "track", "transfer_imag").unwrap(),
+    );
+    assert_eq!(re.shape(), &[2, 1, f.len()]);
+    let track = DiscreteTrack::new(&load(&[]).unwrap().scene.track);
+    for (s, x0) in [(0, 0.0), (1, 0.3)] {
+        for k in (0..f.len()).step_by(60) {
+            let a = track.transfer_receptances(x0, &[2.5], 2.0 * PI * f[k])[0];
+            assert_eq!((re[[s, 0, k]], im[[s, 0, k]]), (a.re, a.im), "source {x0}, {} Hz", f[k]);
+        }
+    }
+    let run = dir.path().join("bogie_run.h5");
+    let o = std::process::Command::new(bin).arg("run").arg(&config).arg("-o").arg(&run).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("set vehicle.wheels = [0.0]"));
+    assert!(!run.exists());
+}

@@ -1,7 +1,8 @@
-"""The receptance figure of ``corrugation track`` files: magnitude and phase
+"""The receptance figures of ``corrugation track`` files: magnitude and phase
 of the rail point receptance above a sleeper and at mid-span (the discrete
 model), the continuous model's, and the wheel and contact receptances, with
-the resonances marked."""
+the resonances marked; with several wheels (``[vehicle]``) the transfer
+receptances between them."""
 
 from __future__ import annotations
 
@@ -56,4 +57,35 @@ def figure(path, out):
     target = out / "track_receptance.png"
     fig.savefig(target, dpi=120)
     plt.close(fig)
-    return [target]
+    targets = [target]
+    if "transfer_real" in ds.variables:
+        targets.append(_transfer_figure(ds, out))
+    return targets
+
+
+def _transfer_figure(ds, out):
+    """|transfer receptance| against frequency at each wheel distance: the
+    discrete model with the force above a sleeper and at mid-span, the
+    continuous model dashed."""
+    import matplotlib.pyplot as plt
+
+    f = ds["frequency"].values
+    transfer = ds["transfer_real"] + 1j * ds["transfer_imag"]
+    continuous = ds["continuous_transfer_real"] + 1j * ds["continuous_transfer_imag"]
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for k, distance in enumerate(ds["distance"].values):
+        colour = f"C{k % 10}"
+        for source, style in zip(ds["source"].values, ("-", ":")):
+            where = "above a sleeper" if source == 0 else "mid-span"
+            ax.loglog(f, np.abs(transfer.sel(source=source, distance=distance).values), style, color=colour,
+                      label=f"{distance:.2f} m, force {where}")
+        ax.loglog(f, np.abs(continuous.sel(distance=distance).values), "--", color=colour, lw=0.8,
+                  label=f"{distance:.2f} m, continuous support")
+    ax.set(xlabel="frequency (Hz)", ylabel="|transfer receptance| (m/N)",
+           title=f"{ds.attrs.get('rail', '')} track: rail displacement at a distance from a unit force")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    target = out / "track_transfer.png"
+    fig.savefig(target, dpi=120)
+    plt.close(fig)
+    return target

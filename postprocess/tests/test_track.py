@@ -45,3 +45,19 @@ def test_track_file_and_figure(tmp_path):
     assert abs(ratio - 2.0) < 1e-9
     bad = subprocess.run([BIN, "track", cfg, "-o", str(tmp_path / "no" / "x.h5")], capture_output=True, text=True)
     assert bad.returncode == 2 and "does not exist" in bad.stderr
+    # A bogie: the transfer receptance between its wheels, and its figure.
+    bogie = tmp_path / "bogie.h5"
+    done = subprocess.run([BIN, "track", cfg, "-o", str(bogie), "--set", "vehicle.wheels=[0.0, 2.5]"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    b = xr.open_dataset(bogie, engine="h5netcdf", group="track")
+    assert b["transfer_real"].dims == ("source", "distance", "frequency")
+    assert list(b["distance"].values) == [2.5] and list(b["source"].values) == [0.0, 0.3]
+    transfer = np.hypot(b["transfer_real"], b["transfer_imag"]).values
+    point = np.hypot(b["receptance_real"], b["receptance_imag"]).values
+    # 2.5 m away the rail moves less than under the force, at every frequency
+    # below the pinned-pinned band.
+    low = b["frequency"].values < 700
+    assert (transfer[:, 0, low] < point[[0, -1]][:, low]).all()
+    names = [p.name for p in figure(bogie, tmp_path / "bogie_fig")]
+    assert names == ["track_receptance.png", "track_transfer.png"]

@@ -15,6 +15,7 @@ mod reader;
 mod track;
 pub mod traffic;
 pub mod units;
+pub mod vehicle;
 
 use crate::contact::friction::FrictionLaw;
 use crate::contact::grid::GridScheme;
@@ -218,6 +219,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let base =
         traffic::BaseClass { speed, normal_force: normal, longitudinal_force: longitudinal, unsprung_mass: None };
     let growth = growth::read(&mut root, &mut resolved, base, errors);
+    let vehicle = vehicle::read(&mut root, &mut resolved, errors);
     // The track matters to growth studies (and is read when given).
     let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
         track::read(&mut root, &mut resolved, errors)
@@ -291,6 +293,9 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into(),
         ));
     }
+    let Some(vehicle) = vehicle else {
+        return (None, resolved);
+    };
     let Some(track) = track else {
         return (None, resolved);
     };
@@ -395,6 +400,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         output: OutputParams { store_fields, title },
         growth,
         track,
+        vehicle,
     };
     check_sleeper_bays(&scene, errors);
     contact::check_grid_size(&scene, errors);

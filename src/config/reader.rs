@@ -194,6 +194,33 @@ impl<'a> Section<'a> {
         Some(v)
     }
 
+    /// A non-empty list of at most `max` numbers in `range`.
+    pub fn f64_list(&mut self, key: &str, default: Vec<f64>, range: Range, max: usize) -> Option<Vec<f64>> {
+        let expect = format!("a list of 1 to {max} numbers, each {}", range.describe());
+        let v = match self.table.remove(key) {
+            None => default,
+            Some(Value::Array(a)) if (1..=max).contains(&a.len()) => {
+                let mut out = Vec::new();
+                for item in a {
+                    match item.as_float().or(item.as_integer().map(|i| i as f64)) {
+                        Some(x) if range.contains(x) => out.push(x),
+                        _ => {
+                            self.error(key, format!("contains `{item}`; expected {expect}"));
+                            return None;
+                        }
+                    }
+                }
+                out
+            }
+            Some(other) => {
+                self.error(key, format!("expected {expect}, found `{other}`"));
+                return None;
+            }
+        };
+        self.resolved.insert(key.into(), Value::Array(v.iter().map(|x| Value::Float(*x)).collect()));
+        Some(v)
+    }
+
     /// A list of integers in `[0, hi]`.
     pub fn usize_list(&mut self, key: &str, default: Vec<usize>, hi: usize) -> Option<Vec<usize>> {
         let expect = format!("a list of integers in [0, {hi}]");

@@ -1,7 +1,8 @@
 //! The receptances of a configured track and wheel over a frequency sweep
 //! (what `corrugation track` writes): the rail point receptance of the
 //! discrete model at positions across a sleeper bay, the continuous
-//! model's, the wheel's and the contact spring's, and the resonances.
+//! model's, the wheel's and the contact spring's, the resonances, and the
+//! transfer receptances between the wheels of a vehicle.
 
 use super::discrete::DiscreteTrack;
 use super::receptance::{TrackParams, WheelParams};
@@ -28,6 +29,16 @@ pub struct TrackResponse {
     pub rail: Vec<Vec<Complex64>>,
     /// Rail point receptance of the continuous model (m/N), [frequency].
     pub continuous: Vec<Complex64>,
+    /// Places of the force for the transfer receptances (m from a sleeper):
+    /// above it and mid-span.
+    pub source: Vec<f64>,
+    /// Distances between wheels (m), increasing (empty for one wheel).
+    pub distance: Vec<f64>,
+    /// The discrete model's rail displacement at each distance ahead of a
+    /// unit force at each source (m/N), [source][distance][frequency].
+    pub transfer: Vec<Vec<Vec<Complex64>>>,
+    /// The continuous model's (m/N), [distance][frequency].
+    pub continuous_transfer: Vec<Vec<Complex64>>,
     /// Wheel receptance `-1 / (M w^2)` (m/N), [frequency].
     pub wheel: Vec<f64>,
     /// Contact receptance `1 / k_H` (m/N).
@@ -45,8 +56,15 @@ pub struct TrackResponse {
     pub track_on_ballast: f64,
 }
 
-/// The response of `track` with `wheel` on a contact spring `contact_stiffness` (N/m).
-pub fn track_response(track: &TrackConfig, wheel: WheelParams, contact_stiffness: f64) -> TrackResponse {
+/// The response of `track` with `wheel` on a contact spring
+/// `contact_stiffness` (N/m), and the transfer receptances at `distances`
+/// (m) between wheels.
+pub fn track_response(
+    track: &TrackConfig,
+    wheel: WheelParams,
+    contact_stiffness: f64,
+    distances: &[f64],
+) -> TrackResponse {
     let discrete = DiscreteTrack::new(track);
     let continuous: TrackParams = track.smeared();
     let frequency: Vec<f64> = (0..SWEEP_POINTS)
@@ -59,6 +77,22 @@ pub fn track_response(track: &TrackConfig, wheel: WheelParams, contact_stiffness
     let rail: Vec<Vec<Complex64>> =
         (0..position.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect();
     let cont: Vec<Complex64> = frequency.iter().map(|f| continuous.rail_receptance(2.0 * PI * f)).collect();
+    let source = vec![0.0, 0.5 * d];
+    let transfer_by_frequency: Vec<Vec<Vec<Complex64>>> = if distances.is_empty() {
+        Vec::new()
+    } else {
+        frequency
+            .par_iter()
+            .map(|f| source.iter().map(|&x0| discrete.transfer_receptances(x0, distances, 2.0 * PI * f)).collect())
+            .collect()
+    };
+    let transfer: Vec<Vec<Vec<Complex64>>> = (0..if distances.is_empty() { 0 } else { source.len() })
+        .map(|s| (0..distances.len()).map(|l| transfer_by_frequency.iter().map(|row| row[s][l]).collect()).collect())
+        .collect();
+    let continuous_transfer: Vec<Vec<Complex64>> = distances
+        .iter()
+        .map(|&l| frequency.iter().map(|f| continuous.rail_transfer_receptance(2.0 * PI * f, l)).collect())
+        .collect();
     let wheel_r: Vec<f64> = frequency.iter().map(|f| -1.0 / (wheel.unsprung_mass * (2.0 * PI * f).powi(2))).collect();
     let span = discrete.pinned_pinned_frequency();
     let peak = |values: &[Complex64], lo: f64, hi: f64| {
@@ -77,6 +111,10 @@ pub fn track_response(track: &TrackConfig, wheel: WheelParams, contact_stiffness
         position,
         rail,
         continuous: cont,
+        source,
+        distance: distances.to_vec(),
+        transfer,
+        continuous_transfer,
         wheel: wheel_r,
         contact: 1.0 / contact_stiffness,
         span_frequency: span,

@@ -276,6 +276,31 @@ pub struct RailParams {
     pub half_width: f64,
 }
 
+/// The wheels of a vehicle on one rail (`[vehicle]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct VehicleParams {
+    /// Positions behind the leading wheel (m): 0 first, increasing.
+    pub wheels: Vec<f64>,
+}
+
+impl Default for VehicleParams {
+    /// One wheel.
+    fn default() -> Self {
+        VehicleParams { wheels: vec![0.0] }
+    }
+}
+
+impl VehicleParams {
+    /// The distinct distances between two wheels (m), increasing.
+    pub fn distances(&self) -> Vec<f64> {
+        let mut d: Vec<f64> =
+            self.wheels.iter().enumerate().flat_map(|(i, a)| self.wheels[i + 1..].iter().map(move |b| b - a)).collect();
+        d.sort_by(f64::total_cmp);
+        d.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs());
+        d
+    }
+}
+
 /// Output options.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OutputParams {
@@ -320,6 +345,8 @@ pub struct Scene {
     pub growth: Option<GrowthParams>,
     /// The track under the wheel (`[track]`).
     pub track: crate::dynamics::track::TrackConfig,
+    /// The vehicle's wheels on the rail (`[vehicle]`; one by default).
+    pub vehicle: VehicleParams,
 }
 
 impl Scene {
