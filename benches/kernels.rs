@@ -6,7 +6,7 @@ use corrugation::config::load_str;
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
-use corrugation::contact::grid::solver::FixedGridSpec;
+use corrugation::contact::grid::spec::FixedGridSpec;
 use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::transient::elastic::ExactElastic;
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};

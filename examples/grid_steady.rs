@@ -9,7 +9,7 @@
 //! with `HISTORY=1` in the environment, every step's creepage and sweeps on stderr.
 
 use corrugation::contact::friction::FrictionLaw;
-use corrugation::contact::grid::solver::FixedGridSpec;
+use corrugation::contact::grid::spec::FixedGridSpec;
 use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::{StepInput, TangentialSolver};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
@@ -52,7 +52,7 @@ fn main() {
             _ => GridSolver::Auto,
         },
     };
-    let tolerance = num(7, corrugation::contact::grid::solver::GRID_TOLERANCE);
+    let tolerance = num(7, corrugation::contact::grid::spec::GRID_TOLERANCE);
     let mut solver = FixedGrid::new(spec).with_tolerance(tolerance);
     let speed = 27.778;
     let input = StepInput {

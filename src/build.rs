@@ -4,7 +4,7 @@
 //! growth loop, `check` and the cost model alike; knows nothing of files.
 
 use crate::contact::fastsim::Fastsim;
-use crate::contact::grid::{Alignment, FixedGrid, solver::FixedGridSpec};
+use crate::contact::grid::{Alignment, FixedGrid, spec::FixedGridSpec};
 use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use crate::contact::transient::{ElasticModel, Transient};
 use crate::contact::{Elements, EllipseMesh, PressureShape, TangentialSolver};

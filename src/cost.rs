@@ -8,7 +8,7 @@ use crate::build::{derive, fixed_grid_spec, periodic_grid};
 use crate::contact::grid::GridSolver;
 use crate::contact::transient::StepSolver;
 use crate::loads::LoadQuantity;
-use crate::params::{ContactGrid, ContactModel, ContactModelKind, DynamicsKind, NormalContact, Scene};
+use crate::params::{ContactGrid, ContactModel, ContactModelKind, DynamicsKind, FixedGridParams, NormalContact, Scene};
 
 /// What a scene is expected to cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,11 +32,8 @@ impl CostEstimate {
 }
 
 /// The fixed grid's CPU time per step (s, 2 cores) of scene `s` with the
-/// tangential solver `solver` (Cg or GaussSeidel).
-fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, solver: GridSolver) -> f64 {
-    let Some(f) = s.contact.model.fixed_grid() else {
-        return 0.0;
-    };
+/// tangential solver `solver` (Cg or GaussSeidel) on the fixed grid `f`.
+fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, solver: GridSolver) -> f64 {
     // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
     // 2026-11-25): with the CG solver 3.97 ms per step with 478 elements in
     // contact at the mean load, 17.3 ms with 1912, 42.3 ms with 3902,
@@ -90,7 +87,7 @@ pub fn auto_grid_solver(s: &Scene) -> GridSolver {
         return f.solver.resolve(f.friction_law);
     }
     let d = derive(s);
-    if fixed_grid_step(s, &d, GridSolver::Cg) <= fixed_grid_step(s, &d, GridSolver::GaussSeidel) {
+    if fixed_grid_step(s, &d, f, GridSolver::Cg) <= fixed_grid_step(s, &d, f, GridSolver::GaussSeidel) {
         GridSolver::Cg
     } else {
         GridSolver::GaussSeidel
@@ -114,7 +111,7 @@ impl ContactModel {
         let n_el = self.mesh().map_or(0, |m| m.len()) as f64;
         match *self {
             ContactModel::ExactTransient(ContactGrid::Fixed(f)) => {
-                fixed_grid_step(s, d, f.solver.resolve(f.friction_law))
+                fixed_grid_step(s, d, f, f.solver.resolve(f.friction_law))
             }
             ContactModel::Fastsim { .. } => 25.0 * 18e-9 * n_el,
             ContactModel::SimplifiedTransient { .. } => 3e-6 * n_el,

@@ -9,7 +9,7 @@ use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
-use corrugation::contact::grid::solver::FixedGridSpec;
+use corrugation::contact::grid::spec::FixedGridSpec;
 use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver, PotentialGrid, normal};
 use corrugation::contact::influence::{Rect, influence};
 use corrugation::contact::{StepInput, TangentialSolver};

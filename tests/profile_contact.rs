@@ -21,7 +21,7 @@ use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
-use corrugation::contact::grid::solver::FixedGridSpec;
+use corrugation::contact::grid::spec::FixedGridSpec;
 use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver, RailSurface};
 use corrugation::contact::{RailContact, StepInput, TangentialSolver};
 use corrugation::growth::equivalent_roughness;
@@ -67,6 +67,12 @@ fn sized(dx: f64, dy: f64, length: f64, n_max: f64) -> FixedGrid {
     })
 }
 
+/// A step of the paper's rolling (100 km/h, F_x = 20 kN, mu = 0.4) on a
+/// grid of element `dx`, with the patch centre at `position`.
+fn rolling(patch: corrugation::hertz::HertzPatch, dx: f64, position: f64) -> StepInput {
+    StepInput { patch, speed: 27.78, dt: dx / 27.78, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0, position }
+}
+
 /// A harmonic rail `Delta cos(2 pi X / lambda)`, uniform across, sampled
 /// every `lambda / 200` over one period.
 fn wave(amplitude: f64, wavelength: f64) -> Arc<RailSurface> {
@@ -95,16 +101,7 @@ fn flat_rail_gives_the_hertz_solution_of_the_grid() {
     let shape = paper_shape(true);
     let patch = shape.patch(N).unwrap();
     let dx = 4e-4;
-    let input = StepInput {
-        patch,
-        speed: 27.78,
-        dt: dx / 27.78,
-        friction: 0.4,
-        force_x: 2e4,
-        creepage_y: 0.0,
-        spin: 0.0,
-        position: 0.013,
-    };
+    let input = rolling(patch, dx, 0.013);
     let mut hertz = solver(dx, 1e-3, 1.0);
     let mut flat = solver(dx, 1e-3, 1.0);
     flat.set_surface(Some(RailContact::Profile(Arc::new(RailSurface::line(0.0, 1e-3, &[0.0; 50], true))))).unwrap();
@@ -337,16 +334,7 @@ fn a_patch_that_outgrows_the_grid_names_the_grid_that_holds_it() {
     let (dx, dy) = (2e-4, 5e-4);
     let surface = || Some(RailContact::Profile(wave(delta, lambda)));
     let patch = paper_shape(true).patch(N).unwrap();
-    let input = StepInput {
-        patch,
-        speed: 27.78,
-        dt: dx / 27.78,
-        friction: 0.4,
-        force_x: 2e4,
-        creepage_y: 0.0,
-        spin: 0.0,
-        position: 0.5 * lambda,
-    };
+    let input = rolling(patch, dx, 0.5 * lambda);
     let mut tight = solver(dx, dy, 1.0);
     tight.set_surface(surface()).unwrap();
     let e = tight.step(&input).unwrap_err().to_string();

@@ -137,22 +137,9 @@ impl DiscreteTrack {
         let ks = self.support_stiffness(omega);
         let g = 2.0 * PI / d;
         // Phasors exp(i 2 pi j x0 / d) of the harmonics, j = -J..=J.
-        let js: Vec<i64> = (-LATTICE_TERMS..=LATTICE_TERMS).collect();
-        let phases: Vec<Vec<Complex64>> =
-            xs.iter().map(|&x0| js.iter().map(|&j| Complex64::from_polar(1.0, g * j as f64 * x0)).collect()).collect();
-        // Tail of T(kappa, 0): alpha^ ~ 1 / (kGA k^2), sum_{|j| > J} of
-        // 1 / (kGA (2 pi j / d)^2) ~ d^2 / (2 pi^2 kGA (J + 1/2)).
-        let kga = Complex64::new(1.0, self.rail_loss_factor) * self.rail.shear_stiffness;
-        let tail = d * d / (2.0 * PI * PI * (LATTICE_TERMS as f64 + 0.5)) / kga;
+        let phases: Vec<Vec<Complex64>> = xs.iter().map(|&x0| self.phasors(x0)).collect();
         let mut sums = vec![Complex64::new(0.0, 0.0); xs.len()];
-        let mut a = vec![Complex64::new(0.0, 0.0); js.len()];
-        for q in 0..ZONE_POINTS {
-            let kappa = -PI / d + (q as f64 + 0.5) * g / ZONE_POINTS as f64;
-            let mut t0 = tail;
-            for (ai, &j) in a.iter_mut().zip(&js) {
-                *ai = self.spectral(kappa + g * j as f64, omega);
-                t0 += *ai;
-            }
+        self.over_zone(omega, |kappa, a, t0| {
             for ((sum, phase), &x0) in sums.iter_mut().zip(&phases).zip(xs) {
                 let (mut tp, mut tm) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
                 for (ai, ph) in a.iter().zip(phase) {
@@ -163,7 +150,7 @@ impl DiscreteTrack {
                 let (tp, tm) = (tp * shift, tm * shift.conj());
                 *sum += t0 - ks * tp * tm / (d + ks * t0);
             }
-        }
+        });
         sums.iter().map(|s| s / (2.0 * PI) * (g / ZONE_POINTS as f64)).collect()
     }
 
@@ -174,27 +161,19 @@ impl DiscreteTrack {
     /// sum is added where `L` is a whole number of bays (where its terms do
     /// not oscillate); elsewhere it is below 1e-3 of the receptance.
     pub fn transfer_receptances(&self, x0: f64, distances: &[f64], omega: f64) -> Vec<Complex64> {
+        if distances.is_empty() {
+            return Vec::new();
+        }
         let d = self.spacing;
         let ks = self.support_stiffness(omega);
         let g = 2.0 * PI / d;
-        let js: Vec<i64> = (-LATTICE_TERMS..=LATTICE_TERMS).collect();
-        let phases =
-            |x: f64| -> Vec<Complex64> { js.iter().map(|&j| Complex64::from_polar(1.0, g * j as f64 * x)).collect() };
-        let source = phases(x0);
-        let watched: Vec<Vec<Complex64>> = distances.iter().map(|&l| phases(x0 + l)).collect();
-        let free: Vec<Vec<Complex64>> = distances.iter().map(|&l| phases(l)).collect();
-        let kga = Complex64::new(1.0, self.rail_loss_factor) * self.rail.shear_stiffness;
-        let tail = d * d / (2.0 * PI * PI * (LATTICE_TERMS as f64 + 0.5)) / kga;
+        let source = self.phasors(x0);
+        let watched: Vec<Vec<Complex64>> = distances.iter().map(|&l| self.phasors(x0 + l)).collect();
+        let free: Vec<Vec<Complex64>> = distances.iter().map(|&l| self.phasors(l)).collect();
+        let tail = self.lattice_tail();
         let whole_bays: Vec<bool> = distances.iter().map(|&l| ((l / d) - (l / d).round()).abs() < 1e-12).collect();
         let mut sums = vec![Complex64::new(0.0, 0.0); distances.len()];
-        let mut a = vec![Complex64::new(0.0, 0.0); js.len()];
-        for q in 0..ZONE_POINTS {
-            let kappa = -PI / d + (q as f64 + 0.5) * g / ZONE_POINTS as f64;
-            let mut t0 = tail;
-            for (ai, &j) in a.iter_mut().zip(&js) {
-                *ai = self.spectral(kappa + g * j as f64, omega);
-                t0 += *ai;
-            }
+        self.over_zone(omega, |kappa, a, t0| {
             // T(kappa, -x0), the source's side of the supports' response.
             let tm = a.iter().zip(&source).map(|(ai, ph)| ai * ph.conj()).sum::<Complex64>()
                 * Complex64::from_polar(1.0, -kappa * x0);
@@ -206,8 +185,43 @@ impl DiscreteTrack {
                 let tl = a.iter().zip(&free[k]).map(|(ai, ph)| ai * ph).sum::<Complex64>() * shift + tail_l;
                 sums[k] += tl - ks * tp * tm / (d + ks * t0);
             }
-        }
+        });
         sums.iter().map(|s| s / (2.0 * PI) * (g / ZONE_POINTS as f64)).collect()
+    }
+
+    /// The phasors `exp(i 2 pi j x / d)` of the lattice harmonics,
+    /// `j = -J..=J`.
+    fn phasors(&self, x: f64) -> Vec<Complex64> {
+        let g = 2.0 * PI / self.spacing;
+        (-LATTICE_TERMS..=LATTICE_TERMS).map(|j| Complex64::from_polar(1.0, g * j as f64 * x)).collect()
+    }
+
+    /// Tail of `T(kappa, 0)` beyond the harmonics kept: `alpha^ ~ 1 / (kGA
+    /// k^2)`, `sum_{|j| > J} 1 / (kGA (2 pi j / d)^2) ~ d^2 / (2 pi^2 kGA
+    /// (J + 1/2))`.
+    fn lattice_tail(&self) -> Complex64 {
+        let d = self.spacing;
+        let kga = Complex64::new(1.0, self.rail_loss_factor) * self.rail.shear_stiffness;
+        d * d / (2.0 * PI * PI * (LATTICE_TERMS as f64 + 0.5)) / kga
+    }
+
+    /// Calls `f(kappa, a, T(kappa, 0))` at the midpoints `kappa` of the
+    /// Brillouin zone, `a` the free rail's spectral receptances
+    /// `alpha^(kappa + 2 pi j / d)`, `j = -J..=J`, the sum with its tail.
+    fn over_zone(&self, omega: f64, mut f: impl FnMut(f64, &[Complex64], Complex64)) {
+        let d = self.spacing;
+        let g = 2.0 * PI / d;
+        let tail = self.lattice_tail();
+        let mut a = vec![Complex64::new(0.0, 0.0); 2 * LATTICE_TERMS as usize + 1];
+        for q in 0..ZONE_POINTS {
+            let kappa = -PI / d + (q as f64 + 0.5) * g / ZONE_POINTS as f64;
+            let mut t0 = tail;
+            for (ai, j) in a.iter_mut().zip(-LATTICE_TERMS..=LATTICE_TERMS) {
+                *ai = self.spectral(kappa + g * j as f64, omega);
+                t0 += *ai;
+            }
+            f(kappa, &a, t0);
+        }
     }
 
     /// The first bending frequency (Hz) of one span `d` of this rail simply

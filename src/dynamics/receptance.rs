@@ -174,12 +174,18 @@ pub fn hertz_stiffness(n0: f64, approach0: f64) -> f64 {
 /// outgoing waves for `exp(+i w t)`; module docs, eq. 4). A negative zero
 /// imaginary part is read as `+0`, the limit of a positive (passive) damping.
 pub fn winkler_point_receptance(ei: f64, net_stiffness: Complex64) -> Complex64 {
+    let beta = winkler_beta(ei, net_stiffness);
+    1.0 / (8.0 * ei * beta * beta * beta)
+}
+
+/// The principal fourth root `beta` of `net_stiffness / (4 EI)` (module
+/// docs, eq. 4), a negative zero imaginary part read as `+0`.
+fn winkler_beta(ei: f64, net_stiffness: Complex64) -> Complex64 {
     let mut b4 = net_stiffness / (4.0 * ei);
     if b4.im == 0.0 {
         b4.im = 0.0; // -0.0 -> +0.0: the damped limit, arg = +pi above cut-on.
     }
-    let beta = b4.sqrt().sqrt();
-    1.0 / (8.0 * ei * beta * beta * beta)
+    b4.sqrt().sqrt()
 }
 
 /// Transfer receptance (m/N) of the same beam: the displacement at distance
@@ -188,11 +194,7 @@ pub fn winkler_point_receptance(ei: f64, net_stiffness: Complex64) -> Complex64 
 /// docs, eq. 4; Hetenyi 1946 in the static case), `beta` as in
 /// [`winkler_point_receptance`], which it equals at `distance = 0`.
 pub fn winkler_transfer_receptance(ei: f64, net_stiffness: Complex64, distance: f64) -> Complex64 {
-    let mut b4 = net_stiffness / (4.0 * ei);
-    if b4.im == 0.0 {
-        b4.im = 0.0;
-    }
-    let beta = b4.sqrt().sqrt();
+    let beta = winkler_beta(ei, net_stiffness);
     let bx = beta * distance.abs();
     (-bx).exp() * (bx.cos() + bx.sin()) / (8.0 * ei * beta * beta * beta)
 }

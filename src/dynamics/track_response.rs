@@ -78,17 +78,20 @@ pub fn track_response(
         (0..position.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect();
     let cont: Vec<Complex64> = frequency.iter().map(|f| continuous.rail_receptance(2.0 * PI * f)).collect();
     let source = vec![0.0, 0.5 * d];
-    let transfer_by_frequency: Vec<Vec<Vec<Complex64>>> = if distances.is_empty() {
+    // [frequency][source][distance], turned into [source][distance][frequency].
+    let by_frequency_transfer: Vec<Vec<Vec<Complex64>>> = frequency
+        .par_iter()
+        .map(|f| source.iter().map(|&x0| discrete.transfer_receptances(x0, distances, 2.0 * PI * f)).collect())
+        .collect();
+    let transfer: Vec<Vec<Vec<Complex64>>> = if distances.is_empty() {
         Vec::new()
     } else {
-        frequency
-            .par_iter()
-            .map(|f| source.iter().map(|&x0| discrete.transfer_receptances(x0, distances, 2.0 * PI * f)).collect())
+        (0..source.len())
+            .map(|s| {
+                (0..distances.len()).map(|l| by_frequency_transfer.iter().map(|row| row[s][l]).collect()).collect()
+            })
             .collect()
     };
-    let transfer: Vec<Vec<Vec<Complex64>>> = (0..if distances.is_empty() { 0 } else { source.len() })
-        .map(|s| (0..distances.len()).map(|l| transfer_by_frequency.iter().map(|row| row[s][l]).collect()).collect())
-        .collect();
     let continuous_transfer: Vec<Vec<Complex64>> = distances
         .iter()
         .map(|&l| frequency.iter().map(|f| continuous.rail_transfer_receptance(2.0 * PI * f, l)).collect())

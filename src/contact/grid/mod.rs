@@ -31,10 +31,12 @@ pub mod convolution;
 pub mod coupling;
 pub mod normal;
 pub mod solver;
+pub mod spec;
 pub mod surface;
 pub mod tangential;
 
-pub use solver::{FixedGrid, GridScheme, GridSolver};
+pub use solver::FixedGrid;
+pub use spec::{GridScheme, GridSolver};
 pub use surface::RailSurface;
 
 /// A uniform rectangular grid of elements in the contact frame.
