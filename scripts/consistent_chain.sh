@@ -7,12 +7,13 @@
 #     reference: the full contact; amplitudes where its patch moves over
 #     several elements),
 #   - contact.normal = "auto" on the fixed grid (the default),
+#   - the linear profile contact on the fixed grid at 0.4 and 0.2 mm,
 #   - the Hertz chain (contact.normal = "hertz"),
 #   - the linear profile contact on the adapted mesh: the exact model
 #     (20 x 20, 0.2 mm steps; 28 x 28, 0.143 mm), the simplified transient
 #     model (20 x 20) and FASTSIM (40 x 40).
 # Writes out/consistent_chain/rates.csv and prints the table (the README's,
-# The consistent chain). About 25 minutes on 2 cores.
+# The consistent chain). About 30 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -52,6 +53,8 @@ for dyn in receptance imposed; do
     done
     mid=$(echo $amps | cut -d' ' -f2)
     run auto_0.4mm $exact $dyn $lam $mid
+    run linear_0.4mm $exact $dyn $lam $mid --set contact.normal=linear
+    run linear_0.2mm $exact $dyn $lam $mid --set contact.normal=linear "${fine[@]}"
     run hertz_0.4mm $exact $dyn $lam $mid --set contact.normal=hertz
     run linear_exact_20 $exact $dyn $lam $mid "${adapted[@]}"
     run linear_exact_28 $exact $dyn $lam $mid "${adapted[@]}" --set contact.elements_x=28 \

@@ -278,13 +278,17 @@ fn print_normal_contact(normal: NormalContact, fixed: bool) {
             "normal contact     hertz: the paper's chain, no profile in the contact (the dynamics see the profile \
              weighted across the patch by the Hertz line load); for comparison only"
         ),
-        NormalContact::Linear => println!("normal contact     linear: {linear}"),
+        NormalContact::Linear { grid_scale } if fixed => println!(
+            "normal contact     linear: {linear}; its pressure averaged over the grid's elements, the grid \
+             {grid_scale} times the largest Hertz patch both ways"
+        ),
+        NormalContact::Linear { .. } => println!("normal contact     linear: {linear}"),
         NormalContact::Profile { grid_scale } => println!("normal contact     profile: {}", profile(grid_scale)),
         NormalContact::Auto { grid_scale } if fixed => println!(
-            "normal contact     auto: {}; while the corrugation's curvature is below {:.0} % of the wheel's the \
-             dynamics see the linear contact's flat-punch average instead (no normal solves)",
+            "normal contact     auto: {linear} while the corrugation's curvature is below {:.0} % of the wheel's; \
+             beyond, {}",
+            100.0 * corrugation::growth::LINEAR_CONTACT_CURVATURE,
             profile(grid_scale),
-            100.0 * corrugation::growth::LINEAR_FILTER_CURVATURE
         ),
         NormalContact::Auto { .. } => println!(
             "normal contact     auto: {linear}; a corrugation that opens the patch inside is reported (the \

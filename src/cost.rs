@@ -55,6 +55,11 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     // with Gauss-Seidel, which sweeps the contact area only, 1.15 times
     // (growth_discrete.toml, 9.1-9.6 s per passage of 1526 steps;
     // growth_exact.toml 2.03 s, the model 2.02 s).
+    // The linear profile contact (its grid 1.0 times the patch, its
+    // pressure's cell means instead of the normal solves): 1.16 times
+    // (growth_exact.toml, 0.67 against 0.58 s per passage, 2026-11-25).
+    // `auto` is costed as the nonlinear contact (its grid holds it; a
+    // passage in the linear range costs less).
     let profile = match s.contact.normal {
         NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => {
             if cg {
@@ -63,6 +68,7 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
                 1.15
             }
         }
+        NormalContact::Linear { .. } if s.growth.is_some() => 1.16,
         _ => 1.0,
     };
     let per_step = if cg { 3.97e-3 * (n_c / 478.0).powf(1.13) } else { 5.39e-3 * (n_c / 478.0).powf(1.46) };

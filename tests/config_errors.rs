@@ -161,12 +161,6 @@ fn fixed_grid_keys() {
             "contact.normal: = \"elastic\" is not allowed; expected one of \"auto\", \"linear\", \"profile\", \"hertz\"",
         ),
         (
-            &[exact, "contact.grid=fixed", "contact.normal=linear"],
-            "contact.normal: = \"linear\" is the adapted mesh's first-order contact (the mesh moved with the \
-             contact); the fixed grid moves the patch over its elements by the nonlinear normal problem itself: \
-             allowed with contact.grid = \"fixed\": auto, profile, hertz",
-        ),
-        (
             &[exact, "contact.grid=fixed", "contact.normal=auto", "contact.profile_from=5e-6"],
             "contact.profile_from: unknown key",
         ),

@@ -121,7 +121,8 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     resume(&part, Some(1), None, &mut |_| {}).unwrap();
     assert_same(&full, &part);
     // The fixed grid (0.5 x 1 mm, the step): receptance dynamics on random
-    // roughness, the patch fields on the grid stored and read back.
+    // roughness, the patch fields on the grid stored and read back; `auto`
+    // takes the linear contact on a window of its grid here.
     let fixed = [
         "contact.model=exact-transient",
         "contact.grid=fixed",
@@ -131,6 +132,8 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
         "output.store_fields=true",
     ];
     let full = run(dir.path(), "ffull.h5", &[&fixed[..], &["growth.passes=3"]].concat());
+    let contact = read_f64(&full, "passes", "profile_contact").unwrap();
+    assert!(contact.iter().all(|c| *c == 2.0), "{contact:?}");
     let part = run(dir.path(), "fpart.h5", &[&fixed[..], &["growth.passes=2"]].concat());
     resume(&part, Some(1), None, &mut |_| {}).unwrap();
     assert_same(&full, &part);

@@ -1,10 +1,11 @@
-"""Validity map of the Hertz normal contact on a corrugated rail
-(``scripts/validity_map.sh``).
+"""Validity map of a normal contact on a corrugated rail against the
+nonlinear profile contact (``scripts/validity_map.sh``): the Hertz contact
+(``"hertz"``) or the linear profile contact (``"linear"``).
 
 Input: a manifest CSV with columns ``wavelength, amplitude, normal, file,
 exit_code, message, contact_loss``: one growth passage per harmonic
-corrugation (wavelength m, amplitude m) with ``contact.normal = "hertz"``
-and with ``"profile"``. Per corrugation:
+corrugation (wavelength m, amplitude m) with ``contact.normal`` the
+candidate and with ``"profile"``. Per corrugation:
 
 - ``mean_difference``: relative difference of the mean wear depth of the
   passage, ``|w_h - w_p| / |w_p|``;
@@ -55,7 +56,16 @@ def _wear(path, wavelength):
     return mean, harmonic
 
 
+def candidate(rows) -> str:
+    """The normal contact compared with ``"profile"`` in a manifest."""
+    names = sorted({r["normal"] for r in rows} - {"profile"})
+    if len(names) != 1:
+        raise ValueError(f"a validity manifest compares one normal contact with 'profile', found {names}")
+    return names[0]
+
+
 def evaluate(rows):
+    name = candidate(rows)
     cases = defaultdict(dict)
     for r in rows:
         cases[(float(r["wavelength"]), float(r["amplitude"]))][r["normal"]] = r
@@ -72,14 +82,14 @@ def evaluate(rows):
         row = dict(wavelength=wavelength, amplitude=amplitude, mean_difference=math.nan,
                    harmonic_difference=math.nan, amplitude_ratio=math.nan, phase_difference=math.nan)
         row["contact_loss"] = sum(int(r.get("contact_loss") or 0) for r in pair.values())
-        failed = [n for n in ("hertz", "profile") if n not in pair or int(pair[n]["exit_code"]) != 0]
+        failed = [n for n in (name, "profile") if n not in pair or int(pair[n]["exit_code"]) != 0]
         if failed:
             messages = "; ".join(pair[n]["message"] for n in failed if n in pair)
             row["outcome"] = f"{' and '.join(failed)} failed: {messages}".strip()
         else:
-            mh, wh = _wear(pair["hertz"]["file"], wavelength)
+            mh, wh = _wear(pair[name]["file"], wavelength)
             mp, wp = _wear(pair["profile"]["file"], wavelength)
-            wh -= smooth.get((wavelength, "hertz"), 0.0)
+            wh -= smooth.get((wavelength, name), 0.0)
             wp -= smooth.get((wavelength, "profile"), 0.0)
             row.update(mean_difference=abs(mh - mp) / abs(mp), harmonic_difference=abs(wh - wp) / abs(wp),
                        amplitude_ratio=abs(wh) / abs(wp),
@@ -88,7 +98,7 @@ def evaluate(rows):
     return out
 
 
-def chart(rows, path):
+def chart(rows, path, name="hertz"):
     import matplotlib.pyplot as plt
     from matplotlib.colors import LogNorm
 
@@ -119,10 +129,10 @@ def chart(rows, path):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("corrugation wavelength (mm)")
-        ax.set_title(f"hertz vs profile: {title} (%)")
+        ax.set_title(f"{name} vs profile: {title} (%)")
         fig.colorbar(mesh, ax=ax)
     axes[0].set_ylabel("corrugation amplitude (um)")
-    fig.suptitle("Validity of the Hertz normal contact (x: run failed, full sliding; o: contact loss)")
+    fig.suptitle(f"Validity of the {name} normal contact (x: run failed, full sliding; o: contact loss)")
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -145,10 +155,11 @@ def markdown(rows) -> str:
 def run(manifest, out):
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    rows = evaluate(read_csv(manifest))
+    manifest_rows = read_csv(manifest)
+    rows = evaluate(manifest_rows)
     paths = [write_csv(out / "validity.csv", COLUMNS, rows)]
     (out / "validity.md").write_text(markdown(rows) + "\n")
     paths.append(out / "validity.md")
-    chart(rows, out / "validity_map.png")
+    chart(rows, out / "validity_map.png", candidate(manifest_rows))
     paths.append(out / "validity_map.png")
     return rows, paths

@@ -53,3 +53,31 @@ def test_validity_map_compares_hertz_and_profile(tmp_path):
     assert "| 30 | 10 |" in markdown(out)
     chart(out, tmp_path / "map.png")
     assert (tmp_path / "map.png").stat().st_size > 1000
+
+
+@pytest.mark.skipif(not BIN, reason="CORRUGATION_BIN not set (scripts/test.sh sets it)")
+def test_validity_map_of_the_linear_contact(tmp_path):
+    # The candidate is read from the manifest: "linear" against "profile"
+    # at 30 mm and 10 um, where the two agree within the linear range (the
+    # README's map: 4.4 % on the 0.4 mm grid).
+    rows = []
+    for amplitude in (0.0, 1e-5):
+        for normal in ("linear", "profile"):
+            f = tmp_path / f"{amplitude}_{normal}.h5"
+            cmd = [BIN, "run", str(REPO / "configs" / "growth_exact.toml"), "-o", str(f),
+                   "--set", "growth.passes=1", "--set", "growth.adaptive=false",
+                   "--set", "growth.contact_history=[0]", "--set", "roughness.kind=harmonics",
+                   "--set", f"roughness.harmonics=[{{amplitude = {amplitude}, wavelength = 0.03}}]",
+                   "--set", "rail.x_max=0.06", "--set", "passage.end=0.06", "--set", "passage.start=-0.04",
+                   "--set", "rail.half_width=0.02", "--set", f"contact.normal={normal}",
+                   "--set", "contact.profile_grid_scale=2.0"]
+            done = subprocess.run(cmd, capture_output=True, text=True)
+            assert done.returncode == 0, done.stderr
+            rows.append({"wavelength": "0.03", "amplitude": str(amplitude), "normal": normal, "file": str(f),
+                         "exit_code": "0", "message": "", "contact_loss": "0"})
+    (row,) = evaluate(rows)
+    assert row["outcome"] == "both"
+    assert row["harmonic_difference"] < 0.1 and row["mean_difference"] < 0.05, row
+    chart([row], tmp_path / "map.png", "linear")
+    with pytest.raises(ValueError):
+        evaluate([dict(r, normal="hertz") if r["normal"] == "profile" else r for r in rows])

@@ -24,6 +24,10 @@ pub const DEFAULT_GRID_DY: f64 = 5e-4;
 /// the wheel's curvature.
 pub const DEFAULT_PROFILE_GRID_SCALE: f64 = 1.5;
 
+/// Default `contact.profile_grid_scale` of the linear profile contact on
+/// the fixed grid ([`crate::build::LINEAR_GRID_SCALE`]).
+pub const DEFAULT_LINEAR_GRID_SCALE: f64 = crate::build::LINEAR_GRID_SCALE;
+
 /// The keys of `[contact]` as read (each None when invalid).
 pub(super) struct ContactKeys {
     pub model: Option<String>,
@@ -87,10 +91,14 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
     let solver = s.choice("solver", Some(GridSolver::Auto.name()), &solvers);
     let normal = s.choice("normal", Some(NormalKind::Auto.into()), NormalKind::VARIANTS);
     let normal_kind = normal.as_deref().and_then(|n| n.parse::<NormalKind>().ok());
-    let profile = matches!(normal_kind, Some(NormalKind::Profile | NormalKind::Auto));
+    let default_scale = match normal_kind {
+        Some(NormalKind::Profile | NormalKind::Auto) => Some(DEFAULT_PROFILE_GRID_SCALE),
+        Some(NormalKind::Linear) => Some(DEFAULT_LINEAR_GRID_SCALE),
+        _ => None,
+    };
     let length_range = Range::Closed(1.0, 4.0);
-    let grid_scale = if profile && (fixed || auto) {
-        s.f64("profile_grid_scale", Some(DEFAULT_PROFILE_GRID_SCALE), length_range)
+    let grid_scale = if let Some(default) = default_scale.filter(|_| fixed || auto) {
+        s.f64("profile_grid_scale", Some(default), length_range)
     } else {
         if s.has("profile_grid_scale") {
             s.f64("profile_grid_scale", None, length_range);
@@ -139,18 +147,6 @@ pub(super) fn normal_contact(
     let by_auto = if chosen { " (contact.model = \"auto\" chose it)" } else { "" };
     Some(match normal?.parse::<NormalKind>().ok()? {
         NormalKind::Hertz => NormalContact::Hertz,
-        NormalKind::Linear if fixed => {
-            errors.push(ConfigError::new(
-                "contact.normal",
-                format!(
-                    "= \"linear\" is the adapted mesh's first-order contact (the mesh moved with the contact); the \
-                     fixed grid{by_auto} moves the patch over its elements by the nonlinear normal problem itself: \
-                     allowed with contact.grid = \"fixed\": {}",
-                    allowed_normal(NormalKind::Linear)
-                ),
-            ));
-            return None;
-        }
         NormalKind::Profile if !fixed => {
             errors.push(ConfigError::new(
                 "contact.normal",
@@ -162,7 +158,7 @@ pub(super) fn normal_contact(
             ));
             return None;
         }
-        NormalKind::Linear => NormalContact::Linear,
+        NormalKind::Linear => NormalContact::Linear { grid_scale },
         NormalKind::Profile => NormalContact::Profile { grid_scale },
         NormalKind::Auto => NormalContact::Auto { grid_scale },
     })
@@ -220,6 +216,7 @@ pub(super) fn reconcile_step(
         friction_law: law.parse().expect("a validated choice"),
         scheme: scheme.parse().expect("a validated choice"),
         solver: GridSolver::Auto,
+        linear_solver: GridSolver::Auto,
     }))
 }
 

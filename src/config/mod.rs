@@ -266,6 +266,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     contact::check_model(&model, fixed_grid.as_ref(), &solver, errors);
     if let Some(f) = &mut fixed_grid {
         f.solver = contact::grid_solver(&solver);
+        f.linear_solver = f.solver;
     }
     let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(mut step_length)) =
         (k_over_h, substeps, start, end, step_length)
@@ -359,6 +360,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
                     friction_law: FrictionLaw::Regularised,
                     scheme: GridScheme::SecondOrder,
                     solver: contact::grid_solver(&solver),
+                    linear_solver: contact::grid_solver(&solver),
                 });
                 step_length = dx;
                 nx
@@ -406,12 +408,17 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     contact::check_grid_size(&scene, errors);
     contact::check_periodic_steps(&scene, errors);
     // contact.solver = "auto" on the fixed grid: the cheaper tangential
-    // solver by the cost model (the config keeps "auto").
+    // solver by the cost model (the config keeps "auto"), for the scene's
+    // normal contact and for the linear contact's passages of "auto".
     let mut scene = scene;
     if errors.is_empty() && scene.contact.model.fixed_grid().is_some() {
         let choice = crate::cost::auto_grid_solver(&scene);
+        let mut linear = scene.clone();
+        linear.contact.normal = crate::params::NormalContact::Linear { grid_scale: crate::build::LINEAR_GRID_SCALE };
+        let linear_choice = crate::cost::auto_grid_solver(&linear);
         if let ContactModel::ExactTransient(ContactGrid::Fixed(f)) = &mut scene.contact.model {
             f.solver = choice;
+            f.linear_solver = linear_choice;
         }
     }
     (Some(scene), resolved)

@@ -271,7 +271,7 @@ impl<'a> Study<'a> {
         let total_steps = (passes - first) * steps;
         let mut report =
             |done: usize, _: usize| progress(Event::Steps { done: (pass - first) * steps + done, total: total_steps });
-        let (mut loss, mut clipped, mut linear_filter) = (0, 0, false);
+        let (mut loss, mut clipped, mut linear_contact) = (0, 0, false);
         let fallbacks;
         let (wear, history) = match growth {
             None => {
@@ -321,7 +321,7 @@ impl<'a> Study<'a> {
                 };
                 loss = g.contact_loss_steps;
                 clipped = g.clipped_steps;
-                linear_filter = g.linear_filter;
+                linear_contact = g.linear_contact;
                 if clipped > 0 {
                     progress(Event::Warning {
                         pass,
@@ -394,8 +394,7 @@ impl<'a> Study<'a> {
             contact_loss_steps: loss as f64,
             profile_contact: match normal {
                 NormalContact::Hertz => 0.0,
-                NormalContact::Linear => PROFILE_LINEAR,
-                _ if linear_filter => PROFILE_LINEAR_FILTER,
+                _ if linear_contact => PROFILE_LINEAR,
                 _ => PROFILE_NONLINEAR,
             },
             clipped_steps: clipped as f64,
@@ -434,7 +433,9 @@ impl<'a> Study<'a> {
     /// nonlinear profile contact on the fixed grid.
     fn normal_contact(&self) -> NormalContact {
         match self.scene.contact.normal {
-            NormalContact::Auto { .. } if self.scene.contact.model.fixed_grid().is_none() => NormalContact::Linear,
+            NormalContact::Auto { .. } if self.scene.contact.model.fixed_grid().is_none() => {
+                NormalContact::Linear { grid_scale: 1.0 }
+            }
             normal => normal,
         }
     }
@@ -528,10 +529,10 @@ fn stop_reason(growth: Option<&GrowthParams>, rows: &[PassRow]) -> Option<String
 /// with the dynamics of its nonlinear equivalent roughness.
 const PROFILE_NONLINEAR: f64 = 1.0;
 /// `passes/profile_contact` of a passage in the linear profile contact.
+/// (3, the nonlinear contact with the linear contact's equivalent
+/// roughness, was written by versions before the fixed grid's linear
+/// contact.)
 const PROFILE_LINEAR: f64 = 2.0;
-/// `passes/profile_contact` of a passage in the nonlinear profile contact
-/// with the dynamics of the linear contact's equivalent roughness.
-const PROFILE_LINEAR_FILTER: f64 = 3.0;
 
 /// Whether a passage that failed with `e` ends a study that stops at
 /// saturation: the prescribed longitudinal force reached the friction limit

@@ -198,8 +198,13 @@ pub struct FixedGridParams {
     pub friction_law: FrictionLaw,
     /// Backward difference of the material derivative.
     pub scheme: GridScheme,
-    /// Tangential solver (`contact.solver`).
+    /// Tangential solver (`contact.solver`; "auto" resolved by the cost
+    /// model for the scene's normal contact).
     pub solver: GridSolver,
+    /// Tangential solver of the passages `contact.normal = "auto"` runs in
+    /// the linear contact, on its own smaller grid (the same as `solver`
+    /// unless "auto" chose them: the cost model's choice for that grid).
+    pub linear_solver: GridSolver,
 }
 
 /// What the normal contact sees of the rail (`contact.normal`); its
@@ -212,23 +217,26 @@ pub struct FixedGridParams {
     doc = "The kind of [`NormalContact`], named as `contact.normal`."
 )]
 pub enum NormalContact {
-    /// The consistent chain, the default: on the adapted mesh the linear
-    /// contact; on the fixed grid the nonlinear profile contact, whose
-    /// dynamics see the linear contact's equivalent roughness (the
-    /// flat-punch average, no normal solves) while the corrugation's
-    /// curvature is small against the wheel's, the nonlinear equivalent
-    /// roughness beyond.
+    /// The consistent chain, the default: the linear contact; on the
+    /// fixed grid the nonlinear profile contact for a passage whose
+    /// corrugation is beyond the linear range (its curvature against the
+    /// wheel's, [`crate::growth::LINEAR_CONTACT_CURVATURE`]).
     Auto {
         /// Size of the potential-contact grid (as for `Profile`; 1 on the
         /// adapted mesh) (1).
         grid_scale: f64,
     },
-    /// The linearised profile contact of the adapted mesh
-    /// ([`crate::contact::linear`]): the patch moved and stretched to first
-    /// order with the corrugation under it, the rest of the normal
-    /// problem's linear response on it. The dynamics see its equivalent
+    /// The linearised profile contact ([`crate::contact::linear`]): the
+    /// patch moved and stretched to first order with the corrugation under
+    /// it, the rest of the normal problem's linear response on it (on the
+    /// adapted mesh the mesh moves with it; on the fixed grid its pressure
+    /// is averaged over the elements). The dynamics see its equivalent
     /// roughness, the flat-punch average of the profile.
-    Linear,
+    Linear {
+        /// Size of the potential-contact grid (the fixed grid's; 1 on the
+        /// adapted mesh) (1).
+        grid_scale: f64,
+    },
     /// The quadratic gap less the rail profile under the patch
     /// (non-Hertzian, nonlinear; the fixed grid only); the dynamics see the
     /// equivalent roughness.
@@ -255,8 +263,10 @@ impl NormalContact {
     /// patch (1).
     pub fn grid_scale(self) -> f64 {
         match self {
-            NormalContact::Hertz | NormalContact::Linear => 1.0,
-            NormalContact::Profile { grid_scale } | NormalContact::Auto { grid_scale } => grid_scale,
+            NormalContact::Hertz => 1.0,
+            NormalContact::Linear { grid_scale }
+            | NormalContact::Profile { grid_scale }
+            | NormalContact::Auto { grid_scale } => grid_scale,
         }
     }
 }

@@ -34,6 +34,7 @@ pub mod solver;
 pub mod spec;
 pub mod surface;
 pub mod tangential;
+mod window;
 
 pub use solver::FixedGrid;
 pub use spec::{GridScheme, GridSolver};
@@ -69,6 +70,10 @@ pub struct Alignment {
     pub edge: f64,
     /// The period of the allowed edge positions (m); 0 = no constraint.
     pub period: f64,
+    /// With no constraint (`period = 0`): an even number of elements, an
+    /// element edge on the centre (else the fewer elements of the two
+    /// equally centred grids).
+    pub even: bool,
 }
 
 impl Alignment {
@@ -103,6 +108,7 @@ impl PotentialGrid {
         // rail grid allows it.
         let place = |half: f64, d: f64, align: Alignment, sign: f64| {
             let n = (2.0 * half / d).ceil() as usize;
+            let n = if align.period <= 0.0 && align.even { n + n % 2 } else { n };
             [n, n + 1]
                 .map(|n| {
                     let edge = sign * 0.5 * n as f64 * d;
@@ -159,8 +165,8 @@ mod tests {
     #[test]
     fn covering_grid_holds_the_patch_and_lines_up() {
         let (a, b, dx, dy) = (6.0e-3, 10.0e-3, 2e-4, 5e-4);
-        let ax = Alignment { edge: 0.13e-4, period: 1e-4 };
-        let ay = Alignment { edge: -0.012 + 1.25e-4, period: 2.5e-4 };
+        let ax = Alignment { edge: 0.13e-4, period: 1e-4, even: false };
+        let ay = Alignment { edge: -0.012 + 1.25e-4, period: 2.5e-4, even: false };
         let g = PotentialGrid::covering(a, b, (dx, dy), 2, ax, ay);
         // Every element edge falls on an allowed position.
         for k in 0..=g.nx {
@@ -181,5 +187,24 @@ mod tests {
         // No alignment asked: symmetric about the patch centre.
         let s = PotentialGrid::covering(a, b, (dx, dy), 2, Alignment::default(), Alignment::default());
         assert!((s.x(0) + s.x(s.nx - 1)).abs() < 1e-15 && (s.y(0) + s.y(s.ny - 1)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn grids_of_any_size_put_their_elements_at_the_same_places() {
+        // A growth study's alignment (edges on a lattice of the element's
+        // period along x, an even number of rows across): grids sized for 1
+        // to 2 times the patch have their element centres on one lattice
+        // along x and element edges on the centre line across.
+        let (a, b, dx, dy) = (6.0e-3, 10.0e-3, 4e-4, 1e-3);
+        let ax = Alignment { edge: 10.1e-3, period: dx, even: false };
+        let ay = Alignment { even: true, ..Alignment::default() };
+        let reference = PotentialGrid::covering(a, b, (dx, dy), 2, ax, ay);
+        for scale in [1.0, 1.1, 1.2, 1.25, 1.5, 1.7, 2.0] {
+            let g = PotentialGrid::covering(scale * a, scale * b, (dx, dy), 2, ax, ay);
+            let offset = (g.x(0) - reference.x(0)) / dx;
+            assert!((offset - offset.round()).abs() < 1e-9, "{scale}: x offset {offset} elements");
+            assert_eq!(g.ny % 2, 0, "{scale}: {} rows", g.ny);
+            assert!((g.y(0) + g.y(g.ny - 1)).abs() < 1e-15, "{scale}: symmetric across");
+        }
     }
 }

@@ -27,12 +27,16 @@ use super::coupling::{Coupling, FoldedKernel};
 use super::normal::{self, NormalError};
 use super::spec::{FixedGridSpec, GRID_FORCE_TOLERANCE, GRID_TOLERANCE, GridScheme, GridSolver};
 use super::tangential::{self, ContactSet, GridStep, Law};
+use super::window::Window;
 use super::{PotentialGrid, RailSurface};
 use crate::contact::friction::{STICK_SLIP_FACTOR, regularised as friction};
+use crate::contact::linear::MeshResponse;
+use crate::contact::mesh::EllipseMesh;
 use crate::contact::transient::GS_MAX_SWEEPS;
 use crate::contact::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::hertz::{Curvatures, HertzShape};
 use std::borrow::Cow;
+use std::sync::Arc;
 
 /// State carried from one step to the next, on the whole grid.
 #[derive(Debug, Clone)]
@@ -90,12 +94,74 @@ pub struct FixedGrid {
     /// Steps the Newton-Krylov solver handed to Gauss-Seidel since the last
     /// reset.
     fallbacks: usize,
+    /// The linear profile contact's response, built when a linear surface
+    /// is first set (shared with the window's block).
+    linear: Option<Arc<MeshResponse>>,
+    /// The linear contact's window ([`FixedGrid::with_linear_window`]):
+    /// its base extent (semi-axes, m) and solver, and the block of the
+    /// grid the linear surface set now runs on (`None`: the whole grid).
+    window: Option<(f64, f64, GridSolver)>,
+    active: Option<Window>,
 }
+
+/// Strips along the rail of the Paul-Hashemi mesh the fixed grid's linear
+/// profile contact solves its normal response on (resolution a / 2, see
+/// [`MeshResponse::resolution`]).
+pub const LINEAR_NORMAL_NX: usize = 32;
+/// Its rows across (32 x 18 = 576 elements, within
+/// [`crate::contact::linear::MAX_NORMAL_ELEMENTS`]).
+pub const LINEAR_NORMAL_NY: usize = 18;
 
 impl FixedGrid {
     /// Builds the grid, its influence coefficients and transforms.
     pub fn new(spec: FixedGridSpec) -> Self {
         let grid = spec.grid();
+        Self::build(spec, grid)
+    }
+
+    /// The same model on a block of this grid's elements, with the
+    /// tangential solver `solver`.
+    pub(super) fn on_block(&self, block: PotentialGrid, solver: GridSolver) -> Self {
+        Self::build(FixedGridSpec { solver, ..self.spec }, block).with_tolerance(self.tolerance)
+    }
+
+    /// Runs the steps of the linear profile contact on the block of the
+    /// grid that covers a patch of semi-axes `a_max` x `b_max` (m), the
+    /// linear contact's own grid (module [`super::window`]), with the
+    /// tangential solver `solver`; the grid holds the nonlinear contact's
+    /// larger patches. Each surface set widens the block by the patch the
+    /// surface's trough (and crest) would give to a local quadratic
+    /// ([`FixedGrid::window_for`]).
+    pub fn with_linear_window(mut self, a_max: f64, b_max: f64, solver: GridSolver) -> Self {
+        self.window = Some((a_max, b_max, solver));
+        self
+    }
+
+    /// The block a linear `surface` runs on: the base extent stretched by
+    /// the Hertz patch of the curvature sums less half the surface's
+    /// trough curvature along x (which lengthens the patch) and plus half
+    /// its crest curvature (which widens it), at the same load; `None` when
+    /// that is the whole grid. A trough of half the wheel's curvature
+    /// (`R r'' = 0.5`, the linear range's end under `auto`) lengthens the
+    /// patch by about 2^(1/3) = 1.26.
+    fn window_for(&mut self, surface: &RailSurface) -> Option<Window> {
+        let (a_max, b_max, solver) = self.window?;
+        let (crest, trough) = surface.curvature_range();
+        let c = self.spec.curvatures;
+        let patch = |ca: f64| HertzShape::new(Curvatures { a: ca, b: c.b }, self.spec.elastic)?.patch(1e5);
+        let (Ok(base), Ok(long), Ok(wide)) =
+            (patch(c.a), patch(c.a - 0.5 * trough.max(0.0)), patch(c.a + 0.5 * (-crest).max(0.0)))
+        else {
+            return None;
+        };
+        let (sa, sb) = ((long.a / base.a).max(1.0), (wide.b / base.b).max(long.b / base.b).max(1.0));
+        match self.active.take() {
+            Some(w) if w.holds(sa * a_max, sb * b_max) => Some(w),
+            _ => Window::new(self, sa * a_max, sb * b_max, self.spec.lead_columns(), solver),
+        }
+    }
+
+    fn build(spec: FixedGridSpec, grid: PotentialGrid) -> Self {
         let (g, nu) = (spec.elastic.shear_modulus(), spec.elastic.poisson_ratio);
         let normal_kernel = ToeplitzKernel::normal(&grid, g, nu);
         let kernel = ToeplitzKernel::tangential(&grid, g, nu);
@@ -116,6 +182,9 @@ impl FixedGrid {
             surface: None,
             approach_start: None,
             fallbacks: 0,
+            linear: None,
+            window: None,
+            active: None,
         }
         .fold_if_symmetric()
     }
@@ -140,7 +209,12 @@ impl FixedGrid {
     /// Steps the Newton-Krylov solver did not converge and Gauss-Seidel
     /// solved, since the last reset.
     pub fn fallbacks(&self) -> usize {
-        self.fallbacks
+        self.fallbacks + self.active.as_ref().map_or(0, |w| w.grid.fallbacks())
+    }
+
+    /// Columns ahead of the patch that supply the earlier displacements.
+    pub(super) fn lead_columns(&self) -> usize {
+        self.spec.lead_columns()
     }
 
     /// The potential-contact grid.
@@ -220,16 +294,32 @@ impl FixedGrid {
         let n_force = input.patch.normal_force;
         let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
         let area = self.grid.area();
-        let start: Option<Vec<f64>> = self.history.as_ref().map(|h| h.p3.clone());
-        let gap = self.gap_at(input.position).into_owned();
-        let normal = normal::solve(&self.normal, &mut self.scratch, &gap, area, n_force, start.as_deref())
-            .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
-        let mut p3 = normal.pressure;
+        // The pressure: the linear profile contact's first-order pressure
+        // averaged over the elements, or the normal problem on the grid
+        // (warm-started from the last step's).
+        let (mut p3, clipped, symmetric_load) = match (&self.surface, &self.linear) {
+            (Some(RailContact::Linear(surface)), Some(response)) => {
+                let (xs, ys) = self.grid.centres();
+                let centres: Vec<(f64, f64)> = xs.into_iter().zip(ys).collect();
+                let half = (0.5 * self.grid.dx, 0.5 * self.grid.dy);
+                let (p3, clipped) =
+                    response.pressure_on_cells(surface, input.position, &input.patch, &centres, half)?;
+                let symmetric = self.symmetric(&p3);
+                (p3, clipped, symmetric)
+            }
+            _ => {
+                let gap = self.gap_at(input.position).into_owned();
+                let start = self.history.as_ref().map(|h| h.p3.as_slice());
+                let normal = normal::solve(&self.normal, &mut self.scratch, &gap, area, n_force, start)
+                    .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
+                let symmetric = self.surface.is_none() || self.symmetric(&gap);
+                (normal.pressure, 0, symmetric)
+            }
+        };
         // A problem symmetric about y = 0 is solved on the lower half of the
-        // grid (coupling): the normal solution, symmetric to rounding, made
-        // exactly so.
-        let symmetric =
-            input.creepage_y == 0.0 && input.spin == 0.0 && (self.surface.is_none() || self.symmetric(&gap));
+        // grid (coupling): the pressure, symmetric to rounding, made exactly
+        // so.
+        let symmetric = input.creepage_y == 0.0 && input.spin == 0.0 && symmetric_load;
         let folded = self.folded.as_ref().filter(|_| symmetric);
         let mirror = |k: usize| (ny - 1 - k / nx) * nx + k % nx;
         if folded.is_some() {
@@ -355,6 +445,7 @@ impl FixedGrid {
         })?;
         let (mut out, s_grid) = self.expand(input, &set, &weight, &p3, &sol);
         out.fallback = fell_back;
+        out.clipped = clipped;
         let (older, oldest) = match self.history.take() {
             Some(h) => (Some(h.u), h.older),
             None => (None, None),
@@ -380,7 +471,10 @@ impl FixedGrid {
                 k / nx,
                 match &self.surface {
                     Some(RailContact::Profile(s)) => self.outgrown(s, position, n_force),
-                    _ => String::new(),
+                    Some(RailContact::Linear(_)) => " (the linear profile contact's patch, moved and stretched by the \
+                                                     corrugation under it: raise contact.profile_grid_scale)"
+                        .to_string(),
+                    None => String::new(),
                 }
             )),
             None => Ok(()),
@@ -603,12 +697,21 @@ fn normal_reason(e: NormalError) -> String {
 
 impl TangentialSolver for FixedGrid {
     fn step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
-        self.solve_step(input)
+        match (&self.surface, &mut self.active) {
+            (Some(RailContact::Linear(_)), Some(window)) => {
+                let sol = window.grid.solve_step(input)?;
+                Ok(window.embed(sol, &self.grid))
+            }
+            _ => self.solve_step(input),
+        }
     }
 
     fn reset(&mut self) {
         self.history = None;
         self.fallbacks = 0;
+        if let Some(w) = &mut self.active {
+            w.grid.reset();
+        }
     }
 
     fn elements(&self) -> Elements {
@@ -616,14 +719,30 @@ impl TangentialSolver for FixedGrid {
     }
 
     fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), ContactError> {
-        // The fixed grid moves the patch over its elements by the
-        // nonlinear normal problem itself; it has no linear contact.
-        if let Some(RailContact::Linear(_)) = surface {
-            return Err(ContactError::NoSurface);
+        // The linear contact's response, once: its operator depends on the
+        // Hertz shape alone.
+        if matches!(surface, Some(RailContact::Linear(_))) && self.linear.is_none() {
+            let shape =
+                HertzShape::new(self.spec.curvatures, self.spec.elastic).map_err(|_| ContactError::NoSurface)?;
+            let mesh = EllipseMesh::new(LINEAR_NORMAL_NX, LINEAR_NORMAL_NY);
+            self.linear = Some(Arc::new(MeshResponse::new(&mesh, &shape)));
+        }
+        // A linear surface goes to the window, if any holds it.
+        self.active = match &surface {
+            Some(RailContact::Linear(s)) => self.window_for(s),
+            _ => None,
+        };
+        if let Some(w) = &mut self.active {
+            w.grid.linear = self.linear.clone();
+            w.grid.set_surface(surface.clone())?;
         }
         self.surface = surface;
         self.approach_start = None;
         Ok(())
+    }
+
+    fn linear_resolution(&self, a: f64) -> Option<f64> {
+        Some(8.0 * 2.0 * a / LINEAR_NORMAL_NX as f64)
     }
 
     fn approach(&mut self, position: f64, force: f64) -> Result<f64, ContactError> {
