@@ -89,10 +89,10 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
         ContactModel::ExactTransient(ContactGrid::Fixed(f)) => {
             let grid = FixedGrid::new(fixed_grid_spec(scene, shape, f));
             // Auto's grid holds the nonlinear contact; its linear passages
-            // run on the linear contact's own grid, a block of it.
-            match (c.normal, shape.patch(fixed_grid_load(scene))) {
-                (NormalContact::Auto { .. }, Ok(p)) if scene.growth.is_some() => {
-                    Box::new(grid.with_linear_window(LINEAR_GRID_SCALE * p.a, LINEAR_GRID_SCALE * p.b, f.linear_solver))
+            // run on a block of it that holds the linear contact's patch.
+            match c.normal {
+                NormalContact::Auto { .. } if scene.growth.is_some() => {
+                    Box::new(grid.with_linear_window(fixed_grid_load(scene), f.linear_solver))
                 }
                 _ => Box::new(grid),
             }
@@ -122,11 +122,12 @@ pub fn build_solver(scene: &Scene, shape: &HertzShape) -> Box<dyn TangentialSolv
 
 /// The linear profile contact's grid on the fixed grid, relative to the
 /// largest Hertz patch (`contact.profile_grid_scale`'s default for
-/// `"linear"`, and the window `"auto"` runs its linear passages on): within
-/// its range the patch moves and stretches by a few per cent (at `R max
-/// |r''| = 0.1` its length by about 3 %), which the grid's 5 % margin holds
-/// (and with track dynamics the grid is sized for 1.3 times the largest
-/// load). The grid's size is the chain's cost: 1.1 made a passage of
+/// `"linear"`): the shipped scenes' 1 um rms moves and stretches the patch
+/// by a few per cent, which the grid's 5 % margin holds (and with track
+/// dynamics the grid is sized for 1.3 times the largest load); a steeper
+/// or longer wave moves it by up to half of it (the linearisation's limit),
+/// and a step whose patch reaches the grid's edge says which key to raise.
+/// The grid's size is the chain's cost: 1.1 made a passage of
 /// growth_exact.toml 1.3 times the Hertz chain's, 1.0 1.16 times.
 pub const LINEAR_GRID_SCALE: f64 = 1.0;
 

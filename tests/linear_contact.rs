@@ -194,8 +194,10 @@ fn force_balance_and_the_traction_bound_at_every_step_of_a_corrugated_passage() 
         let n = N * (1.0 + 0.3 * (k * x).sin());
         let input = StepInput { patch: shape.patch(n).unwrap(), force_x: 0.2 * n, ..rolling(dx, x) };
         let sol = s.step(&input).unwrap();
+        // (The normal force holds by the pressure's scaling; a NaN would not.)
         let total: f64 = sol.pressure.iter().sum::<f64>() * area;
         assert!(rel(total, n) < 1e-10, "step {step}: force {total} vs {n}");
+        assert!(sol.pressure.iter().all(|p| *p >= 0.0), "step {step}: a negative pressure");
         let fx: f64 = sol.traction_x.iter().sum::<f64>() * area;
         assert!(rel(fx, 0.2 * n) < 1e-6, "step {step}: F_x {fx} vs {}", 0.2 * n);
         for (q, p) in sol.traction_x.iter().zip(&sol.pressure) {
@@ -208,12 +210,15 @@ fn force_balance_and_the_traction_bound_at_every_step_of_a_corrugated_passage() 
 #[test]
 fn auto_takes_the_linear_contact_while_the_corrugation_is_shallow() {
     // One passage of growth_exact.toml's scene with one harmonic: 1 um at
-    // 60 mm (R r'' = 0.005) and 20 um at 30 mm (R r'' = 0.44) in the linear
-    // contact, 20 um at 15 mm (R r'' = 1.75) in the nonlinear one
-    // (passes/profile_contact 2 and 1). Auto's grid (here 2 times the
-    // patch) holds the nonlinear contact; its linear passages run on a block
-    // of it that holds the patch the corrugation stretches: the same wear
-    // as `"linear"` on its own grid to the solvers' tolerance.
+    // 60 mm (R r'' = 0.005), 20 um at 30 mm (R r'' = 0.44, the patch
+    // stretched) and 30 um at 60 mm (the patch moved by a quarter of it) in
+    // the linear contact, 20 um at 15 mm (R r'' = 1.75) in the nonlinear
+    // one (passes/profile_contact 2 and 1), and 65 um at 60 mm (R r'' =
+    // 0.36, but a move of half the patch, which the linearisation refuses)
+    // run again in the nonlinear one. Auto's grid (here 2 times the patch)
+    // holds the nonlinear contact; its linear passages run on a block of it
+    // that holds the patch the corrugation moves and stretches: the same
+    // wear as `"linear"` on its own grid to the solvers' tolerance.
     let dir = tempfile::tempdir().unwrap();
     let run = |amplitude: f64, wavelength: f64, normal: &str| {
         let set: Vec<String> = [
@@ -246,5 +251,7 @@ fn auto_takes_the_linear_contact_while_the_corrugation_is_shallow() {
     let worst = auto.iter().zip(linear.iter()).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
     assert!(scale > 0.0 && worst < 2e-3 * scale, "auto's linear passage {worst:e} m from linear's (wear {scale:e} m)");
     assert_eq!(run(2e-5, 0.03, "auto").0, 2.0);
+    assert_eq!(run(3e-5, 0.06, "auto").0, 2.0);
     assert_eq!(run(2e-5, 0.015, "auto").0, 1.0);
+    assert_eq!(run(6.5e-5, 0.06, "auto").0, 1.0);
 }

@@ -252,11 +252,12 @@ impl MeshResponse {
     /// normal force; the count is that of elements well inside the patch
     /// where it vanished ([`LinearPatch::clipped`]).
     ///
-    /// The mean is exact along x for `G` quadratic in x over the element
-    /// (the moved ellipse's part is; the remainder's is fitted through the
-    /// element's ends and centre): `int sqrt(c0 + c1 u + c2 u^2) du` in
-    /// closed form, a circular segment; across, Gauss-Legendre over the
-    /// part of the element where `G > 0` somewhere along x. So the
+    /// The mean along x is that of `G` quadratic in x over the element (the
+    /// moved ellipse's part is; the remainder's is fitted through the
+    /// element's ends and centre), `int sqrt(c0 + c1 u + c2 u^2) du` between
+    /// its roots with the square root's edge taken out
+    /// ([`sqrt_quadratic_mean`]); across, Gauss-Legendre over the part of
+    /// the element where `G > 0` somewhere along x. So the
     /// pressure of an element changes smoothly as the edge moves over it:
     /// sampled at the centres, an element near the edge changes its
     /// pressure as the square root of the edge's move, and the growth rate
@@ -292,6 +293,59 @@ impl MeshResponse {
         Ok((pressure, clipped))
     }
 
+    /// The largest half-extents (m) of the patch over `surface` under
+    /// `patch` with the patch centre at any of `positions` (m): along x
+    /// `|shift| + a'`, across `b'` of the moved and stretched ellipse (the
+    /// moments alone, without the remainder: cheap enough for every rail
+    /// cell of a passage), each move and stretch taken up to the largest
+    /// the linearisation accepts (a step beyond stops with its error). At
+    /// least Hertz's.
+    pub fn extent(
+        &self,
+        surface: &RailSurface,
+        positions: impl Iterator<Item = f64>,
+        patch: &HertzPatch,
+    ) -> (f64, f64) {
+        let (a, b) = (patch.a, patch.b);
+        let (mut ax, mut by) = (a, b);
+        let clamp =
+            |v: f64, of: f64| if v.is_finite() { v.clamp(-MAX_LINEAR_MOVE * of, MAX_LINEAR_MOVE * of) } else { 0.0 };
+        for x in positions {
+            let (shift, da, db) = self.moments(surface, x, patch);
+            ax = ax.max(clamp(shift, a).abs() + a + clamp(da, a));
+            by = by.max(b + clamp(db, b));
+        }
+        (ax, by)
+    }
+
+    /// The moved ellipse's shift and semi-axis changes (m) over `surface`
+    /// with the patch centre at `position` (see [`MeshResponse::fit`]):
+    ///
+    /// ```text
+    /// s = int x dp dA / N,   da = 5 int x^2 dp dA / (2 a N),   db = 5 int y^2 dp dA / (2 b N)
+    /// ```
+    ///
+    /// from the profile by reciprocity.
+    fn moments(&self, surface: &RailSurface, position: f64, patch: &HertzPatch) -> (f64, f64, f64) {
+        let (a, b, n_force) = (patch.a, patch.b, patch.normal_force);
+        let p0 = 3.0 * n_force / (2.0 * PI * a * b);
+        let (mut ix, mut ixx, mut iyy) = (0.0, 0.0, 0.0);
+        for &(xi, eta, w) in &self.disc {
+            let v = w * surface.height(position + xi * a, eta * b);
+            let cos2 = 1.0 - xi * xi - eta * eta;
+            ix += v * xi;
+            ixx += v * (xi * xi - cos2);
+            iyy += v * (eta * eta - cos2);
+        }
+        let (ix, ixx, iyy) = (ix * a * a * b, ixx * a * b, iyy * a * b);
+        let (ca, cb) = (self.curvatures.a, self.curvatures.b);
+        let l = &self.log_derivatives;
+        let m1 = p0 * ix / (2.0 * ca * a * a);
+        let mx = -p0 * (l[0][0] * ixx + l[1][0] * iyy) / ca;
+        let my = -p0 * (l[0][1] * ixx + l[1][1] * iyy) / cb;
+        (m1 / n_force, 2.5 * mx / (a * n_force), 2.5 * my / (b * n_force))
+    }
+
     /// The normal mesh's response `dp_k` (Pa) at element `k` to the heights
     /// `r` (m) at its elements, on a patch of semi-axis `a` (m).
     fn response_at(&self, k: usize, r: &[f64], a: f64) -> f64 {
@@ -323,23 +377,8 @@ impl MeshResponse {
         }
         let n = r.len();
         let p0 = 3.0 * n_force / (2.0 * PI * a * b);
-        let (mut ix, mut ixx, mut iyy) = (0.0, 0.0, 0.0);
-        for &(xi, eta, w) in &self.disc {
-            let v = w * surface.height(position + xi * a, eta * b);
-            let cos2 = 1.0 - xi * xi - eta * eta;
-            ix += v * xi;
-            ixx += v * (xi * xi - cos2);
-            iyy += v * (eta * eta - cos2);
-        }
-        let (ix, ixx, iyy) = (ix * a * a * b, ixx * a * b, iyy * a * b);
-        let (ca, cb) = (self.curvatures.a, self.curvatures.b);
-        let l = &self.log_derivatives;
-        let m1 = p0 * ix / (2.0 * ca * a * a);
-        let mx = -p0 * (l[0][0] * ixx + l[1][0] * iyy) / ca;
-        let my = -p0 * (l[0][1] * ixx + l[1][1] * iyy) / cb;
-        let shift = m1 / n_force;
-        let (mut da, mut db) = (2.5 * mx / (a * n_force), 2.5 * my / (b * n_force));
-        let (da_fit, db_fit) = (da, db);
+        let (shift, da_fit, db_fit) = self.moments(surface, position, patch);
+        let (mut da, mut db) = (da_fit, db_fit);
         if uniform {
             // One stretch for both axes: the mean of the two.
             let e = (da / a + db / b) / 2.0;
@@ -351,8 +390,8 @@ impl MeshResponse {
         {
             return Err(super::ContactError::LinearRange { shift, stretch: 100.0 * stretch, a });
         }
-        // The remainder's regular part: q less the moved ellipse's own
-        // first-order change of p_H.
+        let (ca, cb) = (self.curvatures.a, self.curvatures.b);
+        let l = &self.log_derivatives;
         // The remainder's regular part. On the adapted mesh (`residual`
         // false) the response to the whole profile less the moved
         // ellipse's own first-order change of p_H, on the mesh it was
@@ -423,27 +462,96 @@ const CELL_GAUSS: [(f64, f64); 4] = [
     (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
 ];
 
-/// `int_{-h}^{h} sqrt(max(0, c0 + c1 u + c2 u^2)) du`: for `c2 < 0` the
-/// area of a circular segment, `sqrt(-c2) int sqrt(R^2 - v^2) dv` about the
-/// vertex (closed form); otherwise (no edge within, `G` convex) Simpson's
-/// rule on the three values.
+/// Gauss-Legendre points and weights on [-1, 1] (8 points) of the cell
+/// integral along x.
+const SEGMENT_GAUSS: [(f64, f64); 8] = [
+    (-0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
+    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
+    (-0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (-0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.525_532_409_916_329, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
+    (0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
+];
+
+/// `int_{-h}^{h} sqrt(max(0, G(u))) du` for `G(u) = c0 + c1 u + c2 u^2`:
+/// the roots of `G` in the interval (stable quadratic formula) split it;
+/// on each part where `G > 0`, `u = m + l sin(theta)` takes the square
+/// root's edge at a root into a smooth integrand (`sqrt(G) cos(theta)`
+/// vanishes there like `(theta -+ pi/2)^2`), integrated by Gauss-Legendre.
+/// Smooth in the coefficients as a root moves over the interval, and
+/// accurate for either sign of `c2` and for `c2` near zero (the closed form
+/// of a circular segment cancels there).
 fn sqrt_quadratic_mean(c0: f64, c1: f64, c2: f64, h: f64) -> f64 {
-    if c2 < -1e-300 {
-        let u0 = -c1 / (2.0 * c2);
-        let r2 = (c0 - c1 * c1 / (4.0 * c2)) / -c2;
-        if r2 <= 0.0 {
-            return 0.0;
+    let g = |u: f64| c0 + c1 * u + c2 * u * u;
+    let mut cuts = [-h, h, h, h];
+    let mut n = 1;
+    let mut root = |u: f64| {
+        if u.is_finite() && u > -h && u < h {
+            cuts[n] = u;
+            n += 1;
         }
-        let r = r2.sqrt();
-        let (lo, hi) = ((-h - u0).max(-r), (h - u0).min(r));
-        if hi <= lo {
-            return 0.0;
+    };
+    if c2 != 0.0 {
+        let disc = c1 * c1 - 4.0 * c2 * c0;
+        if disc > 0.0 {
+            let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
+            if q != 0.0 {
+                root(q / c2);
+                root(c0 / q);
+            }
         }
-        let prim = |v: f64| 0.5 * (v * (r2 - v * v).max(0.0).sqrt() + r2 * (v / r).clamp(-1.0, 1.0).asin());
-        (-c2).sqrt() * (prim(hi) - prim(lo))
-    } else {
-        let s = |u: f64| (c0 + c1 * u + c2 * u * u).max(0.0).sqrt();
-        h / 3.0 * (s(-h) + 4.0 * s(0.0) + s(h))
+    } else if c1 != 0.0 {
+        root(-c0 / c1);
+    }
+    cuts[n] = h;
+    cuts[1..n].sort_by(f64::total_cmp);
+    let mut total = 0.0;
+    for k in 0..n {
+        let (p, q) = (cuts[k], cuts[k + 1]);
+        if q <= p || g(0.5 * (p + q)) <= 0.0 {
+            continue;
+        }
+        let (m, l) = (0.5 * (p + q), 0.5 * (q - p));
+        let part: f64 = SEGMENT_GAUSS
+            .iter()
+            .map(|&(t, w)| {
+                let theta = 0.5 * std::f64::consts::PI * t;
+                w * g(m + l * theta.sin()).max(0.0).sqrt() * theta.cos()
+            })
+            .sum();
+        total += part * l * 0.5 * std::f64::consts::PI;
+    }
+    total.max(0.0)
+}
+
+#[cfg(test)]
+mod segment_tests {
+    use super::sqrt_quadratic_mean;
+
+    /// A fine midpoint rule of the same integral.
+    fn reference(c0: f64, c1: f64, c2: f64, h: f64) -> f64 {
+        let n = 200_000;
+        let du = 2.0 * h / n as f64;
+        (0..n).map(|i| -h + (i as f64 + 0.5) * du).map(|u| (c0 + c1 * u + c2 * u * u).max(0.0).sqrt() * du).sum()
+    }
+
+    #[test]
+    fn the_cell_integral_holds_for_every_kind_of_quadratic() {
+        // An element at u = 5.5 mm of a 6 mm patch (h = 0.2 mm), c2 from a
+        // strongly concave quadratic through zero to a convex one with a
+        // root inside, and a chord wholly inside (both roots).
+        let h = 2e-4;
+        let u = 5.5e-3;
+        for c2 in [-1.0 / 36e-6, -1e-2, -1e-4, -1e-6, 0.0, 1e-6, 1e3, 5e4] {
+            let (c1, c0) = (-2.0 * u / 36e-6, 1.0 - u * u / 36e-6);
+            let (v, r) = (sqrt_quadratic_mean(c0, c1, c2, h), reference(c0, c1, c2, h));
+            assert!((v - r).abs() < 1e-4 * r.abs().max(1e-12), "c2 {c2}: {v:e} vs {r:e}");
+        }
+        let (v, r) = (sqrt_quadratic_mean(1e-4, 0.0, -1e4, h), reference(1e-4, 0.0, -1e4, h));
+        assert!((v - r).abs() < 1e-4 * r, "chord inside: {v:e} vs {r:e}");
+        assert_eq!(sqrt_quadratic_mean(-1.0, 0.0, -1.0, h), 0.0);
     }
 }
 

@@ -171,7 +171,7 @@ pub enum ContactError {
     /// The linear profile contact would move or stretch the patch by a
     /// large part of itself: the corrugation is far beyond its range.
     #[error(
-        "the linear profile contact would move the patch by {shift:.3e} m and stretch it by {stretch:.0} % (semi-axis a = {a:.3e} m): the corrugation is far beyond the linearisation's range (the nonlinear profile contact needs contact.grid = \"fixed\")"
+        "the linear profile contact would move the patch by {shift:.3e} m and stretch it by {stretch:.0} % (semi-axis a = {a:.3e} m): the corrugation is far beyond the linearisation's range (contact.normal = \"profile\", the nonlinear profile contact of the fixed grid, solves it)"
     )]
     LinearRange {
         /// Shift of the patch centre (m).

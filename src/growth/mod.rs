@@ -22,7 +22,7 @@ pub mod study;
 pub mod traffic;
 
 use crate::contact::grid::RailSurface;
-use crate::contact::{RailContact, TangentialSolver};
+use crate::contact::{ContactError, RailContact, TangentialSolver};
 use crate::dynamics::TrackDynamics;
 use crate::hertz::HertzShape;
 use crate::metrics::centre_row;
@@ -191,6 +191,11 @@ pub const LINEAR_CONTACT_CURVATURE: f64 = 0.5;
 /// fixed grid's: the adapted mesh's is resolved to `Linear` by the
 /// caller) is `Linear` while the corrugation's curvature is below
 /// [`LINEAR_CONTACT_CURVATURE`] of the wheel's, `Profile` beyond.
+///
+/// A passage `Auto` gives the linear contact that the linearisation refuses
+/// at a step (a long wave that moves the patch by half of it while its
+/// curvature is small: [`ContactError::LinearRange`]) is run again with the
+/// nonlinear contact.
 #[allow(clippy::too_many_arguments)]
 pub fn growth_passage(
     spec: &PassageSpec,
@@ -204,6 +209,55 @@ pub fn growth_passage(
     record_fields: bool,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<GrowthPass, PassageError> {
+    // Auto: the linear contact while the curvature of the corrugation it
+    // sees is small against the wheel's (the raw profile's second
+    // differences see the wear's rounding at the rail cells' scale too).
+    let linear_contact = match normal {
+        NormalContact::Linear { .. } => true,
+        NormalContact::Auto { .. } => {
+            let a = shape.patch(spec.loads.normal_force).map(|p| p.a).unwrap_or(0.0);
+            let (crest, trough) = linear_surface(profile, grid, &*solver, a).curvature_range();
+            trough.max(-crest) < LINEAR_CONTACT_CURVATURE * 2.0 * shape.curvatures().a
+        }
+        _ => false,
+    };
+    let mut run = |linear| {
+        passage_with(spec, shape, solver, deposit, grid, profile, normal, linear, dynamics, record_fields, progress)
+    };
+    match run(linear_contact) {
+        Err(PassageError::Tangential { source: ContactError::LinearRange { .. }, .. })
+            if linear_contact && matches!(normal, NormalContact::Auto { .. }) =>
+        {
+            run(false)
+        }
+        result => result,
+    }
+}
+
+/// The corrugation the linear contact sees: less the harmonics shorter than
+/// it resolves on a patch of semi-axis `a` (m). Aliased on its normal mesh
+/// they would drive wear at the mesh's scale (measured: a 1.5-1.8 mm
+/// pattern growing out of rounding on growth_fastsim.toml's 40 x 40 mesh).
+fn linear_surface(profile: &Array2<f64>, grid: &RailGrid, solver: &dyn TangentialSolver, a: f64) -> RailSurface {
+    RailSurface::corrugation_above(profile, grid, solver.linear_resolution(a).unwrap_or(0.0))
+}
+
+/// [`growth_passage`] in the linear contact (`linear`) or the one `normal`
+/// names otherwise.
+#[allow(clippy::too_many_arguments)]
+fn passage_with(
+    spec: &PassageSpec,
+    shape: &HertzShape,
+    solver: &mut dyn TangentialSolver,
+    deposit: &dyn WearKernel,
+    grid: &RailGrid,
+    profile: &Array2<f64>,
+    normal: NormalContact,
+    linear_contact: bool,
+    dynamics: Option<&dyn TrackDynamics>,
+    record_fields: bool,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<GrowthPass, PassageError> {
     let length = grid.nx as f64 * grid.dx;
     let mut spec = spec.clone();
     // The linear contact's equivalent roughness at the mean patch.
@@ -211,30 +265,14 @@ pub fn growth_passage(
         Ok(p) if dynamics.is_some() => linear_roughness(profile, grid, p.a, p.b),
         _ => vec![0.0; grid.nx],
     };
-    // The harmonics shorter than the linear contact resolves stay out of
-    // it: aliased on its normal mesh they would drive wear at the mesh's
-    // scale (measured: a 1.5-1.8 mm pattern growing out of rounding on
-    // growth_fastsim.toml's 40 x 40 mesh).
     let a = shape.patch(spec.loads.normal_force).map(|p| p.a).unwrap_or(0.0);
-    let linear_surface = || RailSurface::corrugation_above(profile, grid, solver.linear_resolution(a).unwrap_or(0.0));
-    // Auto: the linear contact while the curvature of the corrugation it
-    // sees is small against the wheel's (the raw profile's second
-    // differences see the wear's rounding at the rail cells' scale too).
-    let linear_contact = match normal {
-        NormalContact::Linear { .. } => true,
-        NormalContact::Auto { .. } => {
-            let (crest, trough) = linear_surface().curvature_range();
-            trough.max(-crest) < LINEAR_CONTACT_CURVATURE * 2.0 * shape.curvatures().a
-        }
-        _ => false,
-    };
     let seen = match normal {
         NormalContact::Hertz => {
             let b_mean = shape.patch(spec.loads.normal_force).map(|p| p.b).unwrap_or(grid.half_width);
             contact_filtered_line(profile, grid, b_mean)
         }
         _ if linear_contact => {
-            let surface = RailContact::Linear(Arc::new(linear_surface()));
+            let surface = RailContact::Linear(Arc::new(linear_surface(profile, grid, &*solver, a)));
             solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
             spec.surface = Some(surface);
             linear_seen()

@@ -98,9 +98,9 @@ pub struct FixedGrid {
     /// is first set (shared with the window's block).
     linear: Option<Arc<MeshResponse>>,
     /// The linear contact's window ([`FixedGrid::with_linear_window`]):
-    /// its base extent (semi-axes, m) and solver, and the block of the
+    /// the largest normal force (N) and the solver, and the block of the
     /// grid the linear surface set now runs on (`None`: the whole grid).
-    window: Option<(f64, f64, GridSolver)>,
+    window: Option<(f64, GridSolver)>,
     active: Option<Window>,
 }
 
@@ -125,40 +125,30 @@ impl FixedGrid {
         Self::build(FixedGridSpec { solver, ..self.spec }, block).with_tolerance(self.tolerance)
     }
 
-    /// Runs the steps of the linear profile contact on the block of the
-    /// grid that covers a patch of semi-axes `a_max` x `b_max` (m), the
-    /// linear contact's own grid (module [`super::window`]), with the
-    /// tangential solver `solver`; the grid holds the nonlinear contact's
-    /// larger patches. Each surface set widens the block by the patch the
-    /// surface's trough (and crest) would give to a local quadratic
-    /// ([`FixedGrid::window_for`]).
-    pub fn with_linear_window(mut self, a_max: f64, b_max: f64, solver: GridSolver) -> Self {
-        self.window = Some((a_max, b_max, solver));
+    /// Runs the steps of the linear profile contact on a block of the grid
+    /// (module [`super::window`]) with the tangential solver `solver`; the
+    /// grid holds the nonlinear contact's larger patches. Each linear
+    /// surface set sizes the block for the patch it moves and stretches
+    /// under the largest normal force `n_max` (N) ([`FixedGrid::window_for`]).
+    pub fn with_linear_window(mut self, n_max: f64, solver: GridSolver) -> Self {
+        self.window = Some((n_max, solver));
         self
     }
 
-    /// The block a linear `surface` runs on: the base extent stretched by
-    /// the Hertz patch of the curvature sums less half the surface's
-    /// trough curvature along x (which lengthens the patch) and plus half
-    /// its crest curvature (which widens it), at the same load; `None` when
-    /// that is the whole grid. A trough of half the wheel's curvature
-    /// (`R r'' = 0.5`, the linear range's end under `auto`) lengthens the
-    /// patch by about 2^(1/3) = 1.26.
+    /// The block a linear `surface` runs on: the largest extent of the
+    /// linear contact's moved and stretched ellipse under the largest load
+    /// with the patch centre at any node of the surface
+    /// ([`MeshResponse::extent`]; the surface is a growth study's periodic
+    /// stretch), with the grid's margins and one element more; `None` when
+    /// that is the whole grid.
     fn window_for(&mut self, surface: &RailSurface) -> Option<Window> {
-        let (a_max, b_max, solver) = self.window?;
-        let (crest, trough) = surface.curvature_range();
-        let c = self.spec.curvatures;
-        let patch = |ca: f64| HertzShape::new(Curvatures { a: ca, b: c.b }, self.spec.elastic)?.patch(1e5);
-        let (Ok(base), Ok(long), Ok(wide)) =
-            (patch(c.a), patch(c.a - 0.5 * trough.max(0.0)), patch(c.a + 0.5 * (-crest).max(0.0)))
-        else {
-            return None;
-        };
-        let (sa, sb) = ((long.a / base.a).max(1.0), (wide.b / base.b).max(long.b / base.b).max(1.0));
-        match self.active.take() {
-            Some(w) if w.holds(sa * a_max, sb * b_max) => Some(w),
-            _ => Window::new(self, sa * a_max, sb * b_max, self.spec.lead_columns(), solver),
-        }
+        let (n_max, solver) = self.window?;
+        let patch = HertzShape::new(self.spec.curvatures, self.spec.elastic).ok()?.patch(n_max).ok()?;
+        let nodes = surface.heights.dim().1;
+        let positions = (0..nodes).map(|i| surface.x0 + i as f64 * surface.dx);
+        let extent = self.linear.as_ref()?.extent(surface, positions, &patch);
+        let reuse = self.active.take();
+        Window::new(self, extent, self.spec.lead_columns(), solver, reuse)
     }
 
     fn build(spec: FixedGridSpec, grid: PotentialGrid) -> Self {
@@ -210,11 +200,6 @@ impl FixedGrid {
     /// solved, since the last reset.
     pub fn fallbacks(&self) -> usize {
         self.fallbacks + self.active.as_ref().map_or(0, |w| w.grid.fallbacks())
-    }
-
-    /// Columns ahead of the patch that supply the earlier displacements.
-    pub(super) fn lead_columns(&self) -> usize {
-        self.spec.lead_columns()
     }
 
     /// The potential-contact grid.

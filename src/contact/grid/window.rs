@@ -14,6 +14,15 @@ use super::solver::FixedGrid;
 use super::{GRID_MARGIN, GridSolver, PotentialGrid};
 use crate::contact::PatchSolution;
 
+/// The half-extents (m) a block must cover for a patch of semi-axes `a` x
+/// `b` (m): the grid's own margins (5 %, `lead` columns ahead, one element
+/// across) and half an element more along x, as a grid of the element's
+/// lattice has (an element the patch's edge only cuts is in contact: the
+/// linear contact's pressure is a mean over the element).
+fn margins(a: f64, b: f64, lead: usize, g: &PotentialGrid) -> (f64, f64) {
+    (a * (1.0 + GRID_MARGIN) + (lead as f64 + 0.5) * g.dx, b * (1.0 + GRID_MARGIN) + g.dy)
+}
+
 /// A block of the grid's elements and the model on it.
 #[derive(Debug, Clone)]
 pub(super) struct Window {
@@ -26,16 +35,20 @@ pub(super) struct Window {
 
 impl Window {
     /// The block of `outer` that covers a patch of semi-axes `a` x `b` (m)
-    /// with the grid's margins (`lead` columns ahead for the earlier
-    /// displacements, one element elsewhere, and one more), its tangential solver
-    /// `solver`; `None` when that is the whole grid.
-    pub(super) fn new(outer: &FixedGrid, a: f64, b: f64, lead: usize, solver: GridSolver) -> Option<Window> {
+    /// with the margins of [`margins`], its tangential solver `solver`;
+    /// `None` when that is the whole grid. `reuse` is kept if it is that
+    /// block (its model's transforms are built once): the block depends on
+    /// the patch alone, not on earlier passages, so a resumed study runs on
+    /// the same block.
+    pub(super) fn new(
+        outer: &FixedGrid,
+        (a, b): (f64, f64),
+        lead: usize,
+        solver: GridSolver,
+        reuse: Option<Window>,
+    ) -> Option<Window> {
         let g = outer.grid();
-        // One element more than the grid's own margins: the linear
-        // contact's pressure is a mean over each element, so an element the
-        // edge only cuts is in contact.
-        let half_x = a * (1.0 + GRID_MARGIN) + (lead + 1) as f64 * g.dx;
-        let half_y = b * (1.0 + GRID_MARGIN) + 2.0 * g.dy;
+        let (half_x, half_y) = margins(a, b, lead, g);
         // Columns run from the front (x_front) backwards; rows upwards from
         // y_low, symmetric about the centre line.
         let ix0 = ((g.x_front - half_x) / g.dx).floor().max(0.0) as usize;
@@ -44,6 +57,9 @@ impl Window {
         let (nx, ny) = (ix1.saturating_sub(ix0), g.ny - 2 * iy0);
         if nx * ny >= g.len() || nx == 0 || ny == 0 {
             return None;
+        }
+        if let Some(w) = reuse.filter(|w| (w.ix0, w.iy0, w.grid.grid().nx, w.grid.grid().ny) == (ix0, iy0, nx, ny)) {
+            return Some(w);
         }
         let block = PotentialGrid {
             nx,
@@ -54,16 +70,6 @@ impl Window {
             y_low: g.y_low + iy0 as f64 * g.dy,
         };
         Some(Window { grid: Box::new(outer.on_block(block, solver)), ix0, iy0 })
-    }
-
-    /// Whether the block covers a patch of semi-axes `a` x `b` (m) with
-    /// the margins of [`Window::new`].
-    pub(super) fn holds(&self, a: f64, b: f64) -> bool {
-        let g = self.grid.grid();
-        let lead = self.grid.lead_columns();
-        let half_x = a * (1.0 + GRID_MARGIN) + (lead + 1) as f64 * g.dx;
-        let half_y = b * (1.0 + GRID_MARGIN) + 2.0 * g.dy;
-        g.x_front >= half_x && g.x_front - g.nx as f64 * g.dx <= -half_x && g.y_low <= -half_y
     }
 
     /// A step's fields on the block, put back on the whole grid `outer`
