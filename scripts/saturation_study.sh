@@ -1,10 +1,9 @@
 #!/usr/bin/env bash
 # From initiation to saturation (configs/growth_saturation.toml): the growth
 # study run until the corrugation stops growing or the wheel leaves the
-# rail, with the consistent chain (contact.normal = "auto": the profile in
-# the contact of every step, the dynamics fed the linear contact's
-# equivalent roughness while the corrugation is shallow), the same study
-# with the nonlinear profile contact's own equivalent roughness throughout
+# rail, with the consistent chain (contact.normal = "auto": the linear
+# profile contact while the corrugation is shallow, the nonlinear one
+# beyond), the same study with the nonlinear profile contact throughout
 # ("profile"), and with the Hertz contact (capped at 300 passages); then rms
 # and the dominant harmonic against traffic (corrugation-post growth). Run
 # files and figures in out/saturation/. About 10 minutes on 2 cores.
