@@ -126,10 +126,10 @@ impl FixedGrid {
     }
 
     /// Runs the steps of the linear profile contact on a block of the grid
-    /// (module [`super::window`]) with the tangential solver `solver`; the
+    /// (module `contact::grid::window`) with the tangential solver `solver`; the
     /// grid holds the nonlinear contact's larger patches. Each linear
     /// surface set sizes the block for the patch it moves and stretches
-    /// under the largest normal force `n_max` (N) ([`FixedGrid::window_for`]).
+    /// under the largest normal force `n_max` (N) (`window_for`).
     pub fn with_linear_window(mut self, n_max: f64, solver: GridSolver) -> Self {
         self.window = Some((n_max, solver));
         self
