@@ -22,7 +22,7 @@ pub mod study;
 pub mod traffic;
 
 use crate::contact::grid::RailSurface;
-use crate::contact::{ContactError, RailContact, TangentialSolver};
+use crate::contact::{RailContact, TangentialSolver};
 use crate::dynamics::TrackDynamics;
 use crate::hertz::HertzShape;
 use crate::metrics::centre_row;
@@ -160,6 +160,9 @@ pub struct GrowthPass {
     /// and its equivalent roughness); otherwise the nonlinear one (or
     /// Hertz's).
     pub linear_contact: bool,
+    /// Why `Auto`'s linear contact stopped, if it did and the passage was
+    /// run again with the nonlinear contact.
+    pub rerun: Option<String>,
 }
 
 /// The largest curvature of the corrugation, relative to the wheel's
@@ -192,10 +195,11 @@ pub const LINEAR_CONTACT_CURVATURE: f64 = 0.5;
 /// caller) is `Linear` while the corrugation's curvature is below
 /// [`LINEAR_CONTACT_CURVATURE`] of the wheel's, `Profile` beyond.
 ///
-/// A passage `Auto` gives the linear contact that the linearisation refuses
-/// at a step (a long wave that moves the patch by half of it while its
-/// curvature is small: [`ContactError::LinearRange`]) is run again with the
-/// nonlinear contact.
+/// A passage `Auto` gives the linear contact that stops at a step (a long
+/// wave that moves the patch by half of it while its curvature is small,
+/// which the linearisation refuses, [`ContactError::LinearRange`]; or a
+/// patch beyond the block of the grid the linear contact runs on) is run
+/// again with the nonlinear contact ([`GrowthPass::rerun`]).
 #[allow(clippy::too_many_arguments)]
 pub fn growth_passage(
     spec: &PassageSpec,
@@ -225,10 +229,8 @@ pub fn growth_passage(
         passage_with(spec, shape, solver, deposit, grid, profile, normal, linear, dynamics, record_fields, progress)
     };
     match run(linear_contact) {
-        Err(PassageError::Tangential { source: ContactError::LinearRange { .. }, .. })
-            if linear_contact && matches!(normal, NormalContact::Auto { .. }) =>
-        {
-            run(false)
+        Err(e @ PassageError::Tangential { .. }) if linear_contact && matches!(normal, NormalContact::Auto { .. }) => {
+            run(false).map(|g| GrowthPass { rerun: Some(e.to_string()), ..g })
         }
         result => result,
     }
@@ -312,7 +314,7 @@ fn passage_with(
     let window = grid.x_min..grid.x_min + length;
     let contact_loss_steps = h.x_c.iter().zip(&h.in_contact).filter(|(x, c)| window.contains(*x) && **c == 0.0).count();
     let clipped_steps = passage.clipped_steps;
-    Ok(GrowthPass { passage, wear, dynamic_force, contact_loss_steps, clipped_steps, linear_contact })
+    Ok(GrowthPass { passage, wear, dynamic_force, contact_loss_steps, clipped_steps, linear_contact, rerun: None })
 }
 
 #[cfg(test)]

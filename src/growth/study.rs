@@ -328,7 +328,17 @@ impl<'a> Study<'a> {
                         message: format!(
                             "the linear profile contact's patch opened inside (the pressure vanished well inside \
                              the patch) at {clipped} steps: the corrugation is beyond the linearisation's range \
-                             (the nonlinear profile contact needs contact.grid = \"fixed\")"
+                             (contact.normal = \"profile\", the nonlinear profile contact of the fixed grid, \
+                             solves it)"
+                        ),
+                    });
+                }
+                if let Some(reason) = &g.rerun {
+                    progress(Event::Warning {
+                        pass,
+                        message: format!(
+                            "the linear profile contact stopped ({reason}); the passage was run again with the \
+                             nonlinear profile contact (its CPU time counts both)"
                         ),
                     });
                 }

@@ -16,11 +16,13 @@ use crate::contact::PatchSolution;
 
 /// The half-extents (m) a block must cover for a patch of semi-axes `a` x
 /// `b` (m): the grid's own margins (5 %, `lead` columns ahead, one element
-/// across) and half an element more along x, as a grid of the element's
-/// lattice has (an element the patch's edge only cuts is in contact: the
-/// linear contact's pressure is a mean over the element).
+/// across) and one element more each way, and half an element along x as a
+/// grid of the element's lattice has: an element the patch's edge only
+/// cuts is in contact (the linear contact's pressure is a mean over the
+/// element), and the centroid's correction moves the ellipse a little
+/// beyond the fit's shift.
 fn margins(a: f64, b: f64, lead: usize, g: &PotentialGrid) -> (f64, f64) {
-    (a * (1.0 + GRID_MARGIN) + (lead as f64 + 0.5) * g.dx, b * (1.0 + GRID_MARGIN) + g.dy)
+    (a * (1.0 + GRID_MARGIN) + (lead as f64 + 1.5) * g.dx, b * (1.0 + GRID_MARGIN) + 2.0 * g.dy)
 }
 
 /// A block of the grid's elements and the model on it.

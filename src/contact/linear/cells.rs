@@ -158,7 +158,8 @@ const SEGMENT_GAUSS: [(f64, f64); 8] = [
 ];
 
 /// `int_{-h}^{h} sqrt(max(0, G(u))) du` for `G(u) = c0 + c1 u + c2 u^2`:
-/// the roots of `G` in the interval (stable quadratic formula) split it;
+/// the roots of `G` in the interval (stable quadratic formula), and a
+/// convex one's vertex, split it;
 /// on each part where `G > 0`, `u = m + l sin(theta)` takes the square
 /// root's edge at a root into a smooth integrand (`sqrt(G) cos(theta)`
 /// vanishes there like `(theta -+ pi/2)^2`), integrated by Gauss-Legendre.
@@ -167,7 +168,7 @@ const SEGMENT_GAUSS: [(f64, f64); 8] = [
 /// of a circular segment cancels there).
 fn sqrt_quadratic_mean(c0: f64, c1: f64, c2: f64, h: f64) -> f64 {
     let g = |u: f64| c0 + c1 * u + c2 * u * u;
-    let mut cuts = [-h, h, h, h];
+    let mut cuts = [-h, h, h, h, h];
     let mut n = 1;
     let mut root = |u: f64| {
         if u.is_finite() && u > -h && u < h {
@@ -184,6 +185,11 @@ fn sqrt_quadratic_mean(c0: f64, c1: f64, c2: f64, h: f64) -> f64 {
                 root(c0 / q);
             }
         }
+        // A convex quadratic's vertex: where it touches zero, the square
+        // root has a kink there.
+        if c2 > 0.0 {
+            root(-c1 / (2.0 * c2));
+        }
     } else if c1 != 0.0 {
         root(-c0 / c1);
     }
@@ -192,7 +198,7 @@ fn sqrt_quadratic_mean(c0: f64, c1: f64, c2: f64, h: f64) -> f64 {
     let mut total = 0.0;
     for k in 0..n {
         let (p, q) = (cuts[k], cuts[k + 1]);
-        if q <= p || g(0.5 * (p + q)) <= 0.0 {
+        if q <= p || g(0.5 * (p + q)) < 0.0 {
             continue;
         }
         let (m, l) = (0.5 * (p + q), 0.5 * (q - p));
@@ -205,7 +211,8 @@ fn sqrt_quadratic_mean(c0: f64, c1: f64, c2: f64, h: f64) -> f64 {
             .sum();
         total += part * l * 0.5 * std::f64::consts::PI;
     }
-    total.max(0.0)
+    // (A NaN coefficient stays NaN, for the caller's check.)
+    if total.is_nan() { total } else { total.max(0.0) }
 }
 
 #[cfg(test)]
@@ -221,16 +228,21 @@ mod segment_tests {
 
     #[test]
     fn the_cell_integral_holds_for_every_kind_of_quadratic() {
-        // An element at u = 5.5 mm of a 6 mm patch (h = 0.2 mm), c2 from a
-        // strongly concave quadratic through zero to a convex one with a
-        // root inside, and a chord wholly inside (both roots).
+        // Elements at u = 5.5 mm (inside), 6.0 and 6.1 mm (the edge of a
+        // 6 mm patch inside the element) with h = 0.2 mm, c2 from a strongly
+        // concave quadratic through zero to convex ones, and a chord wholly
+        // inside (both roots).
         let h = 2e-4;
-        let u = 5.5e-3;
-        for c2 in [-1.0 / 36e-6, -1e-2, -1e-4, -1e-6, 0.0, 1e-6, 1e3, 5e4] {
-            let (c1, c0) = (-2.0 * u / 36e-6, 1.0 - u * u / 36e-6);
-            let (v, r) = (sqrt_quadratic_mean(c0, c1, c2, h), reference(c0, c1, c2, h));
-            assert!((v - r).abs() < 1e-4 * r.abs().max(1e-12), "c2 {c2}: {v:e} vs {r:e}");
+        for u in [5.5e-3, 6.0e-3, 6.1e-3] {
+            for c2 in [-1.0 / 36e-6, -1e-2, -1e-4, -1e-6, 0.0, 1e-6, 1e3] {
+                let (c1, c0) = (-2.0 * u / 36e-6, 1.0 - u * u / 36e-6);
+                let (v, r) = (sqrt_quadratic_mean(c0, c1, c2, h), reference(c0, c1, c2, h));
+                assert!(r > 0.0 && (v - r).abs() < 1e-4 * r, "u {u}, c2 {c2}: {v:e} vs {r:e}");
+            }
         }
+        // A double root at the element's centre: sqrt(c2) h^2.
+        let v = sqrt_quadratic_mean(0.0, 0.0, 4.0, h);
+        assert!((v - 2.0 * h * h).abs() < 1e-12, "{v}");
         let (v, r) = (sqrt_quadratic_mean(1e-4, 0.0, -1e4, h), reference(1e-4, 0.0, -1e4, h));
         assert!((v - r).abs() < 1e-4 * r, "chord inside: {v:e} vs {r:e}");
         assert_eq!(sqrt_quadratic_mean(-1.0, 0.0, -1.0, h), 0.0);
