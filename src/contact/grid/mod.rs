@@ -34,7 +34,6 @@ pub mod solver;
 pub mod spec;
 pub mod surface;
 pub mod tangential;
-mod window;
 
 pub use solver::FixedGrid;
 pub use spec::{GridScheme, GridSolver};

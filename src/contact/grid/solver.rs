@@ -27,16 +27,19 @@ use super::coupling::{Coupling, FoldedKernel};
 use super::normal::{self, NormalError};
 use super::spec::{FixedGridSpec, GRID_FORCE_TOLERANCE, GRID_TOLERANCE, GridScheme, GridSolver};
 use super::tangential::{self, ContactSet, GridStep, Law};
-use super::window::Window;
-use super::{PotentialGrid, RailSurface};
+mod edge;
+mod window;
+
+use super::PotentialGrid;
 use crate::contact::friction::{STICK_SLIP_FACTOR, regularised as friction};
 use crate::contact::linear::MeshResponse;
 use crate::contact::mesh::EllipseMesh;
 use crate::contact::transient::GS_MAX_SWEEPS;
 use crate::contact::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
-use crate::hertz::{Curvatures, HertzShape};
+use crate::hertz::HertzShape;
 use std::borrow::Cow;
 use std::sync::Arc;
+use window::Window;
 
 /// State carried from one step to the next, on the whole grid.
 #[derive(Debug, Clone)]
@@ -117,38 +120,6 @@ impl FixedGrid {
     pub fn new(spec: FixedGridSpec) -> Self {
         let grid = spec.grid();
         Self::build(spec, grid)
-    }
-
-    /// The same model on a block of this grid's elements, with the
-    /// tangential solver `solver`.
-    pub(super) fn on_block(&self, block: PotentialGrid, solver: GridSolver) -> Self {
-        Self::build(FixedGridSpec { solver, ..self.spec }, block).with_tolerance(self.tolerance)
-    }
-
-    /// Runs the steps of the linear profile contact on a block of the grid
-    /// (module `contact::grid::window`) with the tangential solver `solver`; the
-    /// grid holds the nonlinear contact's larger patches. Each linear
-    /// surface set sizes the block for the patch it moves and stretches
-    /// under the largest normal force `n_max` (N) (`window_for`).
-    pub fn with_linear_window(mut self, n_max: f64, solver: GridSolver) -> Self {
-        self.window = Some((n_max, solver));
-        self
-    }
-
-    /// The block a linear `surface` runs on: the largest extent of the
-    /// linear contact's moved and stretched ellipse under the largest load
-    /// with the patch centre at any node of the surface
-    /// ([`MeshResponse::extent`]; the surface is a growth study's periodic
-    /// stretch), with the grid's margins and one element more; `None` when
-    /// that is the whole grid.
-    fn window_for(&mut self, surface: &RailSurface) -> Option<Window> {
-        let (n_max, solver) = self.window?;
-        let patch = HertzShape::new(self.spec.curvatures, self.spec.elastic).ok()?.patch(n_max).ok()?;
-        let nodes = surface.heights.dim().1;
-        let positions = (0..nodes).map(|i| surface.x0 + i as f64 * surface.dx);
-        let extent = self.linear.as_ref()?.extent(surface, positions, &patch);
-        let reuse = self.active.take();
-        Window::new(self, extent, self.spec.lead_columns(), solver, reuse)
     }
 
     fn build(spec: FixedGridSpec, grid: PotentialGrid) -> Self {
@@ -438,99 +409,6 @@ impl FixedGrid {
         let p_grid = out.traction_x.iter().zip(&out.traction_y).flat_map(|(x, y)| [*x, *y]).collect();
         self.history = Some(History { u: (ux, uy), older, oldest, p3, s: s_grid, p: p_grid, xi: sol.xi });
         Ok(out)
-    }
-
-    /// The elements in contact must keep off the grid's edge: the leading
-    /// columns that supply the earlier displacements, one element elsewhere.
-    /// The step's patch centre is at `position` (m) under `n_force` (N).
-    fn check_inside(&self, set: &ContactSet, position: f64, n_force: f64) -> Result<(), String> {
-        let (nx, ny, lead) = (self.grid.nx, self.grid.ny, self.spec.lead_columns());
-        match set.element.iter().find(|&&k| {
-            let (ix, iy) = (k % nx, k / nx);
-            ix < lead || ix + 1 >= nx || iy == 0 || iy + 1 >= ny
-        }) {
-            Some(&k) => Err(format!(
-                "the contact area reaches the edge of the potential-contact grid at element ({}, {}) of {nx} x {ny}: \
-                 the patch is larger than the grid was sized for{}",
-                k % nx,
-                k / nx,
-                match &self.surface {
-                    Some(RailContact::Profile(s)) => self.outgrown(s, position, n_force),
-                    Some(RailContact::Linear(_)) => " (the linear profile contact's patch, moved and stretched by the \
-                                                     corrugation under it: raise contact.profile_grid_scale)"
-                        .to_string(),
-                    None => String::new(),
-                }
-            )),
-            None => Ok(()),
-        }
-    }
-
-    /// What the profile did to the patch at `position` under `n_force`, and
-    /// the grid that would hold it: the Hertz patch of the gap's local
-    /// quadratic, the curvature sums less half the rail's curvature over
-    /// the patch (second differences over half the smooth-rail semi-axes):
-    /// a trough lengthens the patch, a crest widens it.
-    /// The local quadratic leaves out the profile's higher terms, which
-    /// flatten a trough towards the patch ends: the estimate is long (8 %
-    /// over a harmonic trough of 44 % of the wheel's curvature, more over
-    /// short troughs; tests/profile_contact.rs), so the value it names
-    /// holds the patch; it is said when a step's patch has reached the
-    /// grid's edge, not used to refuse a passage beforehand.
-    fn outgrown(&self, surface: &RailSurface, position: f64, n_force: f64) -> String {
-        let c = self.spec.curvatures;
-        let smooth = HertzShape::new(c, self.spec.elastic).and_then(|s| s.patch(n_force));
-        let Ok(smooth) = smooth else {
-            return String::new();
-        };
-        let (hx, hy) = (0.5 * smooth.a, 0.5 * smooth.b);
-        let r = |x: f64, y: f64| surface.height(position + x, y);
-        let r_xx = (r(-hx, 0.0) - 2.0 * r(0.0, 0.0) + r(hx, 0.0)) / (hx * hx);
-        let r_yy = (r(0.0, -hy) - 2.0 * r(0.0, 0.0) + r(0.0, hy)) / (hy * hy);
-        let local = Curvatures { a: c.a - 0.5 * r_xx, b: c.b - 0.5 * r_yy };
-        let here = format!(
-            "the rail's curvature under the patch r_xx = {r_xx:.3} 1/m, r_yy = {r_yy:.3} 1/m against the gap's \
-             2A = {:.3}, 2B = {:.3} 1/m",
-            2.0 * c.a,
-            2.0 * c.b
-        );
-        // A crest sharper than the wheel: the wheel meets the next crests too,
-        // far from the patch centre, where no local quadratic reaches.
-        if -r_xx > 2.0 * c.a || -r_yy > 2.0 * c.b {
-            let text = format!(
-                " ({here}: a crest sharper than the wheel, the patch splits onto the neighbouring crests; a grid \
-                 sized from the Hertz patch does not hold them: raise contact.profile_grid_scale, or this \
-                 corrugation is beyond what the contact of one wheel on a corrugated rail is meant for)"
-            );
-            return text;
-        }
-        match HertzShape::new(local, self.spec.elastic).and_then(|s| s.patch(n_force)) {
-            Ok(p) => {
-                let ratio = (p.a / self.spec.a_max).max(p.b / self.spec.b_max);
-                let raise = if ratio > 1.0 {
-                    format!(
-                        "set contact.profile_grid_scale to at least {:.2} times its value",
-                        (1.05 * ratio * 20.0).ceil() / 20.0
-                    )
-                } else {
-                    "raise contact.profile_grid_scale".to_string()
-                };
-                let text = format!(
-                    " ({here}: the patch about {:.2} x {:.2} mm where the grid holds {:.2} x {:.2} mm; {raise}; \
-                     the patch then reaches |y| = {:.2} mm, which rail.half_width must cover)",
-                    2e3 * p.a,
-                    2e3 * p.b,
-                    2e3 * self.spec.a_max,
-                    2e3 * self.spec.b_max,
-                    1e3 * p.b
-                );
-                text
-            }
-            Err(_) => format!(
-                " ({here}: the corrugation here is as curved as the wheel, the patch spreads over the trough; no \
-                 potential-contact grid sized from the Hertz patch holds it)"
-            ),
-        }
     }
 
     /// The earlier-displacement term `u~` and weight `beta` of the

@@ -10,9 +10,11 @@
 //! smaller grid (the FFT products scale with the grid, not with the
 //! contact).
 
-use super::solver::FixedGrid;
-use super::{GRID_MARGIN, GridSolver, PotentialGrid};
+use super::FixedGrid;
 use crate::contact::PatchSolution;
+use crate::contact::grid::spec::{FixedGridSpec, GridSolver};
+use crate::contact::grid::{GRID_MARGIN, PotentialGrid, RailSurface};
+use crate::hertz::HertzShape;
 
 /// The half-extents (m) a block must cover for a patch of semi-axes `a` x
 /// `b` (m): the grid's own margins (5 %, `lead` columns ahead, one element
@@ -96,5 +98,39 @@ impl Window {
             stick,
             ..sol
         }
+    }
+}
+
+impl FixedGrid {
+    /// The same model on a block of this grid's elements, with the
+    /// tangential solver `solver`.
+    fn on_block(&self, block: PotentialGrid, solver: GridSolver) -> Self {
+        Self::build(FixedGridSpec { solver, ..self.spec }, block).with_tolerance(self.tolerance)
+    }
+
+    /// Runs the steps of the linear profile contact on a block of the grid
+    /// (this module) with the tangential solver `solver`; the
+    /// grid holds the nonlinear contact's larger patches. Each linear
+    /// surface set sizes the block for the patch it moves and stretches
+    /// under the largest normal force `n_max` (N) (`window_for`).
+    pub fn with_linear_window(mut self, n_max: f64, solver: GridSolver) -> Self {
+        self.window = Some((n_max, solver));
+        self
+    }
+
+    /// The block a linear `surface` runs on: the largest extent of the
+    /// linear contact's moved and stretched ellipse under the largest load
+    /// with the patch centre at any node of the surface
+    /// ([`MeshResponse::extent`]; the surface is a growth study's periodic
+    /// stretch), with the grid's margins and one element more; `None` when
+    /// that is the whole grid.
+    pub(super) fn window_for(&mut self, surface: &RailSurface) -> Option<Window> {
+        let (n_max, solver) = self.window?;
+        let patch = HertzShape::new(self.spec.curvatures, self.spec.elastic).ok()?.patch(n_max).ok()?;
+        let nodes = surface.heights.dim().1;
+        let positions = (0..nodes).map(|i| surface.x0 + i as f64 * surface.dx);
+        let extent = self.linear.as_ref()?.extent(surface, positions, &patch);
+        let reuse = self.active.take();
+        Window::new(self, extent, self.spec.lead_columns(), solver, reuse)
     }
 }
