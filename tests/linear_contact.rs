@@ -17,11 +17,9 @@
 //! - `auto` takes the linear contact while the corrugation is shallow and
 //!   the nonlinear one beyond.
 mod common;
-use common::{STEEL, paper_shape, rel};
+use common::{STEEL, paper_fixed_grid, paper_shape, rel};
 use corrugation::config::load_str;
-use corrugation::contact::friction::FrictionLaw;
-use corrugation::contact::grid::spec::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver, RailSurface};
+use corrugation::contact::grid::{FixedGrid, RailSurface};
 use corrugation::contact::{PatchSolution, RailContact, StepInput, TangentialSolver};
 use corrugation::hertz::Curvatures;
 use std::f64::consts::PI;
@@ -36,21 +34,7 @@ fn curvatures() -> Curvatures {
 /// The paper's contact on a fixed grid of `dx x dy` sized for the Hertz
 /// patch at `N` times `length`.
 fn solver(dx: f64, dy: f64, length: f64) -> FixedGrid {
-    let patch = paper_shape(true).patch(N).unwrap();
-    FixedGrid::new(FixedGridSpec {
-        curvatures: curvatures(),
-        elastic: STEEL,
-        dx,
-        dy,
-        a_max: length * patch.a,
-        b_max: length * patch.b,
-        align_x: Alignment::default(),
-        align_y: Alignment::default(),
-        law: FrictionLaw::Regularised,
-        eps: 1e-5,
-        scheme: GridScheme::SecondOrder,
-        solver: GridSolver::Auto,
-    })
+    paper_fixed_grid(dx, dy, length, N)
 }
 
 /// A step of the paper's rolling (100 km/h, F_x = 20 kN, mu = 0.4) with the

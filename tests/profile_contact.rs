@@ -16,13 +16,11 @@
 //! - force balance and complementarity at every step of a passage over a
 //!   corrugated rail.
 mod common;
-use common::{STEEL, paper_shape, rel};
+use common::{STEEL, paper_fixed_grid, paper_shape, rel};
 use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;
-use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
-use corrugation::contact::grid::spec::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver, RailSurface};
+use corrugation::contact::grid::{FixedGrid, RailSurface};
 use corrugation::contact::{RailContact, StepInput, TangentialSolver};
 use corrugation::growth::equivalent_roughness;
 use corrugation::hertz::Curvatures;
@@ -50,21 +48,7 @@ fn solver(dx: f64, dy: f64, length: f64) -> FixedGrid {
 
 /// As [`solver`], sized for the patch at `n_max` N.
 fn sized(dx: f64, dy: f64, length: f64, n_max: f64) -> FixedGrid {
-    let patch = paper_shape(true).patch(n_max).unwrap();
-    FixedGrid::new(FixedGridSpec {
-        curvatures: curvatures(),
-        elastic: STEEL,
-        dx,
-        dy,
-        a_max: length * patch.a,
-        b_max: length * patch.b,
-        align_x: Alignment::default(),
-        align_y: Alignment::default(),
-        law: FrictionLaw::Regularised,
-        eps: 1e-5,
-        scheme: GridScheme::SecondOrder,
-        solver: GridSolver::Auto,
-    })
+    paper_fixed_grid(dx, dy, length, n_max)
 }
 
 /// A step of the paper's rolling (100 km/h, F_x = 20 kN, mu = 0.4) on a

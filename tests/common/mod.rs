@@ -1,6 +1,9 @@
 //! Shared fixtures of the integration tests: the source paper's parameters.
 #![allow(dead_code)]
 
+use corrugation::contact::friction::FrictionLaw;
+use corrugation::contact::grid::spec::FixedGridSpec;
+use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
 use corrugation::creep_coefficients::{CreepCoefficients, creep_coefficients};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 
@@ -54,3 +57,24 @@ pub const DISCRETE_BAY: [&str; 8] = [
     "contact.elements_x=6",
     "contact.elements_y=6",
 ];
+
+/// The paper's concave contact on a fixed grid of `dx x dy` sized for the
+/// Hertz patch at `n_max` N times `length` along x and y (regularised
+/// friction, eps = 1e-5 m/s, second-order difference, the solver `auto`).
+pub fn paper_fixed_grid(dx: f64, dy: f64, length: f64, n_max: f64) -> FixedGrid {
+    let patch = paper_shape(true).patch(n_max).unwrap();
+    FixedGrid::new(FixedGridSpec {
+        curvatures: Curvatures::wheel_on_rail(0.5, -0.409, 0.3),
+        elastic: STEEL,
+        dx,
+        dy,
+        a_max: length * patch.a,
+        b_max: length * patch.b,
+        align_x: Alignment::default(),
+        align_y: Alignment::default(),
+        law: FrictionLaw::Regularised,
+        eps: 1e-5,
+        scheme: GridScheme::SecondOrder,
+        solver: GridSolver::Auto,
+    })
+}
