@@ -216,21 +216,23 @@ pub fn growth_passage(
     // Auto: the linear contact while the curvature of the corrugation it
     // sees is small against the wheel's (the raw profile's second
     // differences see the wear's rounding at the rail cells' scale too).
-    let linear_contact = match normal {
-        NormalContact::Linear { .. } => true,
-        NormalContact::Auto { .. } => {
-            let a = shape.patch(spec.loads.normal_force).map(|p| p.a).unwrap_or(0.0);
-            let (crest, trough) = linear_surface(profile, grid, &*solver, a).curvature_range();
+    let a = shape.patch(spec.loads.normal_force).map(|p| p.a).unwrap_or(0.0);
+    let linear = match normal {
+        NormalContact::Linear { .. } => Some(linear_surface(profile, grid, &*solver, a)),
+        NormalContact::Auto { .. } => Some(linear_surface(profile, grid, &*solver, a)).filter(|s| {
+            let (crest, trough) = s.curvature_range();
             trough.max(-crest) < LINEAR_CONTACT_CURVATURE * 2.0 * shape.curvatures().a
-        }
-        _ => false,
-    };
+        }),
+        _ => None,
+    }
+    .map(Arc::new);
+    let auto = matches!(normal, NormalContact::Auto { .. });
     let mut run = |linear| {
         passage_with(spec, shape, solver, deposit, grid, profile, normal, linear, dynamics, record_fields, progress)
     };
-    match run(linear_contact) {
-        Err(e @ PassageError::Tangential { .. }) if linear_contact && matches!(normal, NormalContact::Auto { .. }) => {
-            run(false).map(|g| GrowthPass { rerun: Some(e.to_string()), ..g })
+    match run(linear.clone()) {
+        Err(e @ PassageError::Tangential { .. }) if auto && linear.is_some() => {
+            run(None).map(|g| GrowthPass { rerun: Some(e.to_string()), ..g })
         }
         result => result,
     }
@@ -244,8 +246,8 @@ fn linear_surface(profile: &Array2<f64>, grid: &RailGrid, solver: &dyn Tangentia
     RailSurface::corrugation_above(profile, grid, solver.linear_resolution(a).unwrap_or(0.0))
 }
 
-/// [`growth_passage`] in the linear contact (`linear`) or the one `normal`
-/// names otherwise.
+/// [`growth_passage`] in the linear contact over the surface `linear`, or
+/// without it in the one `normal` names.
 #[allow(clippy::too_many_arguments)]
 fn passage_with(
     spec: &PassageSpec,
@@ -255,7 +257,7 @@ fn passage_with(
     grid: &RailGrid,
     profile: &Array2<f64>,
     normal: NormalContact,
-    linear_contact: bool,
+    linear: Option<Arc<RailSurface>>,
     dynamics: Option<&dyn TrackDynamics>,
     record_fields: bool,
     progress: &mut dyn FnMut(usize, usize),
@@ -267,14 +269,14 @@ fn passage_with(
         Ok(p) if dynamics.is_some() => linear_roughness(profile, grid, p.a, p.b),
         _ => vec![0.0; grid.nx],
     };
-    let a = shape.patch(spec.loads.normal_force).map(|p| p.a).unwrap_or(0.0);
-    let seen = match normal {
-        NormalContact::Hertz => {
+    let linear_contact = linear.is_some();
+    let seen = match (normal, linear) {
+        (NormalContact::Hertz, _) => {
             let b_mean = shape.patch(spec.loads.normal_force).map(|p| p.b).unwrap_or(grid.half_width);
             contact_filtered_line(profile, grid, b_mean)
         }
-        _ if linear_contact => {
-            let surface = RailContact::Linear(Arc::new(linear_surface(profile, grid, &*solver, a)));
+        (_, Some(linear)) => {
+            let surface = RailContact::Linear(linear);
             solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
             spec.surface = Some(surface);
             linear_seen()
