@@ -327,9 +327,24 @@ pub fn run_passage(
     let (mut clipped_steps, mut fallback_steps) = (0, 0);
     solver.reset();
     solver.set_surface(spec.surface.clone()).map_err(PassageError::Surface)?;
+    let normal_force_at =
+        |x: f64| spec.loads.normal_force_at(x) + spec.dynamic_normal_force.as_ref().map_or(0.0, |d| d.at(x));
+    let step_input = |n: usize, patch| {
+        let x = spec.position(n);
+        StepInput {
+            patch,
+            speed: spec.speed,
+            dt,
+            friction: spec.friction,
+            force_x: spec.loads.longitudinal_force_at(x),
+            creepage_y: spec.creepage_y,
+            spin: spec.spin,
+            position: x,
+        }
+    };
     for n in 0..steps {
         let x = spec.position(n);
-        let normal_force = spec.loads.normal_force_at(x) + spec.dynamic_normal_force.as_ref().map_or(0.0, |d| d.at(x));
+        let normal_force = normal_force_at(x);
         let force_x = spec.loads.longitudinal_force_at(x);
         if normal_force <= 0.0 {
             // Contact loss: no patch, no traction, no wear; the contact
@@ -342,17 +357,17 @@ pub fn run_passage(
         }
         let patch =
             shape.patch(normal_force).map_err(|source| PassageError::Normal { step: n, x, normal_force, source })?;
-        let input = StepInput {
-            patch,
-            speed: spec.speed,
-            dt,
-            friction: spec.friction,
-            force_x,
-            creepage_y: spec.creepage_y,
-            spin: spec.spin,
-            position: x,
-        };
-        let sol = solver.step(&input).map_err(|source| PassageError::Tangential {
+        let input = step_input(n, patch);
+        // The next step's input, where it has a patch: a solver may prepare
+        // it meanwhile.
+        let next = (n + 1 < steps)
+            .then(|| {
+                let x = spec.position(n + 1);
+                let force = normal_force_at(x);
+                (force > 0.0).then(|| shape.patch(force).ok().map(|patch| step_input(n + 1, patch))).flatten()
+            })
+            .flatten();
+        let sol = solver.step_ahead(&input, next.as_ref()).map_err(|source| PassageError::Tangential {
             step: n,
             x,
             normal_force,

@@ -107,8 +107,18 @@ fn quadratic_gap_gives_hertz_in_the_limit() {
         let conv = FftConvolution::new(&kernel);
         let (xs, ys) = grid.centres();
         let h: Vec<f64> = xs.iter().zip(&ys).map(|(x, y)| curv.a * x * x + curv.b * y * y).collect();
-        let sol = normal::solve(&conv, &mut FftScratch::default(), &h, grid.area(), 1e5, None).unwrap();
+        let plain = normal::solve((&conv, None), &mut FftScratch::default(), &h, grid.area(), 1e5, None).unwrap();
+        // The FFT preconditioner (the default): the same solution in fewer
+        // iterations.
+        let inverse = FftConvolution::circulant_inverse(&kernel);
+        let sol =
+            normal::solve((&conv, Some(&inverse)), &mut FftScratch::default(), &h, grid.area(), 1e5, None).unwrap();
         let p_max = sol.pressure.iter().fold(0.0f64, |m, v| m.max(*v));
+        let diff = sol.pressure.iter().zip(&plain.pressure).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        eprintln!("dx {dx:.1e}: iterations {} plain, {} preconditioned", plain.iterations, sol.iterations);
+        assert!(diff < 1e-8 * p_max, "dx {dx:.1e}: preconditioned pressure {diff:e} off");
+        assert!(rel(sol.approach, plain.approach) < 1e-9);
+        assert!(sol.iterations < plain.iterations, "{} vs {}", sol.iterations, plain.iterations);
         let (mut a, mut b) = (0.0f64, 0.0f64);
         for k in 0..grid.len() {
             if sol.pressure[k] > 0.0 {

@@ -153,7 +153,7 @@ impl PatchSolution {
 }
 
 /// Failure of a contact solve.
-#[derive(Debug, thiserror::Error, PartialEq)]
+#[derive(Debug, Clone, thiserror::Error, PartialEq)]
 pub enum ContactError {
     /// The prescribed force cannot be transmitted by friction.
     #[error("longitudinal force {force:.6e} N reaches the friction limit mu N = {limit:.6e} N (full sliding)")]
@@ -221,6 +221,15 @@ impl RailContact {
 pub trait TangentialSolver {
     /// Solves the tangential problem of one step with the force prescribed.
     fn step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError>;
+    /// Solves the step as [`step`](TangentialSolver::step) does, told the
+    /// next step's input (`None`: none follows, or the contact is lost
+    /// before it): a model may prepare that step meanwhile (the fixed grid
+    /// solves its normal problem on a second thread). Same result bit for
+    /// bit.
+    fn step_ahead(&mut self, input: &StepInput, next: Option<&StepInput>) -> Result<PatchSolution, ContactError> {
+        let _ = next;
+        self.step(input)
+    }
     /// Forgets the contact history.
     fn reset(&mut self);
     /// The elements the fields are given on.

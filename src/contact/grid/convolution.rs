@@ -260,6 +260,110 @@ impl FftConvolution {
         conv
     }
 
+    /// The inverse of the kernel's circulant approximation on a periodic
+    /// grid of smooth lengths at least the grid's (no padding: a product
+    /// with it costs about a third of one on the padded grid): the
+    /// preconditioner of the tangential CG solver, `(u_x, u_y) -> (p_x,
+    /// p_y)` (Pa/m) by [`FftConvolution::tangential`], and of the normal
+    /// CG, `u -> p` by [`FftConvolution::normal`].
+    ///
+    /// The circulant is Strang's (each periodic offset takes the kernel at
+    /// its nearest image, the mean of the two at half the period), the
+    /// choice for Toeplitz systems of R. H. Chan & M. K. Ng, SIAM Review 38
+    /// (1996) 427-482; Vollebregt's FFT-based preconditioner inverts the
+    /// influence matrix on the grid the same way (J. Comput. Phys. 257
+    /// (2014) 333-351). The tangential 2 x 2 symbol `[[K_xx, K_xy], [K_xy,
+    /// K_yy]](k)` (the normal one, a scalar) is inverted at every
+    /// wavenumber; a wavenumber whose symbol is not positive definite
+    /// (none on the grids measured) takes the reciprocal of the mean
+    /// diagonal.
+    pub fn circulant_inverse(kernel: &ToeplitzKernel) -> Self {
+        let (nx, ny) = kernel.shape();
+        let (mx, my) = (smooth_length(nx), smooth_length(ny));
+        let mut planner = FftPlanner::new();
+        let mut conv = FftConvolution {
+            nx,
+            ny,
+            mx,
+            my,
+            fwd_x: planner.plan_fft_forward(mx),
+            fwd_y: planner.plan_fft_forward(my),
+            inv_x: planner.plan_fft_inverse(mx),
+            inv_y: planner.plan_fft_inverse(my),
+            real_x: RealFftPlanner::new().plan_fft_forward(mx),
+            real_inv_x: RealFftPlanner::new().plan_fft_inverse(mx),
+            spectra: Vec::new(),
+        };
+        // The nearest images of a periodic index, both at half the period.
+        let images = |i: usize, m: usize| -> Vec<isize> {
+            let (a, b) = (i as isize, i as isize - m as isize);
+            match (2 * i).cmp(&m) {
+                std::cmp::Ordering::Less => vec![a],
+                std::cmp::Ordering::Equal => vec![a, b],
+                std::cmp::Ordering::Greater => vec![b],
+            }
+        };
+        let mut scratch = FftScratch::default();
+        let mut raw = Vec::new();
+        for c in 0..kernel.components() {
+            let rows = &mut scratch.rows;
+            rows.clear();
+            rows.resize(mx * my, Complex64::default());
+            for j in 0..my {
+                let ys = images(j, my);
+                for i in 0..mx {
+                    let xs = images(i, mx);
+                    let mut v = 0.0;
+                    for &dix in &xs {
+                        for &diy in &ys {
+                            v += kernel.at(c, dix, diy);
+                        }
+                    }
+                    rows[j * mx + i] = Complex64::new(v / (xs.len() * ys.len()) as f64, 0.0);
+                }
+            }
+            conv.forward(&mut scratch, my);
+            raw.push(scratch.cols.clone());
+        }
+        let scale = 1.0 / (mx * my) as f64;
+        if kernel.components() == 1 {
+            // The normal kernel's real, even symbol: its reciprocal, half
+            // the spectrum for the real-to-complex product.
+            let symbol = &raw[0][..(mx / 2 + 1) * my];
+            let mean = symbol.iter().map(|v| v.re).sum::<f64>() / symbol.len() as f64;
+            let inv = symbol
+                .iter()
+                .map(|v| Complex64::new(scale / if v.re > 1e-12 * mean { v.re } else { mean }, 0.0))
+                .collect();
+            conv.spectra = vec![inv];
+            return conv;
+        }
+        let (xx, xy, yy) = (&raw[0], &raw[1], &raw[2]);
+        let sum: Vec<Complex64> = xx.iter().zip(yy).map(|(a, b)| (a + b) * 0.5).collect();
+        let diff: Vec<Complex64> =
+            xx.iter().zip(yy).zip(xy).map(|((a, b), c)| (a - b) * 0.5 + Complex64::i() * c).collect();
+        // W(k) = s(k) Z(k) + d(k) conj Z(-k) inverted: with the equation at
+        // -k conjugated, Z(k) = (conj s(-k) W(k) - d(k) conj W(-k)) / det.
+        let mean = sum.iter().map(|v| v.re).sum::<f64>() / sum.len() as f64;
+        let (mut inv_sum, mut inv_diff) = (vec![Complex64::default(); mx * my], vec![Complex64::default(); mx * my]);
+        for cx in 0..mx {
+            for cy in 0..my {
+                let k = cx * my + cy;
+                let m = ((mx - cx) % mx) * my + (my - cy) % my;
+                let det = sum[k] * sum[m].conj() - diff[k] * diff[m].conj();
+                let (s, d) = (sum[k].re, diff[k].norm());
+                if s - d > 1e-12 * mean && det.norm() > 0.0 {
+                    inv_sum[k] = sum[m].conj() / det * scale;
+                    inv_diff[k] = -diff[k] / det * scale;
+                } else {
+                    inv_sum[k] = Complex64::new(scale / mean, 0.0);
+                }
+            }
+        }
+        conv.spectra = vec![inv_sum, inv_diff];
+        conv
+    }
+
     /// Padded transform size (mx, my).
     pub fn padded(&self) -> (usize, usize) {
         (self.mx, self.my)
@@ -433,6 +537,60 @@ mod tests {
                 assert!((dy_[k] - fy[k]).abs() < 1e-12 * scale, "uy {nx}x{ny} at {k}");
             }
         }
+    }
+
+    #[test]
+    fn circulant_inverse_is_symmetric_positive_and_inverts_the_kernel() {
+        // The preconditioners: symmetric positive definite (what CG
+        // needs), and an approximate inverse of the Toeplitz product: a
+        // smooth traction in the middle of the grid comes back from its
+        // displacement within 3 % (normal; measured 1.5 %) and 5 %
+        // (tangential; 2.9 %) on its support (the displacement known on the
+        // grid only, the periodic inverse sees its truncation at the edges).
+        let grid = PotentialGrid { nx: 40, ny: 24, dx: 2e-4, dy: 5e-4, x_front: 0.0, y_low: 0.0 };
+        let (g, nu) = (8.08e10, 0.3);
+        let n = grid.len();
+        let bump: Vec<f64> = (0..n)
+            .map(|k| {
+                let (x, y) = ((k % 40) as f64 / 39.0 - 0.5, (k / 40) as f64 / 23.0 - 0.5);
+                1e8 * (1.0 - 9.0 * (x * x + y * y)).max(0.0).powi(2)
+            })
+            .collect();
+        let mut s = FftScratch::default();
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let (a, b) = (field(n, 0.4), field(n, 2.9).iter().map(|v| v - 4e7).collect::<Vec<_>>());
+        // Normal.
+        let kn = ToeplitzKernel::normal(&grid, g, nu);
+        let (prod, inv) = (FftConvolution::new(&kn), FftConvolution::circulant_inverse(&kn));
+        let (mut ia, mut ib) = (vec![0.0; n], vec![0.0; n]);
+        inv.normal(&mut s, &a, &mut ia);
+        inv.normal(&mut s, &b, &mut ib);
+        assert!((dot(&a, &ib) - dot(&ia, &b)).abs() < 1e-10 * dot(&a, &ia).abs());
+        assert!(dot(&a, &ia) > 0.0 && dot(&b, &ib) > 0.0);
+        let (mut u, mut back) = (vec![0.0; n], vec![0.0; n]);
+        prod.normal(&mut s, &bump, &mut u);
+        inv.normal(&mut s, &u, &mut back);
+        let inner = |k: usize| bump[k] > 0.0;
+        let err = (0..n).filter(|&k| inner(k)).fold(0.0f64, |m, k| m.max((back[k] - bump[k]).abs())) / 1e8;
+        assert!(err < 0.03, "normal: {err}");
+        // Tangential, both components.
+        let kt = ToeplitzKernel::tangential(&grid, g, nu);
+        let (prod, inv) = (FftConvolution::new(&kt), FftConvolution::circulant_inverse(&kt));
+        let (mut iax, mut iay, mut ibx, mut iby) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        inv.tangential(&mut s, (&a, &b), (&mut iax, &mut iay));
+        inv.tangential(&mut s, (&b, &a), (&mut ibx, &mut iby));
+        let (ab, ba) = (dot(&a, &ibx) + dot(&b, &iby), dot(&iax, &b) + dot(&iay, &a));
+        assert!((ab - ba).abs() < 1e-10 * ab.abs(), "{ab} vs {ba}");
+        assert!(dot(&a, &iax) + dot(&b, &iay) > 0.0);
+        let half: Vec<f64> = bump.iter().map(|v| -0.5 * v).collect();
+        let (mut ux, mut uy, mut px, mut py) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        prod.tangential(&mut s, (&bump, &half), (&mut ux, &mut uy));
+        inv.tangential(&mut s, (&ux, &uy), (&mut px, &mut py));
+        let err = (0..n)
+            .filter(|&k| inner(k))
+            .fold(0.0f64, |m, k| m.max((px[k] - bump[k]).abs()).max((py[k] - half[k]).abs()))
+            / 1e8;
+        assert!(err < 0.05, "tangential: {err}");
     }
 
     #[test]

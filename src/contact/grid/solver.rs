@@ -28,6 +28,7 @@ use super::normal::{self, NormalError};
 use super::spec::{FixedGridSpec, GRID_FORCE_TOLERANCE, GRID_TOLERANCE, GridScheme, GridSolver};
 use super::tangential::{self, ContactSet, GridStep, Law};
 mod edge;
+mod pressure;
 mod window;
 
 use super::PotentialGrid;
@@ -37,6 +38,7 @@ use crate::contact::mesh::EllipseMesh;
 use crate::contact::transient::GS_MAX_SWEEPS;
 use crate::contact::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::hertz::HertzShape;
+use pressure::{Ahead, Pressure};
 use std::borrow::Cow;
 use std::sync::Arc;
 use window::Window;
@@ -59,6 +61,18 @@ struct History {
 
     /// Creepage.
     xi: f64,
+}
+
+/// A step's tangential solution.
+struct Solved {
+    /// On the whole grid.
+    out: PatchSolution,
+    /// Slips kept for the next warm start, interleaved (m/s).
+    s_grid: Vec<f64>,
+    /// The displacement field `K p` on the whole grid (x, y) (m).
+    u: (Vec<f64>, Vec<f64>),
+    /// Whether the CG solver handed the step to Gauss-Seidel.
+    fell_back: bool,
 }
 
 /// The earlier-displacement term of a step and its warm start.
@@ -84,7 +98,16 @@ pub struct FixedGrid {
     normal: FftConvolution,
     kernel: ToeplitzKernel,
     tangential: FftConvolution,
+    /// The CG solver's preconditioner, the FFT inverse of the tangential
+    /// kernel's circulant on the unpadded grid.
+    inverse: FftConvolution,
+    /// The normal CG's preconditioner, that of the normal kernel.
+    normal_inverse: FftConvolution,
     scratch: FftScratch,
+    /// The next step's pressure, computed while this step's tangential
+    /// problem was solved, and its own work buffers.
+    ahead: Option<Ahead>,
+    ahead_scratch: FftScratch,
     history: Option<History>,
     /// Tolerance on the kinematic residual, in units of eps.
     tolerance: f64,
@@ -133,10 +156,14 @@ impl FixedGrid {
             spec,
             normal: FftConvolution::new(&normal_kernel),
             tangential: FftConvolution::new(&kernel),
+            inverse: FftConvolution::circulant_inverse(&kernel),
+            normal_inverse: FftConvolution::circulant_inverse(&normal_kernel),
             kernel,
             grid,
             gap,
             scratch: FftScratch::default(),
+            ahead: None,
+            ahead_scratch: FftScratch::default(),
             history: None,
             tolerance: GRID_TOLERANCE,
             folded: None,
@@ -203,8 +230,10 @@ impl FixedGrid {
     pub fn normal_solution(&mut self, position: f64, force: f64) -> Result<normal::NormalSolution, ContactError> {
         let gap = self.gap_at(position).into_owned();
         let start = self.approach_start.take();
-        let sol = normal::solve(&self.normal, &mut self.scratch, &gap, self.grid.area(), force, start.as_deref())
-            .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let sol = normal::solve(self.normal_products(), &mut scratch, &gap, self.grid.area(), force, start.as_deref());
+        self.scratch = scratch;
+        let sol = sol.map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
         self.approach_start = Some(sol.pressure.clone());
         Ok(sol)
     }
@@ -223,11 +252,20 @@ impl FixedGrid {
         (0..gap.len()).all(|k| (gap[k] - gap[(ny - 1 - k / nx) * nx + k % nx]).abs() <= 1e-12 * scale)
     }
 
+    /// The normal problem's products and preconditioner.
+    fn normal_products(&self) -> (&FftConvolution, Option<&FftConvolution>) {
+        (&self.normal, Some(&self.normal_inverse))
+    }
+
     fn law(&self) -> Law {
         self.spec.law.with(self.spec.eps)
     }
 
-    fn solve_step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
+    /// One step, told the next step's input: the next step's pressure is
+    /// computed on a second thread while this step's tangential problem is
+    /// solved (`rayon::join`), warm-started from this step's pressure as it
+    /// would be sequentially (same result bit for bit).
+    fn solve_step(&mut self, input: &StepInput, next: Option<&StepInput>) -> Result<PatchSolution, ContactError> {
         input.check_friction_limit()?;
         let force = input.force_x;
         if input.dt.is_nan() || input.dt <= 0.0 {
@@ -247,29 +285,13 @@ impl FixedGrid {
                 ),
             });
         }
-        let n_force = input.patch.normal_force;
         let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
-        let area = self.grid.area();
-        // The pressure: the linear profile contact's first-order pressure
-        // averaged over the elements, or the normal problem on the grid
-        // (warm-started from the last step's).
-        let (mut p3, clipped, symmetric_load) = match (&self.surface, &self.linear) {
-            (Some(RailContact::Linear(surface)), Some(response)) => {
-                let (xs, ys) = self.grid.centres();
-                let centres: Vec<(f64, f64)> = xs.into_iter().zip(ys).collect();
-                let half = (0.5 * self.grid.dx, 0.5 * self.grid.dy);
-                let (p3, clipped) =
-                    response.pressure_on_cells(surface, input.position, &input.patch, &centres, half)?;
-                let symmetric = self.symmetric(&p3);
-                (p3, clipped, symmetric)
-            }
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let Pressure { mut p3, clipped, symmetric: symmetric_load } = match self.ahead.take() {
+            Some(ahead) if ahead.key == Ahead::key(input) => ahead.result?,
             _ => {
-                let gap = self.gap_at(input.position).into_owned();
                 let start = self.history.as_ref().map(|h| h.p3.as_slice());
-                let normal = normal::solve(&self.normal, &mut self.scratch, &gap, area, n_force, start)
-                    .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
-                let symmetric = self.surface.is_none() || self.symmetric(&gap);
-                (normal.pressure, 0, symmetric)
+                self.pressure(&mut scratch, input, start)?
             }
         };
         // A problem symmetric about y = 0 is solved on the lower half of the
@@ -287,6 +309,48 @@ impl FixedGrid {
                 }
             }
         }
+        let mut ahead_scratch = std::mem::take(&mut self.ahead_scratch);
+        let this = &*self;
+        let (solved, ahead) = rayon::join(
+            || this.tangential_step(input, &p3, folded.is_some(), &mut scratch),
+            || {
+                next.map(|next| Ahead {
+                    key: Ahead::key(next),
+                    result: this.pressure(&mut ahead_scratch, next, Some(&p3)),
+                })
+            },
+        );
+        self.scratch = scratch;
+        self.ahead_scratch = ahead_scratch;
+        let Solved { mut out, s_grid, u, fell_back } = solved?;
+        self.ahead = ahead;
+        self.fallbacks += usize::from(fell_back);
+        out.clipped = clipped;
+        let (older, oldest) = match self.history.take() {
+            Some(h) => (Some(h.u), h.older),
+            None => (None, None),
+        };
+        let p_grid = out.traction_x.iter().zip(&out.traction_y).flat_map(|(x, y)| [*x, *y]).collect();
+        self.history = Some(History { u, older, oldest, p3, s: s_grid, p: p_grid, xi: out.creepage.x });
+        Ok(out)
+    }
+
+    /// The tangential problem of a step on the pressure `p3` (symmetric
+    /// about y = 0 where `folded`): the solution on the whole grid, the
+    /// slips kept for the next warm start, the displacement field.
+    fn tangential_step(
+        &self,
+        input: &StepInput,
+        p3: &[f64],
+        folded: bool,
+        scratch: &mut FftScratch,
+    ) -> Result<Solved, ContactError> {
+        let force = input.force_x;
+        let n_force = input.patch.normal_force;
+        let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
+        let area = self.grid.area();
+        let folded = self.folded.as_ref().filter(|_| folded);
+        let mirror = |k: usize| (ny - 1 - k / nx) * nx + k % nx;
         let whole = ContactSet::new(nx, n, |k| p3[k] > 0.0);
         self.check_inside(&whole, input.position, n_force)
             .map_err(|reason| ContactError::NoConvergence { force, reason })?;
@@ -309,13 +373,11 @@ impl FixedGrid {
             .collect();
         let Earlier { u_prev, beta, s0, p0, xi0 } = self.earlier(&set);
         let law = self.law();
-        let mut scratch = std::mem::take(&mut self.scratch);
-        let kappa = self.creepage_stiffness(&mut scratch, &set, &weight, &mu_p3, &s0, beta, input);
         let coupling = match folded {
             Some(f) => Coupling::Folded(f),
             None => Coupling::Full(&self.kernel),
         };
-        let step = GridStep {
+        let mut step = GridStep {
             coupling,
             weight: &weight,
             set: &set,
@@ -329,7 +391,8 @@ impl FixedGrid {
             u_prev: &u_prev,
             force_x: force,
             mu_n: mu * n_force,
-            kappa,
+            // Gauss-Seidel's creepage stiffness, set below where it runs.
+            kappa: f64::NAN,
             tol: self.tolerance * self.spec.eps,
             max_sweeps: GS_MAX_SWEEPS,
             force_tol: GRID_FORCE_TOLERANCE,
@@ -350,33 +413,59 @@ impl FixedGrid {
                     gy[mirror(k)] = -p[2 * c + 1];
                 }
             }
-            conv.tangential(&mut scratch, (&gx, &gy), (&mut ux, &mut uy));
+            conv.tangential(scratch, (&gx, &gy), (&mut ux, &mut uy));
             for (c, &k) in set.element.iter().enumerate() {
                 u[c] = ux[k];
                 u[nc + c] = uy[k];
+            }
+        };
+        // The preconditioner's product: the FFT inverse on the unpadded
+        // grid, the field mirror-extended on a folded one.
+        let inv = &self.inverse;
+        let (mut vx, mut vy, mut zx, mut zy) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut pre_scratch = FftScratch::default();
+        let mut inverse = |r: &[f64], z: &mut [f64]| {
+            vx.iter_mut().for_each(|v| *v = 0.0);
+            vy.iter_mut().for_each(|v| *v = 0.0);
+            for (c, &k) in set.element.iter().enumerate() {
+                vx[k] = r[2 * c];
+                vy[k] = r[2 * c + 1];
+                if weight[c] == 2.0 {
+                    vx[mirror(k)] = r[2 * c];
+                    vy[mirror(k)] = -r[2 * c + 1];
+                }
+            }
+            inv.tangential(&mut pre_scratch, (&vx, &vy), (&mut zx, &mut zy));
+            for (c, &k) in set.element.iter().enumerate() {
+                z[2 * c] = zx[k];
+                z[2 * c + 1] = zy[k];
             }
         };
         let newton_krylov = self.spec.solver.resolve(self.spec.law) == GridSolver::Cg;
         // A step CG does not converge goes to Gauss-Seidel; its products
         // count in the step's iterations, and its failure in the report.
         let mut cg_failed: Option<(Vec<f64>, usize)> = None;
-        let solved = match newton_krylov.then(|| cg::solve(&step, &s0, &p0, xi0, &mut fresh)) {
-            Some(Ok(sol)) => Ok(sol),
+        let mut solved = match newton_krylov.then(|| cg::solve(&step, &s0, &p0, xi0, &mut fresh, &mut inverse)) {
+            Some(Ok(sol)) => Some(Ok(sol)),
             Some(Err(failure)) => {
                 cg_failed = Some(match failure {
                     cg::CgFailure::NoConvergence { history, products } => (history, products),
                     cg::CgFailure::Coulomb => (Vec::new(), 0),
                 });
-                tangential::solve(&step, &s0, xi0, &mut fresh).map(|mut sol| {
-                    sol.sweeps += cg_failed.as_ref().map_or(0, |f| f.1);
-                    sol
-                })
+                None
             }
-            None => tangential::solve(&step, &s0, xi0, &mut fresh),
+            None => None,
         };
+        if solved.is_none() {
+            step.kappa = self.creepage_stiffness(&mut fresh, &set, &weight, &mu_p3, &s0, beta, input);
+            let before = cg_failed.as_ref().map_or(0, |f| f.1);
+            solved = Some(tangential::solve(&step, &s0, xi0, &mut fresh).map(|mut sol| {
+                sol.sweeps += before;
+                sol
+            }));
+        }
+        let solved = solved.expect("one of the solvers ran");
         let fell_back = cg_failed.is_some();
-        self.fallbacks += usize::from(fell_back);
-        self.scratch = scratch;
         let sol = solved.map_err(|history| {
             let last = history.last().copied().unwrap_or(f64::NAN);
             let cg = match &cg_failed {
@@ -399,16 +488,9 @@ impl FixedGrid {
                 ),
             }
         })?;
-        let (mut out, s_grid) = self.expand(input, &set, &weight, &p3, &sol);
+        let (mut out, s_grid) = self.expand(input, &set, &weight, p3, &sol);
         out.fallback = fell_back;
-        out.clipped = clipped;
-        let (older, oldest) = match self.history.take() {
-            Some(h) => (Some(h.u), h.older),
-            None => (None, None),
-        };
-        let p_grid = out.traction_x.iter().zip(&out.traction_y).flat_map(|(x, y)| [*x, *y]).collect();
-        self.history = Some(History { u: (ux, uy), older, oldest, p3, s: s_grid, p: p_grid, xi: sol.xi });
-        Ok(out)
+        Ok(Solved { out, s_grid, u: (ux, uy), fell_back })
     }
 
     /// The earlier-displacement term `u~` and weight `beta` of the
@@ -508,12 +590,13 @@ impl FixedGrid {
     /// dF_x/dxi_x estimate (N), as the adapted solver's: the stick area
     /// (|s| < 10 eps at the warm start) answers a uniform slip change with
     /// the uniform traction change that cancels it through its mean row sum
-    /// of `(beta/dt) K_xx` (one FFT product); slip elements answer through
-    /// their own law's derivative.
+    /// of `(beta/dt) K_xx` (one product, `product(p, u)` as the step's:
+    /// interleaved tractions on `set`, displacements x block then y block);
+    /// slip elements answer through their own law's derivative.
     #[allow(clippy::too_many_arguments)]
     fn creepage_stiffness(
         &self,
-        scratch: &mut FftScratch,
+        product: &mut dyn FnMut(&[f64], &mut [f64]),
         set: &ContactSet,
         weight: &[f64],
         mu_p3: &[f64],
@@ -521,30 +604,22 @@ impl FixedGrid {
         beta: f64,
         input: &StepInput,
     ) -> f64 {
-        let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
+        let nc = set.len();
         let eps = self.spec.eps;
         let scale = beta / input.dt;
-        let stick: Vec<bool> = (0..set.len()).map(|c| s[2 * c].hypot(s[2 * c + 1]) < STICK_SLIP_FACTOR * eps).collect();
-        let (mut gx, gy) = (vec![0.0; n], vec![0.0; n]);
-        for (c, &k) in set.element.iter().enumerate() {
-            if stick[c] {
-                gx[k] = 1.0;
-                if weight[c] == 2.0 {
-                    gx[(ny - 1 - k / nx) * nx + k % nx] = 1.0;
-                }
-            }
-        }
-        let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
-        self.tangential.tangential(scratch, (&gx, &gy), (&mut ux, &mut uy));
-        let count: f64 = (0..set.len()).filter(|&c| stick[c]).map(|c| weight[c]).sum();
+        let stick: Vec<bool> = (0..nc).map(|c| s[2 * c].hypot(s[2 * c + 1]) < STICK_SLIP_FACTOR * eps).collect();
+        let unit: Vec<f64> = stick.iter().flat_map(|&st| [if st { 1.0 } else { 0.0 }, 0.0]).collect();
+        let mut u = vec![0.0; 2 * nc];
+        product(&unit, &mut u);
+        let count: f64 = (0..nc).filter(|&c| stick[c]).map(|c| weight[c]).sum();
         let mut kappa = 0.0;
         let area = self.grid.area();
         if count > 0.0 {
-            let rows: f64 = (0..set.len()).filter(|&c| stick[c]).map(|c| weight[c] * scale * ux[set.element[c]]).sum();
+            let rows: f64 = (0..nc).filter(|&c| stick[c]).map(|c| weight[c] * scale * u[c]).sum();
             kappa += count * area / (rows / count);
         }
         let k0 = scale * self.kernel.at(0, 0, 0);
-        for c in 0..set.len() {
+        for c in 0..nc {
             if !stick[c] {
                 let (_, d) = friction([s[2 * c], s[2 * c + 1]], mu_p3[c], eps);
                 kappa += weight[c] * area * d[0] / (1.0 + k0 * d[0]);
@@ -560,17 +635,22 @@ fn normal_reason(e: NormalError) -> String {
 
 impl TangentialSolver for FixedGrid {
     fn step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError> {
+        self.step_ahead(input, None)
+    }
+
+    fn step_ahead(&mut self, input: &StepInput, next: Option<&StepInput>) -> Result<PatchSolution, ContactError> {
         match (&self.surface, &mut self.active) {
             (Some(RailContact::Linear(_)), Some(window)) => {
-                let sol = window.grid.solve_step(input)?;
+                let sol = window.grid.solve_step(input, next)?;
                 Ok(window.embed(sol, &self.grid))
             }
-            _ => self.solve_step(input),
+            _ => self.solve_step(input, next),
         }
     }
 
     fn reset(&mut self) {
         self.history = None;
+        self.ahead = None;
         self.fallbacks = 0;
         if let Some(w) = &mut self.active {
             w.grid.reset();
@@ -601,6 +681,7 @@ impl TangentialSolver for FixedGrid {
         }
         self.surface = surface;
         self.approach_start = None;
+        self.ahead = None;
         Ok(())
     }
 
