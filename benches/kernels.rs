@@ -186,6 +186,17 @@ fn fixed_grid(c: &mut Criterion) {
         g.bench_function(format!("fft_product_{mm}mm_{}x{}", grid.nx, grid.ny), |b| {
             b.iter(|| conv.tangential(&mut scratch, (black_box(&px), &py), (&mut ux, &mut uy)))
         });
+        // The CG solver's inner product (single precision) and its
+        // preconditioner (the circulant inverse, unpadded, single).
+        let single = FftConvolution::single(&kernel);
+        let mut scratch_single = FftScratch::default();
+        g.bench_function(format!("fft_product_single_{mm}mm_{}x{}", grid.nx, grid.ny), |b| {
+            b.iter(|| single.tangential(&mut scratch_single, (black_box(&px), &py), (&mut ux, &mut uy)))
+        });
+        let inverse = FftConvolution::circulant_inverse_single(&kernel);
+        g.bench_function(format!("fft_preconditioner_{mm}mm_{}x{}", grid.nx, grid.ny), |b| {
+            b.iter(|| inverse.tangential(&mut scratch_single, (black_box(&px), &py), (&mut ux, &mut uy)))
+        });
         let input = StepInput {
             patch,
             speed: 27.778,

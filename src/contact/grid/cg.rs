@@ -117,15 +117,19 @@ struct State {
 
 /// Solves the step from the warm start (slips `s`, creepage `xi`) as
 /// [`super::tangential::solve`] does, for the regularised law. `fresh(p, u)`
-/// computes `u = K p` at the elements in contact (x block then y block).
-/// The returned solution's `sweeps` counts the products (`K p`) used.
+/// computes `u = K p` at the elements in contact (x block then y block) for
+/// the residuals; `inner` the same in single precision for the Newton
+/// systems (solved to [`FORCING`] of the residual, far above its
+/// rounding); `inverse(r, z)` the preconditioner's FFT inverse
+/// (interleaved). The returned solution's `sweeps` counts the products
+/// `K p` of both precisions.
 pub fn solve(
     st: &GridStep,
     s: &[f64],
     p0: &[f64],
     xi: f64,
-    fresh: &mut dyn FnMut(&[f64], &mut [f64]),
-    inverse: &mut dyn FnMut(&[f64], &mut [f64]),
+    fresh: &mut Product,
+    (inner, inverse): (&mut Product, &mut Product),
 ) -> Result<GridSolution, CgFailure> {
     let Law::Regularised { eps } = st.law else {
         return Err(CgFailure::Coulomb);
@@ -172,7 +176,7 @@ pub fn solve(
         let target = (FORCING * state.r_max).max(0.3 * st.tol);
         let pre = Preconditioner::new(st, eps, &own, &h, &state.s);
         let (dp, adp, lambda) =
-            newton_system(st, (&h, &pre), &state, target, &mut ae, (&mut *fresh, &mut *inverse), &mut products);
+            newton_system(st, (&h, &pre), &state, target, &mut ae, (&mut *inner, &mut *inverse), &mut products);
         state = correct(st, eps, &own, &state, (&dp, &adp, lambda), fresh, &mut products);
         history.push(state.r_max);
     }
@@ -323,14 +327,15 @@ impl Preconditioner {
 /// target`; returns `dp` (Pa), `A dp` (m/s), both interleaved, and
 /// `lambda` (m/s). The start `dp0 = c e_x` meets the constraint; its
 /// product `A e_x` is computed at the step's first need and kept in `ae`.
-/// `products`: `K p` (counted) and the preconditioner's FFT inverse.
+/// `inner`: `K p` in single precision (counted in `products`); `inverse`
+/// the preconditioner's FFT inverse.
 fn newton_system(
     st: &GridStep,
     (h, pre): (&[[f64; 3]], &Preconditioner),
     x: &State,
     target: f64,
     ae: &mut Option<Vec<f64>>,
-    (fresh, inverse): (&mut Product, &mut Product),
+    (inner, inverse): (&mut Product, &mut Product),
     products: &mut usize,
 ) -> (Vec<f64>, Vec<f64>, f64) {
     let n = st.set.len();
@@ -341,7 +346,7 @@ fn newton_system(
     let mut ku = vec![0.0; 2 * n];
     // (A v, (A + H) v).
     let mut apply_m = |v: &[f64], a: &mut [f64], out: &mut [f64], products: &mut usize| {
-        fresh(v, &mut ku);
+        inner(v, &mut ku);
         *products += 1;
         for c in 0..n {
             let (vx, vy) = (v[2 * c], v[2 * c + 1]);

@@ -19,8 +19,9 @@
 //! y on half the spectrum: about half of that.
 
 use crate::contact::influence::{Rect, influence, normal_influence};
-use num_complex::Complex64;
+use num_complex::{Complex, Complex64};
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
+use rustfft::num_traits::{Float, FromPrimitive, ToPrimitive};
 use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
 
@@ -141,7 +142,10 @@ pub fn smooth_padding(n: usize) -> usize {
 }
 
 /// A length at least `n` whose prime factors are 2, 3 and 5 (fast for
-/// rustfft's mixed-radix algorithms).
+/// rustfft's mixed-radix algorithms). (Lengths with at least 2^2 and at
+/// most one 5, which single-precision transforms alone take faster, 1.5
+/// times in criterion at 0.2 mm, made paper_normal_30mm 2 % slower in
+/// both precisions, median of 5, on this 2-vCPU machine.)
 fn smooth_length(n: usize) -> usize {
     (n..)
         .find(|&m| {
@@ -156,30 +160,36 @@ fn smooth_length(n: usize) -> usize {
         .expect("smooth numbers are unbounded")
 }
 
+/// The floating-point types the products run in (`f64`; `f32` for the CG
+/// solver's inner products).
+pub trait Real: rustfft::FftNum + Float + FromPrimitive + ToPrimitive + Default {}
+impl Real for f32 {}
+impl Real for f64 {}
+
 /// Zero-padded FFT products with the kernels of one [`ToeplitzKernel`].
 #[derive(Clone)]
-pub struct FftConvolution {
+pub struct FftConvolution<T: Real = f64> {
     nx: usize,
     ny: usize,
     /// Padded lengths along x and y.
     mx: usize,
     my: usize,
-    fwd_x: Arc<dyn Fft<f64>>,
-    fwd_y: Arc<dyn Fft<f64>>,
-    inv_x: Arc<dyn Fft<f64>>,
-    inv_y: Arc<dyn Fft<f64>>,
+    fwd_x: Arc<dyn Fft<T>>,
+    fwd_y: Arc<dyn Fft<T>>,
+    inv_x: Arc<dyn Fft<T>>,
+    inv_y: Arc<dyn Fft<T>>,
     /// Real-to-complex and complex-to-real transforms along x (the normal
     /// product's real fields: half the spectrum, `mx/2 + 1` columns).
-    real_x: Arc<dyn RealToComplex<f64>>,
-    real_inv_x: Arc<dyn ComplexToReal<f64>>,
+    real_x: Arc<dyn RealToComplex<T>>,
+    real_inv_x: Arc<dyn ComplexToReal<T>>,
     /// Kernel spectra, transposed layout `kx my + ky`, including the
     /// `1/(mx my)` of the inverse transform: for the tangential kernel
     /// `(xx + yy)/2` and `(xx - yy)/2 + i xy`; for the normal kernel its
     /// first `mx/2 + 1` columns (the rest mirror them).
-    spectra: Vec<Vec<Complex64>>,
+    spectra: Vec<Vec<Complex<T>>>,
 }
 
-impl std::fmt::Debug for FftConvolution {
+impl<T: Real> std::fmt::Debug for FftConvolution<T> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "FftConvolution {{ {} x {} padded to {} x {} }}", self.nx, self.ny, self.mx, self.my)
     }
@@ -187,35 +197,47 @@ impl std::fmt::Debug for FftConvolution {
 
 /// Work buffers of one product.
 #[derive(Debug, Clone, Default)]
-pub struct FftScratch {
-    rows: Vec<Complex64>,
-    cols: Vec<Complex64>,
+pub struct FftScratch<T: Real = f64> {
+    rows: Vec<Complex<T>>,
+    cols: Vec<Complex<T>>,
     /// The spectrum product of a tangential product (transposed layout).
-    spectrum: Vec<Complex64>,
+    spectrum: Vec<Complex<T>>,
     /// The transforms' scratch.
-    fft: Vec<Complex64>,
+    fft: Vec<Complex<T>>,
     /// One real row of a normal product and its half spectrum.
-    real: Vec<f64>,
-    half: Vec<Complex64>,
+    real: Vec<T>,
+    half: Vec<Complex<T>>,
 }
 
 /// Runs `fft` on every transform-length chunk of `data`. (Two parallel
 /// halves per batch were measured slower on 2 cores: 28 s against 12 s
 /// for paper_normal_30mm on the 0.2 mm grid, most of it the threads'
 /// wake-ups.)
-fn batch(fft: &Arc<dyn Fft<f64>>, data: &mut [Complex64], scratch: &mut Vec<Complex64>) {
+fn batch<T: Real>(fft: &Arc<dyn Fft<T>>, data: &mut [Complex<T>], scratch: &mut Vec<Complex<T>>) {
     let need = fft.get_inplace_scratch_len();
     if scratch.len() < need {
-        scratch.resize(need, Complex64::default());
+        scratch.resize(need, Complex::default());
     }
     fft.process_with_scratch(data, &mut scratch[..need]);
 }
 
-impl FftConvolution {
+impl FftConvolution<f64> {
     /// Plans the transforms and the kernel spectra of `kernel`.
     pub fn new(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();
-        let (mx, my) = (smooth_padding(nx), smooth_padding(ny));
+        Self::padded_to(kernel, (smooth_padding(nx), smooth_padding(ny)))
+    }
+
+    /// The same products in single precision (the CG solver's inner
+    /// products, whose Newton systems are solved to a
+    /// tenth of the residual: rounding of 1e-7 is far below that; the
+    /// residual and the verdict stay in double precision).
+    pub fn single(kernel: &ToeplitzKernel) -> FftConvolution<f32> {
+        Self::new(kernel).to_single()
+    }
+
+    fn padded_to(kernel: &ToeplitzKernel, (mx, my): (usize, usize)) -> Self {
+        let (nx, ny) = kernel.shape();
         let mut planner = FftPlanner::new();
         let mut conv = FftConvolution {
             nx,
@@ -279,7 +301,17 @@ impl FftConvolution {
     /// diagonal.
     pub fn circulant_inverse(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();
-        let (mx, my) = (smooth_length(nx), smooth_length(ny));
+        Self::circulant_inverse_on(kernel, (smooth_length(nx), smooth_length(ny)))
+    }
+
+    /// [`FftConvolution::circulant_inverse`] in single precision (the
+    /// tangential CG's preconditioner).
+    pub fn circulant_inverse_single(kernel: &ToeplitzKernel) -> FftConvolution<f32> {
+        Self::circulant_inverse(kernel).to_single()
+    }
+
+    fn circulant_inverse_on(kernel: &ToeplitzKernel, (mx, my): (usize, usize)) -> Self {
+        let (nx, ny) = kernel.shape();
         let mut planner = FftPlanner::new();
         let mut conv = FftConvolution {
             nx,
@@ -364,6 +396,31 @@ impl FftConvolution {
         conv
     }
 
+    /// The same products in single precision.
+    pub fn to_single(&self) -> FftConvolution<f32> {
+        let mut planner = FftPlanner::<f32>::new();
+        let mut real = RealFftPlanner::<f32>::new();
+        FftConvolution {
+            nx: self.nx,
+            ny: self.ny,
+            mx: self.mx,
+            my: self.my,
+            fwd_x: planner.plan_fft_forward(self.mx),
+            fwd_y: planner.plan_fft_forward(self.my),
+            inv_x: planner.plan_fft_inverse(self.mx),
+            inv_y: planner.plan_fft_inverse(self.my),
+            real_x: real.plan_fft_forward(self.mx),
+            real_inv_x: real.plan_fft_inverse(self.mx),
+            spectra: self
+                .spectra
+                .iter()
+                .map(|sp| sp.iter().map(|v| Complex::new(v.re as f32, v.im as f32)).collect())
+                .collect(),
+        }
+    }
+}
+
+impl<T: Real> FftConvolution<T> {
     /// Padded transform size (mx, my).
     pub fn padded(&self) -> (usize, usize) {
         (self.mx, self.my)
@@ -372,25 +429,25 @@ impl FftConvolution {
     /// 2-D forward transform of `s.rows` (row-major, `my` rows of `mx`, only
     /// the first `rows_nonzero` rows used: the rest are zero) into `s.cols`
     /// (transposed).
-    fn forward(&self, s: &mut FftScratch, rows_nonzero: usize) {
+    fn forward(&self, s: &mut FftScratch<T>, rows_nonzero: usize) {
         let (mx, my) = (self.mx, self.my);
         batch(&self.fwd_x, &mut s.rows[..rows_nonzero * mx], &mut s.fft);
-        s.cols.resize(mx * my, Complex64::default());
+        s.cols.resize(mx * my, Complex::default());
         for (c, col) in s.cols.chunks_exact_mut(my).enumerate() {
             for (r, v) in col[..rows_nonzero].iter_mut().enumerate() {
                 *v = s.rows[r * mx + c];
             }
-            col[rows_nonzero..].fill(Complex64::default());
+            col[rows_nonzero..].fill(Complex::default());
         }
         batch(&self.fwd_y, &mut s.cols, &mut s.fft);
     }
 
     /// 2-D inverse transform of `s.cols` (transposed) into the first
     /// `rows_needed` rows of `s.rows`.
-    fn inverse(&self, s: &mut FftScratch, rows_needed: usize) {
+    fn inverse(&self, s: &mut FftScratch<T>, rows_needed: usize) {
         let (mx, my) = (self.mx, self.my);
         batch(&self.inv_y, &mut s.cols, &mut s.fft);
-        s.rows.resize(mx * my, Complex64::default());
+        s.rows.resize(mx * my, Complex::default());
         for r in 0..rows_needed {
             for (c, v) in s.rows[r * mx..(r + 1) * mx].iter_mut().enumerate() {
                 *v = s.cols[c * my + r];
@@ -401,16 +458,16 @@ impl FftConvolution {
 
     /// Loads two real fields given on the grid, as the real and imaginary
     /// parts, into the first `ny` padded rows.
-    fn load(&self, s: &mut FftScratch, re: &[f64], im: &[f64]) {
+    fn load(&self, s: &mut FftScratch<T>, re: &[f64], im: &[f64]) {
         let (nx, mx) = (self.nx, self.mx);
-        s.rows.resize(mx * self.my, Complex64::default());
+        s.rows.resize(mx * self.my, Complex::default());
         for r in 0..self.ny {
             let row = &mut s.rows[r * mx..(r + 1) * mx];
             for (c, v) in row[..nx].iter_mut().enumerate() {
                 let k = r * nx + c;
-                *v = Complex64::new(re[k], im[k]);
+                *v = Complex::new(T::from_f64(re[k]).unwrap_or_else(T::nan), T::from_f64(im[k]).unwrap_or_else(T::nan));
             }
-            row[nx..].fill(Complex64::default());
+            row[nx..].fill(Complex::default());
         }
     }
 
@@ -419,19 +476,21 @@ impl FftConvolution {
     /// half the spectrum (the rest is their conjugate mirror), the complex
     /// transforms along y run on those only, and a complex-to-real
     /// transform returns each row: half the work of the complex product.
-    pub fn normal(&self, s: &mut FftScratch, p: &[f64], u: &mut [f64]) {
+    pub fn normal(&self, s: &mut FftScratch<T>, p: &[f64], u: &mut [f64]) {
         let (nx, ny, mx, my) = (self.nx, self.ny, self.mx, self.my);
         let hx = mx / 2 + 1;
-        s.real.resize(mx, 0.0);
-        s.half.resize(hx, Complex64::default());
+        s.real.resize(mx, T::zero());
+        s.half.resize(hx, Complex::default());
         let need = self.real_x.get_scratch_len().max(self.real_inv_x.get_scratch_len());
         if s.fft.len() < need {
-            s.fft.resize(need, Complex64::default());
+            s.fft.resize(need, Complex::default());
         }
-        s.cols.resize(hx * my, Complex64::default());
+        s.cols.resize(hx * my, Complex::default());
         for r in 0..ny {
-            s.real[..nx].copy_from_slice(&p[r * nx..(r + 1) * nx]);
-            s.real[nx..].fill(0.0);
+            for (v, pk) in s.real[..nx].iter_mut().zip(&p[r * nx..(r + 1) * nx]) {
+                *v = T::from_f64(*pk).unwrap_or_else(T::nan);
+            }
+            s.real[nx..].fill(T::zero());
             self.real_x
                 .process_with_scratch(&mut s.real, &mut s.half, &mut s.fft[..need])
                 .expect("buffers of the planned lengths");
@@ -440,11 +499,11 @@ impl FftConvolution {
             }
         }
         for col in s.cols.chunks_exact_mut(my) {
-            col[ny..].fill(Complex64::default());
+            col[ny..].fill(Complex::default());
         }
         batch(&self.fwd_y, &mut s.cols, &mut s.fft);
         for (z, k) in s.cols.iter_mut().zip(&self.spectra[0]) {
-            *z *= k;
+            *z = *z * k;
         }
         batch(&self.inv_y, &mut s.cols, &mut s.fft);
         for r in 0..ny {
@@ -453,19 +512,21 @@ impl FftConvolution {
             }
             // The product is real: the zero and Nyquist bins' imaginary
             // parts are rounding.
-            s.half[0].im = 0.0;
+            s.half[0].im = T::zero();
             if mx % 2 == 0 {
-                s.half[hx - 1].im = 0.0;
+                s.half[hx - 1].im = T::zero();
             }
             self.real_inv_x
                 .process_with_scratch(&mut s.half, &mut s.real, &mut s.fft[..need])
                 .expect("buffers of the planned lengths");
-            u[r * nx..(r + 1) * nx].copy_from_slice(&s.real[..nx]);
+            for (uk, v) in u[r * nx..(r + 1) * nx].iter_mut().zip(&s.real[..nx]) {
+                *uk = v.to_f64().unwrap_or(f64::NAN);
+            }
         }
     }
 
     /// Tangential product `(u_x, u_y) = K (p_x, p_y)` on the whole grid.
-    pub fn tangential(&self, s: &mut FftScratch, (px, py): (&[f64], &[f64]), (ux, uy): (&mut [f64], &mut [f64])) {
+    pub fn tangential(&self, s: &mut FftScratch<T>, (px, py): (&[f64], &[f64]), (ux, uy): (&mut [f64], &mut [f64])) {
         let (mx, my) = (self.mx, self.my);
         self.load(s, px, py);
         self.forward(s, self.ny);
@@ -474,7 +535,7 @@ impl FftConvolution {
         // = (K_xx + K_yy)/2 Z(k) + ((K_xx - K_yy)/2 + i K_xy) conj Z(-k).
         let z = &s.cols;
         let w = &mut s.spectrum;
-        w.resize(mx * my, Complex64::default());
+        w.resize(mx * my, Complex::default());
         let (sum, diff) = (&self.spectra[0], &self.spectra[1]);
         for cx in 0..mx {
             let mcx = (mx - cx) % mx;
@@ -491,8 +552,8 @@ impl FftConvolution {
         for r in 0..self.ny {
             for c in 0..self.nx {
                 let v = s.rows[r * mx + c];
-                ux[r * self.nx + c] = v.re;
-                uy[r * self.nx + c] = v.im;
+                ux[r * self.nx + c] = v.re.to_f64().unwrap_or(f64::NAN);
+                uy[r * self.nx + c] = v.im.to_f64().unwrap_or(f64::NAN);
             }
         }
     }

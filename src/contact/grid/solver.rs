@@ -28,6 +28,7 @@ use super::normal::{self, NormalError};
 use super::spec::{FixedGridSpec, GRID_FORCE_TOLERANCE, GRID_TOLERANCE, GridScheme, GridSolver};
 use super::tangential::{self, ContactSet, GridStep, Law};
 mod edge;
+mod on_set;
 mod pressure;
 mod window;
 
@@ -38,6 +39,7 @@ use crate::contact::mesh::EllipseMesh;
 use crate::contact::transient::GS_MAX_SWEEPS;
 use crate::contact::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::hertz::HertzShape;
+use on_set::{Layout, OnSet};
 use pressure::{Ahead, Pressure};
 use std::borrow::Cow;
 use std::sync::Arc;
@@ -98,9 +100,11 @@ pub struct FixedGrid {
     normal: FftConvolution,
     kernel: ToeplitzKernel,
     tangential: FftConvolution,
-    /// The CG solver's preconditioner, the FFT inverse of the tangential
-    /// kernel's circulant on the unpadded grid.
-    inverse: FftConvolution,
+    /// The CG solver's inner products in single precision, and its
+    /// preconditioner, the FFT inverse of the tangential kernel's
+    /// circulant on the unpadded grid.
+    tangential_single: FftConvolution<f32>,
+    inverse_single: FftConvolution<f32>,
     /// The normal CG's preconditioner, that of the normal kernel.
     normal_inverse: FftConvolution,
     scratch: FftScratch,
@@ -156,7 +160,8 @@ impl FixedGrid {
             spec,
             normal: FftConvolution::new(&normal_kernel),
             tangential: FftConvolution::new(&kernel),
-            inverse: FftConvolution::circulant_inverse(&kernel),
+            tangential_single: FftConvolution::single(&kernel),
+            inverse_single: FftConvolution::circulant_inverse_single(&kernel),
             normal_inverse: FftConvolution::circulant_inverse(&normal_kernel),
             kernel,
             grid,
@@ -286,12 +291,14 @@ impl FixedGrid {
             });
         }
         let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
-        let mut scratch = std::mem::take(&mut self.scratch);
         let Pressure { mut p3, clipped, symmetric: symmetric_load } = match self.ahead.take() {
             Some(ahead) if ahead.key == Ahead::key(input) => ahead.result?,
             _ => {
+                let mut scratch = std::mem::take(&mut self.scratch);
                 let start = self.history.as_ref().map(|h| h.p3.as_slice());
-                self.pressure(&mut scratch, input, start)?
+                let pressure = self.pressure(&mut scratch, input, start);
+                self.scratch = scratch;
+                pressure?
             }
         };
         // A problem symmetric about y = 0 is solved on the lower half of the
@@ -312,7 +319,7 @@ impl FixedGrid {
         let mut ahead_scratch = std::mem::take(&mut self.ahead_scratch);
         let this = &*self;
         let (solved, ahead) = rayon::join(
-            || this.tangential_step(input, &p3, folded.is_some(), &mut scratch),
+            || this.tangential_step(input, &p3, folded.is_some()),
             || {
                 next.map(|next| Ahead {
                     key: Ahead::key(next),
@@ -320,7 +327,6 @@ impl FixedGrid {
                 })
             },
         );
-        self.scratch = scratch;
         self.ahead_scratch = ahead_scratch;
         let Solved { mut out, s_grid, u, fell_back } = solved?;
         self.ahead = ahead;
@@ -338,13 +344,7 @@ impl FixedGrid {
     /// The tangential problem of a step on the pressure `p3` (symmetric
     /// about y = 0 where `folded`): the solution on the whole grid, the
     /// slips kept for the next warm start, the displacement field.
-    fn tangential_step(
-        &self,
-        input: &StepInput,
-        p3: &[f64],
-        folded: bool,
-        scratch: &mut FftScratch,
-    ) -> Result<Solved, ContactError> {
+    fn tangential_step(&self, input: &StepInput, p3: &[f64], folded: bool) -> Result<Solved, ContactError> {
         let force = input.force_x;
         let n_force = input.patch.normal_force;
         let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
@@ -399,63 +399,31 @@ impl FixedGrid {
         };
         // Exact products on the whole grid; the last one (the verdict's) is
         // the field the next step shifts.
-        let (mut gx, mut gy) = (vec![0.0; n], vec![0.0; n]);
-        let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
-        let conv = &self.tangential;
-        let mut fresh = |p: &[f64], u: &mut [f64]| {
-            gx.iter_mut().for_each(|v| *v = 0.0);
-            gy.iter_mut().for_each(|v| *v = 0.0);
-            for (c, &k) in set.element.iter().enumerate() {
-                gx[k] = p[2 * c];
-                gy[k] = p[2 * c + 1];
-                if weight[c] == 2.0 {
-                    gx[mirror(k)] = p[2 * c];
-                    gy[mirror(k)] = -p[2 * c + 1];
-                }
-            }
-            conv.tangential(scratch, (&gx, &gy), (&mut ux, &mut uy));
-            for (c, &k) in set.element.iter().enumerate() {
-                u[c] = ux[k];
-                u[nc + c] = uy[k];
-            }
-        };
-        // The preconditioner's product: the FFT inverse on the unpadded
-        // grid, the field mirror-extended on a folded one.
-        let inv = &self.inverse;
-        let (mut vx, mut vy, mut zx, mut zy) = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        let mut pre_scratch = FftScratch::default();
-        let mut inverse = |r: &[f64], z: &mut [f64]| {
-            vx.iter_mut().for_each(|v| *v = 0.0);
-            vy.iter_mut().for_each(|v| *v = 0.0);
-            for (c, &k) in set.element.iter().enumerate() {
-                vx[k] = r[2 * c];
-                vy[k] = r[2 * c + 1];
-                if weight[c] == 2.0 {
-                    vx[mirror(k)] = r[2 * c];
-                    vy[mirror(k)] = -r[2 * c + 1];
-                }
-            }
-            inv.tangential(&mut pre_scratch, (&vx, &vy), (&mut zx, &mut zy));
-            for (c, &k) in set.element.iter().enumerate() {
-                z[2 * c] = zx[k];
-                z[2 * c + 1] = zy[k];
-            }
-        };
+        let shape = (nx, ny);
+        let mut exact = OnSet::new(&self.tangential, &set, &weight, shape, Layout::Blocks);
+        let mut fresh = |p: &[f64], u: &mut [f64]| exact.product(p, u);
+        // The CG solver's inner products in single precision; its
+        // preconditioner, the FFT inverse on the unpadded grid.
+        let mut single = OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks);
+        let mut inner = |p: &[f64], u: &mut [f64]| single.product(p, u);
+        let mut pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
+        let mut inverse = |r: &[f64], z: &mut [f64]| pre.product(r, z);
         let newton_krylov = self.spec.solver.resolve(self.spec.law) == GridSolver::Cg;
         // A step CG does not converge goes to Gauss-Seidel; its products
         // count in the step's iterations, and its failure in the report.
         let mut cg_failed: Option<(Vec<f64>, usize)> = None;
-        let mut solved = match newton_krylov.then(|| cg::solve(&step, &s0, &p0, xi0, &mut fresh, &mut inverse)) {
-            Some(Ok(sol)) => Some(Ok(sol)),
-            Some(Err(failure)) => {
-                cg_failed = Some(match failure {
-                    cg::CgFailure::NoConvergence { history, products } => (history, products),
-                    cg::CgFailure::Coulomb => (Vec::new(), 0),
-                });
-                None
-            }
-            None => None,
-        };
+        let mut solved =
+            match newton_krylov.then(|| cg::solve(&step, &s0, &p0, xi0, &mut fresh, (&mut inner, &mut inverse))) {
+                Some(Ok(sol)) => Some(Ok(sol)),
+                Some(Err(failure)) => {
+                    cg_failed = Some(match failure {
+                        cg::CgFailure::NoConvergence { history, products } => (history, products),
+                        cg::CgFailure::Coulomb => (Vec::new(), 0),
+                    });
+                    None
+                }
+                None => None,
+            };
         if solved.is_none() {
             step.kappa = self.creepage_stiffness(&mut fresh, &set, &weight, &mu_p3, &s0, beta, input);
             let before = cg_failed.as_ref().map_or(0, |f| f.1);
@@ -490,7 +458,7 @@ impl FixedGrid {
         })?;
         let (mut out, s_grid) = self.expand(input, &set, &weight, p3, &sol);
         out.fallback = fell_back;
-        Ok(Solved { out, s_grid, u: (ux, uy), fell_back })
+        Ok(Solved { out, s_grid, u: exact.u, fell_back })
     }
 
     /// The earlier-displacement term `u~` and weight `beta` of the
