@@ -258,4 +258,12 @@ pub trait TangentialSolver {
         let _ = (position, force);
         Err(ContactError::NoSurface)
     }
+    /// [`approach`](TangentialSolver::approach) at every position of
+    /// `positions` (m) under the same force (N), in order; an error names
+    /// the index of the position that failed. A model may solve them in
+    /// parallel (the fixed grid: two warm-started chains, one per half,
+    /// whatever the thread count).
+    fn approaches(&mut self, positions: &[f64], force: f64) -> Result<Vec<f64>, (usize, ContactError)> {
+        positions.iter().enumerate().map(|(j, &x)| self.approach(x, force).map_err(|e| (j, e))).collect()
+    }
 }

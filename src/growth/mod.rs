@@ -87,13 +87,12 @@ pub fn equivalent_roughness(
     n: usize,
     force: f64,
 ) -> Result<Vec<f64>, PassageError> {
-    let mut approach = Vec::with_capacity(n);
-    for j in 0..n {
-        let x = x_min + j as f64 * step;
-        let d =
-            solver.approach(x, force).map_err(|source| PassageError::Approach { x, normal_force: force, source })?;
-        approach.push(d);
-    }
+    let positions: Vec<f64> = (0..n).map(|j| x_min + j as f64 * step).collect();
+    let approach = solver.approaches(&positions, force).map_err(|(j, source)| PassageError::Approach {
+        x: positions[j],
+        normal_force: force,
+        source,
+    })?;
     let mean = approach.iter().sum::<f64>() / n.max(1) as f64;
     Ok(approach.iter().map(|d| mean - d).collect())
 }

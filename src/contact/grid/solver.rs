@@ -65,6 +65,9 @@ struct History {
     xi: f64,
 }
 
+/// The approaches of a chain of positions (m) and its last pressure (Pa).
+type Chain = (Vec<f64>, Option<Vec<f64>>);
+
 /// A step's tangential solution.
 struct Solved {
     /// On the whole grid.
@@ -233,14 +236,41 @@ impl FixedGrid {
     /// started from the previous call's pressure: the pressure on the grid
     /// and the approach (h + u over the contact area, m).
     pub fn normal_solution(&mut self, position: f64, force: f64) -> Result<normal::NormalSolution, ContactError> {
-        let gap = self.gap_at(position).into_owned();
         let start = self.approach_start.take();
         let mut scratch = std::mem::take(&mut self.scratch);
-        let sol = normal::solve(self.normal_products(), &mut scratch, &gap, self.grid.area(), force, start.as_deref());
+        let sol = self.normal_at(&mut scratch, position, force, start.as_deref());
         self.scratch = scratch;
-        let sol = sol.map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })?;
+        let sol = sol?;
         self.approach_start = Some(sol.pressure.clone());
         Ok(sol)
+    }
+
+    /// The normal problem alone at `position` (m) under `force` (N) from
+    /// the pressure `start`.
+    fn normal_at(
+        &self,
+        scratch: &mut FftScratch,
+        position: f64,
+        force: f64,
+        start: Option<&[f64]>,
+    ) -> Result<normal::NormalSolution, ContactError> {
+        let gap = self.gap_at(position);
+        normal::solve(self.normal_products(), scratch, &gap, self.grid.area(), force, start)
+            .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })
+    }
+
+    /// The normal solves of one chain of positions, each warm-started from
+    /// the last (the first cold): the approaches and the last pressure.
+    fn approach_chain(&self, positions: &[f64], force: f64) -> Result<Chain, (usize, ContactError)> {
+        let mut scratch = FftScratch::default();
+        let mut last: Option<Vec<f64>> = None;
+        let mut out = Vec::with_capacity(positions.len());
+        for (j, &x) in positions.iter().enumerate() {
+            let sol = self.normal_at(&mut scratch, x, force, last.as_deref()).map_err(|e| (j, e))?;
+            out.push(sol.approach);
+            last = Some(sol.pressure);
+        }
+        Ok((out, last))
     }
 
     /// The undeformed gap (m) on the grid with the patch centre at
@@ -659,5 +689,18 @@ impl TangentialSolver for FixedGrid {
 
     fn approach(&mut self, position: f64, force: f64) -> Result<f64, ContactError> {
         Ok(self.normal_solution(position, force)?.approach)
+    }
+
+    fn approaches(&mut self, positions: &[f64], force: f64) -> Result<Vec<f64>, (usize, ContactError)> {
+        // Two chains, one per half, each warm-started along itself from a
+        // cold start: the same result on any number of threads.
+        let (first, second) = positions.split_at(positions.len() / 2);
+        let this = &*self;
+        let (a, b) = rayon::join(|| this.approach_chain(first, force), || this.approach_chain(second, force));
+        let (mut out, _) = a?;
+        let (rest, last) = b.map_err(|(j, e)| (first.len() + j, e))?;
+        out.extend(rest);
+        self.approach_start = last;
+        Ok(out)
     }
 }
