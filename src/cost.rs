@@ -35,43 +35,54 @@ impl CostEstimate {
 /// tangential solver `solver` (Cg or GaussSeidel) on the fixed grid `f`.
 fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, solver: GridSolver) -> f64 {
     // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
-    // 2026-11-25): with the CG solver 3.97 ms per step with 478 elements in
-    // contact at the mean load, 17.3 ms with 1912, 42.3 ms with 3902,
-    // fitted by N^1.13; with Gauss-Seidel (its option, and exact Coulomb
-    // friction) 5.39, 38.5 and 115.8 ms, N^1.46; the wear deposit is in it.
+    // 2026-11-26, wall on 2 cores; the next step's pressure on the second
+    // core): with the CG solver 1.57 / 3.13 / 4.75 / 10.07 ms per step with
+    // 478 / 975 / 1912 / 3902 elements in contact at the mean load, fitted
+    // by 1.59 ms (N/478)^0.86; with Gauss-Seidel (its option, and exact
+    // Coulomb friction) 3.83 / 9.74 / 28.8 / 94.8 ms, 3.56 ms
+    // (N/478)^1.54; the wear deposit is in it.
     // A scene that is not symmetric about the centre line (lateral
     // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
     // (scripts/stability_map.sh); the CG solver's products cover the whole
     // grid either way: 1.1-1.3 times on the stability map's rows with
-    // lateral creepage (5.9-7.2 s against 5.4 s), taken as 1.2.
+    // lateral creepage, taken as 1.2.
     let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
     let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
     let cg = solver == GridSolver::Cg;
     // With the profile in the contact (the default in growth studies):
-    // a grid 1.5 times the patch both ways, the gap of every step and the
-    // normal solves; measured 2026-11-25 after the one-product normal
-    // CG: with CG, whose products cover the larger grid, 1.9 times
-    // (growth_exact.toml, 2.41 s per passage of 326 steps, median of 5);
-    // with Gauss-Seidel, which sweeps the contact area only, 1.15 times
-    // (growth_discrete.toml, 9.1-9.6 s per passage of 1526 steps;
-    // growth_exact.toml 2.03 s, the model 2.02 s).
-    // The linear profile contact (its grid 1.0 times the patch, its
-    // pressure's cell means instead of the normal solves): 1.16 times
-    // (growth_exact.toml, 0.67 against 0.58 s per passage, 2026-11-25).
+    // a grid 1.5 times the patch both ways, the gap of every step, the
+    // normal solves of the steps (on the second core) and of the
+    // equivalent-roughness pre-pass (two chains, one per core); measured
+    // 2026-11-26 against the per-step fits above: with CG, whose products
+    // cover the larger grid, 1.9 times (growth_exact.toml, 0.97 s per
+    // passage of 325 steps) and 2.2 times (growth_discrete.toml, 5.3 s per
+    // passage of 1526 steps), taken as 2.2; with Gauss-Seidel, which
+    // sweeps the contact area only, 1.0 and 1.3 times (1.21 and 7.55 s),
+    // taken as 1.3.
+    // The linear profile contact (auto's passages in its range: its
+    // pressure's cell means on a window of the grid): with CG 0.94 and 1.2
+    // times (0.48 and 2.95 s per passage), taken as 1.2; with
+    // Gauss-Seidel 0.74 and 0.93 times (0.92 and 5.46 s), taken as 0.95.
     // `auto` is costed as the nonlinear contact (its grid holds it; a
     // passage in the linear range costs less).
     let profile = match s.contact.normal {
         NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => {
             if cg {
-                1.9
+                2.2
             } else {
-                1.15
+                1.3
             }
         }
-        NormalContact::Linear { .. } if s.growth.is_some() => 1.16,
+        NormalContact::Linear { .. } if s.growth.is_some() => {
+            if cg {
+                1.2
+            } else {
+                0.95
+            }
+        }
         _ => 1.0,
     };
-    let per_step = if cg { 3.97e-3 * (n_c / 478.0).powf(1.13) } else { 5.39e-3 * (n_c / 478.0).powf(1.46) };
+    let per_step = if cg { 1.59e-3 * (n_c / 478.0).powf(0.86) } else { 3.56e-3 * (n_c / 478.0).powf(1.54) };
     let whole = match (symmetric, cg) {
         (true, _) => 1.0,
         (false, true) => 1.2,
@@ -82,9 +93,9 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
 
 /// What `contact.solver = "auto"` runs on the fixed grid of scene `s`: for
 /// the regularised law the cheaper of CG and Gauss-Seidel by this cost
-/// model (Gauss-Seidel on the coarse grids a growth study enlarges for the
-/// profile contact, CG from about 800 elements in contact), for exact
-/// Coulomb friction Gauss-Seidel (which CG does not solve).
+/// model (CG on every grid measured since its FFT preconditioner, 1.25-4.2
+/// times faster per passage), for exact Coulomb friction Gauss-Seidel
+/// (which CG does not solve).
 pub fn auto_grid_solver(s: &Scene) -> GridSolver {
     let Some(f) = s.contact.model.fixed_grid() else {
         return GridSolver::GaussSeidel;
