@@ -38,9 +38,11 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     // 2026-11-26, wall on 2 cores; the next step's pressure on the second
     // core): with the CG solver 1.57 / 3.13 / 4.75 / 10.07 ms per step with
     // 478 / 975 / 1912 / 3902 elements in contact at the mean load, fitted
-    // by 1.59 ms (N/478)^0.86; with Gauss-Seidel (its option, and exact
-    // Coulomb friction) 3.83 / 9.74 / 28.8 / 94.8 ms, 3.56 ms
-    // (N/478)^1.54; the wear deposit is in it.
+    // by 1.59 ms (N/478)^0.86 (exact Coulomb friction as the regularised
+    // law's limit: the same, 27.4 products per step against 26.8 at 0.2
+    // mm); with Gauss-Seidel 3.83 / 9.74 / 28.8 / 94.8 ms, 3.56 ms
+    // (N/478)^1.54 (exact Coulomb friction about 20 % more sweeps); the
+    // wear deposit is in it.
     // A scene that is not symmetric about the centre line (lateral
     // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
     // (scripts/stability_map.sh); the CG solver's products cover the whole
@@ -91,16 +93,16 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     per_step * whole * profile
 }
 
-/// What `contact.solver = "auto"` runs on the fixed grid of scene `s`: for
-/// the regularised law the cheaper of CG and Gauss-Seidel by this cost
-/// model (CG on every grid measured since its FFT preconditioner, 1.25-4.2
-/// times faster per passage), for exact Coulomb friction Gauss-Seidel
-/// (which CG does not solve).
+/// What `contact.solver = "auto"` runs on the fixed grid of scene `s`: the
+/// cheaper of CG and Gauss-Seidel by this cost model, for both friction
+/// laws (CG on every grid measured since its FFT preconditioner, 1.25-7
+/// times faster per passage; exact Coulomb friction as the regularised
+/// law's limit, `contact::grid::cg::COULOMB_LIMIT`).
 pub fn auto_grid_solver(s: &Scene) -> GridSolver {
     let Some(f) = s.contact.model.fixed_grid() else {
         return GridSolver::GaussSeidel;
     };
-    if f.solver != GridSolver::Auto || f.friction_law == crate::contact::friction::FrictionLaw::Coulomb {
+    if f.solver != GridSolver::Auto {
         return f.solver.resolve(f.friction_law);
     }
     let d = derive(s);

@@ -129,11 +129,6 @@ fn fixed_grid_keys() {
             &[exact, "contact.grid=fixed", "contact.solver=newton"],
             "contact.solver: = \"newton\" is the adapted mesh's reference solver",
         ),
-        (
-            &[exact, "contact.grid=fixed", "contact.friction_law=coulomb", "contact.solver=cg"],
-            "contact.solver: = \"cg\" solves the regularised friction law; with contact.friction_law = \"coulomb\" \
-             allowed: auto, gauss-seidel",
-        ),
         (&[exact, "contact.dx=0"], "contact.dx: = 0 is out of range; expected a number in (0, 0.01]"),
         (
             &[exact, "contact.grid=fixed", "contact.friction_law=sliding"],

@@ -11,14 +11,14 @@ use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::{PatchSolution, StepInput, TangentialSolver};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 
-/// A regularised-law fixed grid of `cell` elements for `curvatures`, sized
-/// for the Hertz patch at `n_max` N, with `solver`.
+/// A fixed grid of `cell` elements for `curvatures`, sized for the Hertz
+/// patch at `n_max` N, with `law` and `solver`.
 fn grid(
     shape: &HertzShape,
     (curvatures, elastic): (Curvatures, Elastic),
     n_max: f64,
     cell: (f64, f64),
-    (scheme, eps): (GridScheme, f64),
+    (law, scheme, eps): (FrictionLaw, GridScheme, f64),
     solver: GridSolver,
 ) -> FixedGrid {
     let patch = shape.patch(n_max).unwrap();
@@ -31,7 +31,7 @@ fn grid(
         b_max: patch.b,
         align_x: Alignment::default(),
         align_y: Alignment::default(),
-        law: FrictionLaw::Regularised,
+        law,
         eps,
         scheme,
         solver,
@@ -48,6 +48,8 @@ struct Agreement {
     wear: f64,
     traction: f64,
     stick: Vec<usize>,
+    /// The largest difference of the two runs' stick counts.
+    stick_diff: usize,
 }
 
 /// Runs `inputs` through the CG and the Gauss-Seidel grids; checks every
@@ -71,7 +73,9 @@ fn compare(cg: &mut FixedGrid, gs: &mut FixedGrid, inputs: &[StepInput]) -> Agre
         }
         creep.push((a.creepage.x, b.creepage.x));
         wear.push((integral(&a), integral(&b)));
-        out.stick.push(a.stick.iter().filter(|s| **s).count());
+        let count = |s: &PatchSolution| s.stick.iter().filter(|s| **s).count();
+        out.stick.push(count(&a));
+        out.stick_diff = out.stick_diff.max(count(&a).abs_diff(count(&b)));
     }
     let worst = |pairs: &[(f64, f64)]| {
         let largest = pairs.iter().fold(0.0f64, |m, w| m.max(w.1.abs()));
@@ -104,11 +108,15 @@ fn fig7_inputs(shape: &HertzShape, dx: f64, steps: usize, creepage_y: f64, spin:
         .collect()
 }
 
-fn paper_pair() -> (FixedGrid, FixedGrid, HertzShape) {
+fn paper_pair_with(law: FrictionLaw) -> (FixedGrid, FixedGrid, HertzShape) {
     let shape = paper_shape(true);
     let curv = Curvatures::wheel_on_rail(0.5, -0.409, 0.3);
-    let make = |solver| grid(&shape, (curv, STEEL), 1.45e5, (4e-4, 1e-3), (GridScheme::SecondOrder, 1e-5), solver);
+    let make = |solver| grid(&shape, (curv, STEEL), 1.45e5, (4e-4, 1e-3), (law, GridScheme::SecondOrder, 1e-5), solver);
     (make(GridSolver::Cg), make(GridSolver::GaussSeidel), shape)
+}
+
+fn paper_pair() -> (FixedGrid, FixedGrid, HertzShape) {
+    paper_pair_with(FrictionLaw::Regularised)
 }
 
 #[test]
@@ -125,6 +133,22 @@ fn cg_and_gauss_seidel_solve_the_same_steps() {
     let changes = r.stick.windows(2).filter(|w| w[0] != w[1]).count();
     assert!(changes >= 70, "the stick area changes at {changes} of 74 steps");
     assert!(r.creepage < 1e-6 && r.wear < 2e-6 && r.traction < 1e-4, "{r:?}");
+    assert_eq!(cg.fallbacks(), 0);
+}
+
+#[test]
+fn cg_solves_exact_coulomb_friction_as_gauss_seidel_does() {
+    // Exact Coulomb friction: Gauss-Seidel solves the law itself, the CG
+    // solver its regularised limit at 1e-5 eps (cg::COULOMB_LIMIT). Fig. 7's
+    // loads from a virgin start: the same tolerances as the regularised
+    // law's comparison.
+    let (mut cg, mut gs, shape) = paper_pair_with(FrictionLaw::Coulomb);
+    let inputs = fig7_inputs(&shape, cg.grid().dx, 75, 0.0, 0.0);
+    let r = compare(&mut cg, &mut gs, &inputs);
+    eprintln!("Coulomb: {r:?}, CG fallbacks {}", cg.fallbacks());
+    assert!(r.creepage < 1e-6 && r.wear < 2e-6 && r.traction < 1e-4, "{r:?}");
+    // The same stick areas (CG's stick: slips below 10 times its eps).
+    assert!(r.stick.iter().all(|n| *n > 0) && r.stick_diff <= 2, "{r:?}");
     assert_eq!(cg.fallbacks(), 0);
 }
 
@@ -155,7 +179,8 @@ fn cg_and_gauss_seidel_agree_from_cattaneo_to_carter() {
     let curvatures = Curvatures { a: curv, b: curv };
     let shape = HertzShape::new(curvatures, el).unwrap();
     let step = 2.5e-4;
-    let make = |solver| grid(&shape, (curvatures, el), n, (step, step), (GridScheme::FirstOrder, 1e-6), solver);
+    let model = (FrictionLaw::Regularised, GridScheme::FirstOrder, 1e-6);
+    let make = |solver| grid(&shape, (curvatures, el), n, (step, step), model, solver);
     let (mut cg, mut gs) = (make(GridSolver::Cg), make(GridSolver::GaussSeidel));
     let input = StepInput {
         patch: shape.patch(n).unwrap(),

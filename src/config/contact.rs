@@ -223,7 +223,7 @@ pub(super) fn reconcile_step(
 /// Checks that combine the model with its grid and solver.
 pub(super) fn check_model(model: &str, grid: Option<&FixedGridParams>, solver: &str, errors: &mut Vec<ConfigError>) {
     let solver = (solver.parse::<GridSolver>().ok(), solver.parse::<StepSolver>().ok());
-    if let Some(f) = grid {
+    if grid.is_some() {
         if model != ContactModelKind::ExactTransient.name() {
             errors.push(ConfigError::new(
                 "contact.grid",
@@ -241,14 +241,6 @@ pub(super) fn check_model(model: &str, grid: Option<&FixedGridParams>, solver: &
                      = \"fixed\": {}",
                     grid_solvers()
                 ),
-            ));
-        }
-        if solver.0 == Some(GridSolver::Cg) && f.friction_law == FrictionLaw::Coulomb {
-            errors.push(ConfigError::new(
-                "contact.solver",
-                "= \"cg\" solves the regularised friction law; with contact.friction_law = \"coulomb\" allowed: \
-                 auto, gauss-seidel"
-                    .into(),
             ));
         }
     }

@@ -439,11 +439,17 @@ impl FixedGrid {
         let mut pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
         let mut inverse = |r: &[f64], z: &mut [f64]| pre.product(r, z);
         let newton_krylov = self.spec.solver.resolve(self.spec.law) == GridSolver::Cg;
+        // The CG solver's law: exact Coulomb friction as the regularised
+        // law's limit.
+        let cg_step = match law {
+            Law::Coulomb => GridStep { law: Law::Regularised { eps: cg::COULOMB_LIMIT * self.spec.eps }, ..step },
+            Law::Regularised { .. } => GridStep { ..step },
+        };
         // A step CG does not converge goes to Gauss-Seidel; its products
         // count in the step's iterations, and its failure in the report.
         let mut cg_failed: Option<(Vec<f64>, usize)> = None;
         let mut solved =
-            match newton_krylov.then(|| cg::solve(&step, &s0, &p0, xi0, &mut fresh, (&mut inner, &mut inverse))) {
+            match newton_krylov.then(|| cg::solve(&cg_step, &s0, &p0, xi0, &mut fresh, (&mut inner, &mut inverse))) {
                 Some(Ok(sol)) => Some(Ok(sol)),
                 Some(Err(failure)) => {
                     cg_failed = Some(match failure {
@@ -486,7 +492,15 @@ impl FixedGrid {
                 ),
             }
         })?;
-        let (mut out, s_grid) = self.expand(input, &set, &weight, p3, &sol);
+        // The stick test of the law that solved the step: CG's limit of
+        // exact Coulomb friction leaves stick slips of up to hundreds of its
+        // eps (where |p| nears mu p3); below the kinematic tolerance a slip
+        // is zero to the solver's precision.
+        let solved_law = match (law, newton_krylov && !fell_back) {
+            (Law::Coulomb, true) => Law::Regularised { eps: step.tol / STICK_SLIP_FACTOR },
+            _ => law,
+        };
+        let (mut out, s_grid) = self.expand((input, solved_law), &set, &weight, p3, &sol);
         out.fallback = fell_back;
         Ok(Solved { out, s_grid, u: exact.u, fell_back })
     }
@@ -541,11 +555,12 @@ impl FixedGrid {
     }
 
     /// The step's solution on the whole grid (zero outside contact; a
-    /// folded element and its mirror image, y components negated) and the
-    /// slips kept for the next warm start.
+    /// folded element and its mirror image, y components negated; stick by
+    /// `law`, the law that solved it) and the slips kept for the next warm
+    /// start.
     fn expand(
         &self,
-        input: &StepInput,
+        (input, law): (&StepInput, Law),
         set: &ContactSet,
         weight: &[f64],
         p3: &[f64],
@@ -566,7 +581,7 @@ impl FixedGrid {
         let mut s_grid = vec![0.0; 2 * n];
         for (c, &k) in set.element.iter().enumerate() {
             let (sx, sy) = (sol.s[2 * c], sol.s[2 * c + 1]);
-            let stick = self.law().is_stick([sx, sy]);
+            let stick = law.is_stick([sx, sy]);
             let mirror = (ny - 1 - k / nx) * nx + k % nx;
             let images: &[(usize, f64)] = if weight[c] == 2.0 { &[(k, 1.0), (mirror, -1.0)] } else { &[(k, 1.0)] };
             for &(e, sign) in images {

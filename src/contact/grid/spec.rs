@@ -39,28 +39,27 @@ pub enum GridScheme {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, strum::EnumString, strum::IntoStaticStr, strum::VariantNames)]
 #[strum(serialize_all = "kebab-case")]
 pub enum GridSolver {
-    /// The cheaper of the two by the cost model for the regularised law
-    /// (the config resolves it: `cost::auto_grid_solver`), Gauss-Seidel
-    /// for exact Coulomb friction; a spec built without the config takes
-    /// CG for the regularised law.
+    /// The cheaper of the two by the cost model (the config resolves it:
+    /// `cost::auto_grid_solver`); a spec built without the config takes
+    /// CG.
     #[default]
     Auto,
     /// Element-wise nonlinear Gauss-Seidel ([`super::tangential`]), the
     /// reference.
     GaussSeidel,
     /// Newton with projected CG inner solves, every iteration one FFT
-    /// product ([`super::cg`]); the regularised law (config refuses it with
-    /// exact Coulomb friction).
+    /// product ([`super::cg`]); exact Coulomb friction as the regularised
+    /// law's limit ([`super::cg::COULOMB_LIMIT`]).
     Cg,
 }
 
 impl GridSolver {
-    /// The solver that runs under friction law `law`: `auto` is `cg` for
-    /// the regularised law and Gauss-Seidel for exact Coulomb (which `cg`
-    /// does not solve).
+    /// The solver that runs under friction law `law`: `auto` (unresolved
+    /// by the config) is `cg` for both laws.
     pub fn resolve(self, law: FrictionLaw) -> GridSolver {
-        match (self, law) {
-            (GridSolver::GaussSeidel, _) | (_, FrictionLaw::Coulomb) => GridSolver::GaussSeidel,
+        let _ = law;
+        match self {
+            GridSolver::GaussSeidel => GridSolver::GaussSeidel,
             _ => GridSolver::Cg,
         }
     }
