@@ -56,8 +56,7 @@ pub enum GridSolver {
 impl GridSolver {
     /// The solver that runs under friction law `law`: `auto` (unresolved
     /// by the config) is `cg` for both laws.
-    pub fn resolve(self, law: FrictionLaw) -> GridSolver {
-        let _ = law;
+    pub fn resolve(self, _law: FrictionLaw) -> GridSolver {
         match self {
             GridSolver::GaussSeidel => GridSolver::GaussSeidel,
             _ => GridSolver::Cg,

@@ -21,16 +21,17 @@ pub(super) struct Pressure {
 /// The next step's pressure, computed ahead, and the input it is for.
 #[derive(Debug, Clone)]
 pub(super) struct Ahead {
-    pub key: [u64; 3],
+    pub key: [u64; 5],
     pub result: Result<Pressure, ContactError>,
 }
 
 impl Ahead {
     /// What a step's pressure depends on besides the warm start: the
-    /// position, the normal force and (in its error report) the
-    /// longitudinal force.
-    pub fn key(input: &StepInput) -> [u64; 3] {
-        [input.position.to_bits(), input.patch.normal_force.to_bits(), input.force_x.to_bits()]
+    /// position, the normal force, the Hertz patch the linear contact
+    /// starts from and (in its error report) the longitudinal force.
+    pub fn key(input: &StepInput) -> [u64; 5] {
+        let p = &input.patch;
+        [input.position.to_bits(), p.normal_force.to_bits(), p.a.to_bits(), p.b.to_bits(), input.force_x.to_bits()]
     }
 }
 
