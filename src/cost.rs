@@ -104,7 +104,7 @@ pub fn auto_grid_solver(s: &Scene) -> GridSolver {
         return GridSolver::GaussSeidel;
     };
     if f.solver != GridSolver::Auto {
-        return f.solver.resolve(f.friction_law);
+        return f.solver.resolve();
     }
     let d = derive(s);
     if fixed_grid_step(s, &d, f, GridSolver::Cg) <= fixed_grid_step(s, &d, f, GridSolver::GaussSeidel) {
@@ -130,9 +130,7 @@ impl ContactModel {
     pub fn step_cost(&self, s: &Scene, d: &crate::build::Derived) -> f64 {
         let n_el = self.mesh().map_or(0, |m| m.len()) as f64;
         match *self {
-            ContactModel::ExactTransient(ContactGrid::Fixed(f)) => {
-                fixed_grid_step(s, d, f, f.solver.resolve(f.friction_law))
-            }
+            ContactModel::ExactTransient(ContactGrid::Fixed(f)) => fixed_grid_step(s, d, f, f.solver.resolve()),
             ContactModel::Fastsim { .. } => 25.0 * 18e-9 * n_el,
             ContactModel::SimplifiedTransient { .. } => 3e-6 * n_el,
             ContactModel::ExactTransient(ContactGrid::Adapted { solver: StepSolver::GaussSeidel, .. }) => {

@@ -9,7 +9,6 @@ use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
-use corrugation::contact::grid::spec::FixedGridSpec;
 use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver, PotentialGrid, normal};
 use corrugation::contact::influence::{Rect, influence};
 use corrugation::contact::{StepInput, TangentialSolver};
@@ -29,35 +28,7 @@ fn grid_solver(
     cell: (f64, f64),
     model: Model,
 ) -> FixedGrid {
-    grid_with(shape, curvatures, elastic, n_max, cell, model, GridSolver::Auto)
-}
-
-/// [`grid_solver`] with the tangential solver named.
-fn grid_with(
-    shape: &HertzShape,
-    curvatures: Curvatures,
-    elastic: Elastic,
-    n_max: f64,
-    cell: (f64, f64),
-    model: Model,
-    solver: GridSolver,
-) -> FixedGrid {
-    let patch = shape.patch(n_max).unwrap();
-    let (law, scheme, eps) = model;
-    FixedGrid::new(FixedGridSpec {
-        curvatures,
-        elastic,
-        dx: cell.0,
-        dy: cell.1,
-        a_max: patch.a,
-        b_max: patch.b,
-        align_x: Alignment::default(),
-        align_y: Alignment::default(),
-        law,
-        eps,
-        scheme,
-        solver,
-    })
+    common::fixed_grid(shape, (curvatures, elastic), n_max, cell, model, GridSolver::Auto)
 }
 
 fn paper_curvatures(concave: bool) -> Curvatures {

@@ -4,39 +4,11 @@
 
 mod common;
 
-use common::{STEEL, paper_shape, rel};
+use common::{STEEL, fixed_grid, paper_shape, rel};
 use corrugation::contact::friction::FrictionLaw;
-use corrugation::contact::grid::spec::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
+use corrugation::contact::grid::{FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::{PatchSolution, StepInput, TangentialSolver};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
-
-/// A fixed grid of `cell` elements for `curvatures`, sized for the Hertz
-/// patch at `n_max` N, with `law` and `solver`.
-fn grid(
-    shape: &HertzShape,
-    (curvatures, elastic): (Curvatures, Elastic),
-    n_max: f64,
-    cell: (f64, f64),
-    (law, scheme, eps): (FrictionLaw, GridScheme, f64),
-    solver: GridSolver,
-) -> FixedGrid {
-    let patch = shape.patch(n_max).unwrap();
-    FixedGrid::new(FixedGridSpec {
-        curvatures,
-        elastic,
-        dx: cell.0,
-        dy: cell.1,
-        a_max: patch.a,
-        b_max: patch.b,
-        align_x: Alignment::default(),
-        align_y: Alignment::default(),
-        law,
-        eps,
-        scheme,
-        solver,
-    })
-}
 
 /// The largest differences of two solvers over a run, each relative to
 /// its scale: creepage x and y (to the largest |creepage x|), the wear
@@ -111,7 +83,8 @@ fn fig7_inputs(shape: &HertzShape, dx: f64, steps: usize, creepage_y: f64, spin:
 fn paper_pair_with(law: FrictionLaw) -> (FixedGrid, FixedGrid, HertzShape) {
     let shape = paper_shape(true);
     let curv = Curvatures::wheel_on_rail(0.5, -0.409, 0.3);
-    let make = |solver| grid(&shape, (curv, STEEL), 1.45e5, (4e-4, 1e-3), (law, GridScheme::SecondOrder, 1e-5), solver);
+    let make =
+        |solver| fixed_grid(&shape, (curv, STEEL), 1.45e5, (4e-4, 1e-3), (law, GridScheme::SecondOrder, 1e-5), solver);
     (make(GridSolver::Cg), make(GridSolver::GaussSeidel), shape)
 }
 
@@ -180,7 +153,7 @@ fn cg_and_gauss_seidel_agree_from_cattaneo_to_carter() {
     let shape = HertzShape::new(curvatures, el).unwrap();
     let step = 2.5e-4;
     let model = (FrictionLaw::Regularised, GridScheme::FirstOrder, 1e-6);
-    let make = |solver| grid(&shape, (curvatures, el), n, (step, step), model, solver);
+    let make = |solver| fixed_grid(&shape, (curvatures, el), n, (step, step), model, solver);
     let (mut cg, mut gs) = (make(GridSolver::Cg), make(GridSolver::GaussSeidel));
     let input = StepInput {
         patch: shape.patch(n).unwrap(),

@@ -78,3 +78,31 @@ pub fn paper_fixed_grid(dx: f64, dy: f64, length: f64, n_max: f64) -> FixedGrid 
         solver: GridSolver::Auto,
     })
 }
+
+/// A fixed grid of `cell` elements for `curvatures` and `elastic`, sized
+/// for the Hertz patch at `n_max` N, with the friction law, difference
+/// scheme and eps of `model`, and `solver`.
+pub fn fixed_grid(
+    shape: &HertzShape,
+    (curvatures, elastic): (Curvatures, Elastic),
+    n_max: f64,
+    cell: (f64, f64),
+    (law, scheme, eps): (FrictionLaw, GridScheme, f64),
+    solver: GridSolver,
+) -> FixedGrid {
+    let patch = shape.patch(n_max).unwrap();
+    FixedGrid::new(FixedGridSpec {
+        curvatures,
+        elastic,
+        dx: cell.0,
+        dy: cell.1,
+        a_max: patch.a,
+        b_max: patch.b,
+        align_x: Alignment::default(),
+        align_y: Alignment::default(),
+        law,
+        eps,
+        scheme,
+        solver,
+    })
+}

@@ -238,38 +238,17 @@ impl FftConvolution<f64> {
 
     fn padded_to(kernel: &ToeplitzKernel, (mx, my): (usize, usize)) -> Self {
         let (nx, ny) = kernel.shape();
-        let mut planner = FftPlanner::new();
-        let mut conv = FftConvolution {
-            nx,
-            ny,
-            mx,
-            my,
-            fwd_x: planner.plan_fft_forward(mx),
-            fwd_y: planner.plan_fft_forward(my),
-            inv_x: planner.plan_fft_inverse(mx),
-            inv_y: planner.plan_fft_inverse(my),
-            real_x: RealFftPlanner::new().plan_fft_forward(mx),
-            real_inv_x: RealFftPlanner::new().plan_fft_inverse(mx),
-            spectra: Vec::new(),
-        };
+        let mut conv = FftConvolution::planned((nx, ny), (mx, my));
         let scale = 1.0 / (mx * my) as f64;
-        let mut scratch = FftScratch::default();
-        for c in 0..kernel.components() {
-            let rows = &mut scratch.rows;
-            rows.clear();
-            rows.resize(mx * my, Complex64::default());
-            for j in 0..2 * ny - 1 {
-                let diy = j as isize - (ny as isize - 1);
-                let r = diy.rem_euclid(my as isize) as usize;
-                for i in 0..2 * nx - 1 {
-                    let dix = i as isize - (nx as isize - 1);
-                    let col = dix.rem_euclid(mx as isize) as usize;
-                    rows[r * mx + col] = Complex64::new(kernel.at(c, dix, diy) * scale, 0.0);
-                }
-            }
-            conv.forward(&mut scratch, my);
-            conv.spectra.push(scratch.cols.clone());
-        }
+        // The table zero-padded: an index's image within the table's
+        // offsets, if any (at most one: the period holds 2 n - 1).
+        let image = |i: usize, m: usize, n: usize| -> Option<isize> {
+            [i as isize, i as isize - m as isize].into_iter().find(|d| d.unsigned_abs() < n)
+        };
+        conv.spectra = conv.spectra_of(kernel.components(), |c, i, j| match (image(i, mx, nx), image(j, my, ny)) {
+            (Some(dix), Some(diy)) => kernel.at(c, dix, diy) * scale,
+            _ => 0.0,
+        });
         conv.spectra = if kernel.components() == 3 {
             // The tangential product's combinations (see `tangential`).
             let (xx, xy, yy) = (&conv.spectra[0], &conv.spectra[1], &conv.spectra[2]);
@@ -312,20 +291,7 @@ impl FftConvolution<f64> {
 
     fn circulant_inverse_on(kernel: &ToeplitzKernel, (mx, my): (usize, usize)) -> Self {
         let (nx, ny) = kernel.shape();
-        let mut planner = FftPlanner::new();
-        let mut conv = FftConvolution {
-            nx,
-            ny,
-            mx,
-            my,
-            fwd_x: planner.plan_fft_forward(mx),
-            fwd_y: planner.plan_fft_forward(my),
-            inv_x: planner.plan_fft_inverse(mx),
-            inv_y: planner.plan_fft_inverse(my),
-            real_x: RealFftPlanner::new().plan_fft_forward(mx),
-            real_inv_x: RealFftPlanner::new().plan_fft_inverse(mx),
-            spectra: Vec::new(),
-        };
+        let mut conv = FftConvolution::planned((nx, ny), (mx, my));
         // The nearest images of a periodic index, both at half the period.
         let images = |i: usize, m: usize| -> Vec<isize> {
             let (a, b) = (i as isize, i as isize - m as isize);
@@ -335,28 +301,16 @@ impl FftConvolution<f64> {
                 std::cmp::Ordering::Greater => vec![b],
             }
         };
-        let mut scratch = FftScratch::default();
-        let mut raw = Vec::new();
-        for c in 0..kernel.components() {
-            let rows = &mut scratch.rows;
-            rows.clear();
-            rows.resize(mx * my, Complex64::default());
-            for j in 0..my {
-                let ys = images(j, my);
-                for i in 0..mx {
-                    let xs = images(i, mx);
-                    let mut v = 0.0;
-                    for &dix in &xs {
-                        for &diy in &ys {
-                            v += kernel.at(c, dix, diy);
-                        }
-                    }
-                    rows[j * mx + i] = Complex64::new(v / (xs.len() * ys.len()) as f64, 0.0);
+        let raw = conv.spectra_of(kernel.components(), |c, i, j| {
+            let (xs, ys) = (images(i, mx), images(j, my));
+            let mut v = 0.0;
+            for &dix in &xs {
+                for &diy in &ys {
+                    v += kernel.at(c, dix, diy);
                 }
             }
-            conv.forward(&mut scratch, my);
-            raw.push(scratch.cols.clone());
-        }
+            v / (xs.len() * ys.len()) as f64
+        });
         let scale = 1.0 / (mx * my) as f64;
         if kernel.components() == 1 {
             // The normal kernel's real, even symbol: its reciprocal, half
@@ -396,31 +350,55 @@ impl FftConvolution<f64> {
         conv
     }
 
+    /// The spectra (transposed layout) of `components` periodic tables on
+    /// the transform's points, `value(c, i, j)` at column `i`, row `j`.
+    fn spectra_of(&self, components: usize, value: impl Fn(usize, usize, usize) -> f64) -> Vec<Vec<Complex64>> {
+        let (mx, my) = (self.mx, self.my);
+        let mut scratch = FftScratch::default();
+        (0..components)
+            .map(|c| {
+                scratch.rows.clear();
+                scratch.rows.extend(
+                    (0..my)
+                        .flat_map(|j| (0..mx).map(move |i| (i, j)))
+                        .map(|(i, j)| Complex64::new(value(c, i, j), 0.0)),
+                );
+                self.forward(&mut scratch, my);
+                scratch.cols.clone()
+            })
+            .collect()
+    }
+
     /// The same products in single precision.
     pub fn to_single(&self) -> FftConvolution<f32> {
-        let mut planner = FftPlanner::<f32>::new();
-        let mut real = RealFftPlanner::<f32>::new();
-        FftConvolution {
-            nx: self.nx,
-            ny: self.ny,
-            mx: self.mx,
-            my: self.my,
-            fwd_x: planner.plan_fft_forward(self.mx),
-            fwd_y: planner.plan_fft_forward(self.my),
-            inv_x: planner.plan_fft_inverse(self.mx),
-            inv_y: planner.plan_fft_inverse(self.my),
-            real_x: real.plan_fft_forward(self.mx),
-            real_inv_x: real.plan_fft_inverse(self.mx),
-            spectra: self
-                .spectra
-                .iter()
-                .map(|sp| sp.iter().map(|v| Complex::new(v.re as f32, v.im as f32)).collect())
-                .collect(),
-        }
+        let mut single = FftConvolution::planned((self.nx, self.ny), (self.mx, self.my));
+        single.spectra =
+            self.spectra.iter().map(|sp| sp.iter().map(|v| Complex::new(v.re as f32, v.im as f32)).collect()).collect();
+        single
     }
 }
 
 impl<T: Real> FftConvolution<T> {
+    /// The transforms of an `nx x ny` grid on `mx x my` points, no
+    /// spectra yet.
+    fn planned((nx, ny): (usize, usize), (mx, my): (usize, usize)) -> Self {
+        let mut planner = FftPlanner::<T>::new();
+        let mut real = RealFftPlanner::<T>::new();
+        FftConvolution {
+            nx,
+            ny,
+            mx,
+            my,
+            fwd_x: planner.plan_fft_forward(mx),
+            fwd_y: planner.plan_fft_forward(my),
+            inv_x: planner.plan_fft_inverse(mx),
+            inv_y: planner.plan_fft_inverse(my),
+            real_x: real.plan_fft_forward(mx),
+            real_inv_x: real.plan_fft_inverse(mx),
+            spectra: Vec::new(),
+        }
+    }
+
     /// Padded transform size (mx, my).
     pub fn padded(&self) -> (usize, usize) {
         (self.mx, self.my)

@@ -438,7 +438,7 @@ impl FixedGrid {
         let mut inner = |p: &[f64], u: &mut [f64]| single.product(p, u);
         let mut pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
         let mut inverse = |r: &[f64], z: &mut [f64]| pre.product(r, z);
-        let newton_krylov = self.spec.solver.resolve(self.spec.law) == GridSolver::Cg;
+        let newton_krylov = self.spec.solver.resolve() == GridSolver::Cg;
         // The CG solver's law: exact Coulomb friction as the regularised
         // law's limit.
         let cg_step = match law {

@@ -54,9 +54,9 @@ pub enum GridSolver {
 }
 
 impl GridSolver {
-    /// The solver that runs under friction law `law`: `auto` (unresolved
-    /// by the config) is `cg` for both laws.
-    pub fn resolve(self, _law: FrictionLaw) -> GridSolver {
+    /// The solver that runs: `auto` (unresolved by the config) is `cg`,
+    /// for both friction laws.
+    pub fn resolve(self) -> GridSolver {
         match self {
             GridSolver::GaussSeidel => GridSolver::GaussSeidel,
             _ => GridSolver::Cg,
