@@ -360,13 +360,9 @@ pub fn run_passage(
         let input = step_input(n, patch);
         // The next step's input, where it has a patch: a solver may prepare
         // it meanwhile.
-        let next = (n + 1 < steps)
-            .then(|| {
-                let x = spec.position(n + 1);
-                let force = normal_force_at(x);
-                (force > 0.0).then(|| shape.patch(force).ok().map(|patch| step_input(n + 1, patch))).flatten()
-            })
-            .flatten();
+        let next = (n + 1 < steps).then(|| normal_force_at(spec.position(n + 1))).and_then(|force| {
+            (force > 0.0).then(|| shape.patch(force).ok()).flatten().map(|patch| step_input(n + 1, patch))
+        });
         let sol = solver.step_ahead(&input, next.as_ref()).map_err(|source| PassageError::Tangential {
             step: n,
             x,

@@ -39,9 +39,10 @@
 //! preconditioner the FFT inverse of the elastic coupling on the stick
 //! area and along the slip elements' tangents, each slip element's own
 //! stiff radial direction inverted on its own ([`Preconditioner`]: 58 ->
-//! 28 products per step on paper_normal_30mm at 0.2 mm at FORCING 0.05, 27
-//! at 0.1, against each element's own 2 x 2 block of `A + H`, inverted); every product `K dp`
-//! by the FFT ([`super::convolution`]), O(N log N). Inexact Newton: each
+//! 28 products per step on paper_normal_30mm at 0.2 mm at FORCING 0.05,
+//! 27 at 0.1, against each element's own 2 x 2 block of `A + H`,
+//! inverted); every product `K dp` by the FFT ([`super::convolution`]),
+//! O(N log N). Inexact Newton: each
 //! solve to [`FORCING`] of the current largest residual; the force
 //! constraint's feasible start `c e_x` takes one product per step.
 //!
@@ -306,7 +307,7 @@ impl Preconditioner {
     }
 
     /// `out = P v`; `y` a work field.
-    fn apply(&self, inverse: &mut dyn FnMut(&[f64], &mut [f64]), v: &[f64], y: &mut [f64], out: &mut [f64]) {
+    fn apply(&self, inverse: &mut Product, v: &[f64], y: &mut [f64], out: &mut [f64]) {
         for (c, slip) in self.slip.iter().enumerate() {
             let (a, b) = (v[2 * c], v[2 * c + 1]);
             (y[2 * c], y[2 * c + 1]) = match slip {

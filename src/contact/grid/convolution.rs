@@ -144,8 +144,9 @@ pub fn smooth_padding(n: usize) -> usize {
 /// A length at least `n` whose prime factors are 2, 3 and 5 (fast for
 /// rustfft's mixed-radix algorithms). (Lengths with at least 2^2 and at
 /// most one 5, which single-precision transforms alone take faster, 1.5
-/// times in criterion at 0.2 mm, made paper_normal_30mm 2 % slower in
-/// both precisions, median of 5, on this 2-vCPU machine.)
+/// times in criterion at 0.2 mm, made paper_normal_30mm no faster: 2 %
+/// slower, median of 5, within this 2-vCPU machine's A/B noise of about
+/// 5 %.)
 fn smooth_length(n: usize) -> usize {
     (n..)
         .find(|&m| {
