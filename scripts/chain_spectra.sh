@@ -47,22 +47,25 @@ nine() { # wavelengths...
   for l in "$@"; do s="$s{amplitude = 1e-6, wavelength = $l}, "; done
   echo "${s%, }]"
 }
+four_contacts() { # scene config harmonics: each normal contact on the 0.4 mm grid
+  for c in hertz linear auto profile; do
+    if [ "$c" = auto ]; then
+      run "$1" "$2" "$3" auto_0.4mm
+    else
+      run "$1" "$2" "$3" "${c}_0.4mm" --set contact.normal="$c"
+    fi
+  done
+}
 exact=configs/growth_exact.toml
 h=$(nine 0.010 0.012 0.015 0.0171428571428571 0.020 0.024 0.030 0.040 0.060)
-run exact $exact "$h" hertz_0.4mm --set contact.normal=hertz
-run exact $exact "$h" linear_0.4mm --set contact.normal=linear
-run exact $exact "$h" auto_0.4mm
-run exact $exact "$h" profile_0.4mm --set contact.normal=profile
+four_contacts exact $exact "$h"
 run exact $exact "$h" linear_0.2mm --set contact.normal=linear "${fine[@]}"
 run exact $exact "$h" profile_0.2mm --set contact.normal=profile "${fine[@]}"
 run exact configs/growth_fastsim.toml "$h" fastsim_linear --set contact.normal=linear
 if [ "${DISCRETE:-1}" = 1 ]; then
   d=configs/growth_discrete.toml
   h=$(nine 0.015 0.0171428571428571 0.020 0.024 0.030 0.0333333333333333 0.040 0.050 0.060)
-  run discrete $d "$h" hertz_0.4mm --set contact.normal=hertz
-  run discrete $d "$h" linear_0.4mm --set contact.normal=linear
-  run discrete $d "$h" auto_0.4mm
-  run discrete $d "$h" profile_0.4mm --set contact.normal=profile
+  four_contacts discrete $d "$h"
 fi
 .venv/bin/python - "$csv" <<'PY'
 import csv, sys
