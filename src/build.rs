@@ -13,6 +13,7 @@ use crate::dynamics::TrackDynamics;
 use crate::dynamics::discrete::DiscreteTrack;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
+use crate::dynamics::vehicle::{CoupledReceptance, DiscreteVehicle};
 use crate::hertz::{HertzPatch, HertzShape};
 use crate::params::{ContactGrid, ContactModel, DynamicsKind, NormalContact, Scene};
 use crate::passage::PassageSpec;
@@ -242,17 +243,37 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
 
 /// The track model of a growth study, if it has one. The discrete model
 /// tabulates its receptances for the study's speed and periodic stretch
-/// (the first rail node is above a sleeper).
+/// (the first rail node is above a sleeper). Several wheels
+/// (`vehicle.wheels`) are coupled through the rail
+/// ([`crate::dynamics::vehicle`]).
 pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamics>> {
     let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
+    let wheels = &scene.vehicle.wheels;
     match scene.growth.as_ref()?.dynamics {
         DynamicsKind::Imposed => None,
         DynamicsKind::Receptance { unsprung_mass } => {
             let wheel = WheelParams { unsprung_mass };
-            Some(Box::new(ReceptanceModel::new(scene.track.smeared(), wheel, k_h).expect("validated parameters")))
+            let model = ReceptanceModel::new(scene.track.smeared(), wheel, k_h).expect("validated parameters");
+            if wheels.len() > 1 {
+                return Some(Box::new(CoupledReceptance { model, wheels: wheels.clone() }));
+            }
+            Some(Box::new(model))
         }
         DynamicsKind::Discrete { unsprung_mass } => {
             let grid = periodic_grid(scene);
+            if wheels.len() > 1 {
+                return Some(Box::new(DiscreteVehicle::new(
+                    DiscreteTrack::new(&scene.track),
+                    WheelParams { unsprung_mass },
+                    k_h,
+                    scene.loads.normal_force,
+                    wheels.clone(),
+                    grid.x_min,
+                    grid.nx,
+                    grid.dx,
+                    scene.speed,
+                )));
+            }
             Some(Box::new(DiscreteDynamics::new(
                 DiscreteTrack::new(&scene.track),
                 WheelParams { unsprung_mass },

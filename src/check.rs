@@ -167,8 +167,9 @@ pub fn print_check(r: &Resolved) {
     );
     if s.vehicle.wheels.len() > 1 {
         println!(
-            "vehicle            {} wheels at {:?} m behind the leading one: `corrugation track` writes the transfer \
-             receptances at their distances {:?} m; `run` rolls one wheel so far (refused)",
+            "vehicle            {} wheels at {:?} m behind the leading one, coupled through the rail's transfer \
+             receptances (distances {:?} m; `corrugation track` writes them); every wheel rolls over the stretch in \
+             a passage, whose wear is theirs averaged: traffic counts wheel passages",
             s.vehicle.wheels.len(),
             s.vehicle.wheels,
             s.vehicle.distances()

@@ -160,17 +160,24 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     // Wear ~ 20 ns per node visit (the fixed grid's cell deposit is in its
     // step's fit).
     let deposit = if fixed.is_some() { 0.0 } else { p.substeps as f64 * nodes * 20e-9 };
-    let per_passage = p.n_steps() as f64 * (contact + deposit);
+    // Every wheel of the vehicle rolls over the stretch in a passage.
+    let wheels = s.vehicle.wheels.len();
+    let per_passage = p.n_steps() as f64 * (contact + deposit) * wheels as f64;
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
     // The discrete model tabulates its receptances once per traffic class
     // (0.9 s CPU for the 108 harmonics up to 5 kHz of growth_discrete.toml,
-    // 0.45 s on 2 cores), and runs one passage per class over the smooth
-    // rail for the update bound (its forced wear).
+    // 0.45 s on 2 cores; a vehicle's matrices over the whole bay about 1.5
+    // times that per wheel: 1.4 s for two wheels, 2.9 s for four), and
+    // runs one passage per class over the smooth rail for the update bound
+    // (its forced wear).
+    let table = if wheels > 1 { 1.5 * wheels as f64 } else { 1.0 };
     let setup: f64 = match &s.growth {
         Some(gr) if matches!(gr.dynamics, DynamicsKind::Discrete { .. }) => gr
             .classes
             .iter()
-            .map(|c| 0.0042 * crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64 + per_passage)
+            .map(|c| {
+                0.0042 * table * crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64 + per_passage
+            })
             .sum(),
         _ => 0.0,
     };

@@ -314,10 +314,6 @@ fn run(resolved: &Resolved, out: &Path) -> ExitCode {
             report(&s, out);
             ExitCode::SUCCESS
         }
-        Err(e @ corrugation::run::RunError::SeveralWheels(_)) => {
-            say!("error: {e}");
-            ExitCode::from(2)
-        }
         Err(e) => {
             say!("error: {e}");
             say!("{} was not written (or holds the last checkpoint of a growth study)", out.display());

@@ -405,6 +405,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         vehicle,
     };
     check_sleeper_bays(&scene, errors);
+    vehicle::check(&scene, errors);
     contact::check_grid_size(&scene, errors);
     contact::check_periodic_steps(&scene, errors);
     // contact.solver = "auto" on the fixed grid: the cheaper tangential

@@ -3,7 +3,7 @@
 
 use super::ConfigError;
 use super::reader::{Range, Section};
-use crate::params::VehicleParams;
+use crate::params::{DynamicsKind, Scene, VehicleParams};
 use toml::{Table, Value};
 
 /// Most wheels on one rail (a four-axle car).
@@ -36,4 +36,44 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
     });
     resolved.insert("vehicle".into(), Value::Table(s.finish()));
     Some(VehicleParams { wheels: wheels? })
+}
+
+/// Whether the scene's wheels fit the model that couples them: several
+/// wheels need a growth study with a track model (they are coupled
+/// through the rail's receptances; a single passage and imposed dynamics
+/// roll one wheel), and no two wheels closer than a wheel's diameter.
+pub(super) fn check(scene: &Scene, errors: &mut Vec<ConfigError>) {
+    let wheels = &scene.vehicle.wheels;
+    if wheels.len() < 2 {
+        return;
+    }
+    let coupled = "several wheels are coupled through the track's receptances";
+    match scene.growth.as_ref().map(|g| g.dynamics) {
+        None => errors.push(ConfigError::new(
+            "vehicle.wheels",
+            format!(
+                "= {wheels:?} m: {coupled} in a growth study (a [growth] section with dynamics.model = \"receptance\" \
+                 or \"discrete\"); a single passage rolls one wheel: set vehicle.wheels = [0.0]"
+            ),
+        )),
+        Some(DynamicsKind::Imposed) => errors.push(ConfigError::new(
+            "vehicle.wheels",
+            format!(
+                "= {wheels:?} m with dynamics.model = \"imposed\": {coupled}; set dynamics.model = \"receptance\" \
+                 or \"discrete\", or vehicle.wheels = [0.0]"
+            ),
+        )),
+        Some(_) => {}
+    }
+    let diameter = 2.0 * scene.geometry.wheel_radius;
+    if let Some(k) = (1..wheels.len()).find(|&k| wheels[k] - wheels[k - 1] < diameter) {
+        errors.push(ConfigError::new(
+            "vehicle.wheels",
+            format!(
+                "wheels {k} and {} are {} m apart, closer than a wheel's diameter (2 geometry.wheel_radius = {diameter} m)",
+                k + 1,
+                wheels[k] - wheels[k - 1]
+            ),
+        ));
+    }
 }

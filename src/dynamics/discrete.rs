@@ -189,6 +189,59 @@ impl DiscreteTrack {
         sums.iter().map(|s| s / (2.0 * PI) * (g / ZONE_POINTS as f64)).collect()
     }
 
+    /// The receptance matrices (m/N) of a vehicle's wheels at angular
+    /// frequency `omega` (rad/s), eq. 4: for each place `x_L` of `leaders`
+    /// (m from a support) the wheels stand at `x_L + offsets[a]` (m), and
+    /// entry `a * n + b` (`n` wheels) is the rail's displacement at wheel
+    /// `a` under a unit force at wheel `b` (reciprocal: symmetric). One
+    /// sweep of the Brillouin zone serves every place: the supports' sums
+    /// `T(kappa, x)` once per wheel place, the free rail's `T(kappa, x_a -
+    /// x_b)` once per pair of wheels (the same at every leader place), with
+    /// the tail where the pair is whole bays apart (as
+    /// [`Self::transfer_receptances`]).
+    pub fn vehicle_receptances(&self, leaders: &[f64], offsets: &[f64], omega: f64) -> Vec<Vec<Complex64>> {
+        let n = offsets.len();
+        let d = self.spacing;
+        let ks = self.support_stiffness(omega);
+        let g = 2.0 * PI / d;
+        let places: Vec<f64> = leaders.iter().flat_map(|x| offsets.iter().map(move |o| x + o)).collect();
+        let phases: Vec<Vec<Complex64>> = places.iter().map(|&x| self.phasors(x)).collect();
+        let pairs: Vec<f64> = offsets.iter().flat_map(|a| offsets.iter().map(move |b| a - b)).collect();
+        let free: Vec<Vec<Complex64>> = pairs.iter().map(|&l| self.phasors(l)).collect();
+        let tail = self.lattice_tail();
+        let whole_bays: Vec<bool> = pairs.iter().map(|&l| ((l / d) - (l / d).round()).abs() < 1e-12).collect();
+        let mut sums = vec![vec![Complex64::new(0.0, 0.0); n * n]; leaders.len()];
+        let mut tp = vec![Complex64::new(0.0, 0.0); places.len()];
+        let mut tm = vec![Complex64::new(0.0, 0.0); places.len()];
+        let mut tl = vec![Complex64::new(0.0, 0.0); pairs.len()];
+        self.over_zone(omega, |kappa, a, t0| {
+            for (k, (&x, phase)) in places.iter().zip(&phases).enumerate() {
+                let (mut p, mut m) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
+                for (ai, ph) in a.iter().zip(phase) {
+                    p += ai * ph;
+                    m += ai * ph.conj();
+                }
+                let shift = Complex64::from_polar(1.0, kappa * x);
+                (tp[k], tm[k]) = (p * shift, m * shift.conj());
+            }
+            for (k, &l) in pairs.iter().enumerate() {
+                let shift = Complex64::from_polar(1.0, kappa * l);
+                let tail_l = if whole_bays[k] { tail * shift } else { Complex64::new(0.0, 0.0) };
+                tl[k] = a.iter().zip(&free[k]).map(|(ai, ph)| ai * ph).sum::<Complex64>() * shift + tail_l;
+            }
+            let support = ks / (d + ks * t0);
+            for (p, sum) in sums.iter_mut().enumerate() {
+                for wa in 0..n {
+                    for wb in 0..n {
+                        sum[wa * n + wb] += tl[wa * n + wb] - support * tp[p * n + wa] * tm[p * n + wb];
+                    }
+                }
+            }
+        });
+        let scale = g / ZONE_POINTS as f64 / (2.0 * PI);
+        sums.into_iter().map(|s| s.into_iter().map(|v| v * scale).collect()).collect()
+    }
+
     /// The phasors `exp(i 2 pi j x / d)` of the lattice harmonics,
     /// `j = -J..=J`.
     fn phasors(&self, x: f64) -> Vec<Complex64> {

@@ -25,6 +25,7 @@ pub mod rail;
 pub mod receptance;
 pub mod track;
 pub mod track_response;
+pub mod vehicle;
 
 pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,
@@ -50,6 +51,20 @@ pub trait TrackDynamics {
     /// on the profile, which the growth loop's update bound leaves out.
     fn forces_smooth_rail(&self) -> bool {
         false
+    }
+
+    /// The wheels of the vehicle the model couples through the rail (1:
+    /// a single wheel).
+    fn wheels(&self) -> usize {
+        1
+    }
+
+    /// The dynamic normal force on each wheel (N, zero mean), `[wheel][j]`
+    /// the force on the wheel when it is at `X_j = j dx` (the profile's
+    /// samples, as [`Self::force_from_profile`]); [`Self::force_from_profile`]
+    /// is the leading wheel's.
+    fn wheel_forces(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+        vec![self.force_from_profile(profile, dx, speed)]
     }
 }
 

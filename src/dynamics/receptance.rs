@@ -193,10 +193,16 @@ fn winkler_beta(ei: f64, net_stiffness: Complex64) -> Complex64 {
 /// `exp(-beta |x|) (cos beta |x| + sin beta |x|) / (8 EI beta^3)` (module
 /// docs, eq. 4; Hetenyi 1946 in the static case), `beta` as in
 /// [`winkler_point_receptance`], which it equals at `distance = 0`.
+/// Evaluated as `[(1 - i) exp((-1 + i) z) + (1 + i) exp((-1 - i) z)] / 2`,
+/// `z = beta |x|`, whose exponents have non-positive real parts (`|arg
+/// beta| <= pi/4`): `cos z` and `sin z` alone overflow where the wave has
+/// long decayed (tens of metres), and their product with `exp(-z)` was NaN.
 pub fn winkler_transfer_receptance(ei: f64, net_stiffness: Complex64, distance: f64) -> Complex64 {
     let beta = winkler_beta(ei, net_stiffness);
-    let bx = beta * distance.abs();
-    (-bx).exp() * (bx.cos() + bx.sin()) / (8.0 * ei * beta * beta * beta)
+    let z = beta * distance.abs();
+    let (up, down) = (Complex64::new(-1.0, 1.0), Complex64::new(-1.0, -1.0));
+    let wave = 0.5 * (Complex64::new(1.0, -1.0) * (up * z).exp() + Complex64::new(1.0, 1.0) * (down * z).exp());
+    wave / (8.0 * ei * beta * beta * beta)
 }
 
 /// Rail and two-layer support, as continuous properties per rail length.

@@ -143,17 +143,20 @@ pub fn linear_roughness(profile: &Array2<f64>, grid: &RailGrid, a: f64, b: f64) 
 /// What one growth passage produced.
 #[derive(Debug, Clone)]
 pub struct GrowthPass {
-    /// The passage on the extended grid (history, unfolded wear).
+    /// The leading wheel's passage on the extended grid (history, unfolded
+    /// wear), with the fallback steps of every wheel's.
     pub passage: PassageResult,
-    /// Wear of one simulated passage on the periodic grid (m).
+    /// Wear of one simulated wheel passage on the periodic grid (m): with
+    /// several wheels, the mean of theirs.
     pub wear: Array2<f64>,
-    /// Dynamic normal force on the periodic grid (N).
+    /// The leading wheel's dynamic normal force on the periodic grid (N).
     pub dynamic_force: Vec<f64>,
-    /// Steps inside the stretch where the wheel left the rail (N <= 0):
-    /// the linear track model is not valid there.
+    /// Steps inside the stretch where a wheel left the rail (N <= 0),
+    /// summed over the wheels: the linear track model is not valid there.
     pub contact_loss_steps: usize,
     /// Steps at which the linear profile contact's pressure vanished well
-    /// inside the patch: the linearisation beyond its range.
+    /// inside the patch, summed over the wheels: the linearisation beyond
+    /// its range.
     pub clipped_steps: usize,
     /// Whether the passage took the linear profile contact (its pressure
     /// and its equivalent roughness); otherwise the nonlinear one (or
@@ -193,6 +196,12 @@ pub const LINEAR_CONTACT_CURVATURE: f64 = 0.5;
 /// fixed grid's: the adapted mesh's is resolved to `Linear` by the
 /// caller) is `Linear` while the corrugation's curvature is below
 /// [`LINEAR_CONTACT_CURVATURE`] of the wheel's, `Profile` beyond.
+///
+/// With several wheels on the rail (`dynamics` coupling them,
+/// [`crate::dynamics::vehicle`]) every wheel runs over the whole stretch
+/// with its own dynamic force, and the wear is their mean: one wheel
+/// passage, whose traffic counts wheel passages; the history is the
+/// leading wheel's. `progress` counts the steps of all the wheels.
 ///
 /// A passage `Auto` gives the linear contact that stops at a step (a long
 /// wave that moves the patch by half of it while its curvature is small,
@@ -295,26 +304,45 @@ fn passage_with(
             }
         }
     };
-    let dynamic_force = match dynamics {
-        Some(d) => d.force_from_profile(&seen, grid.dx, spec.speed),
-        None => vec![0.0; grid.nx],
+    // Each wheel's force when it is at X (one wheel without dynamics).
+    let forces = match dynamics {
+        Some(d) => d.wheel_forces(&seen, grid.dx, spec.speed),
+        None => vec![vec![0.0; grid.nx]],
     };
     spec.wear_window = (grid.x_min, grid.x_min + length);
-    spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: dynamic_force.clone() });
     // Extended grid on the same lattice, wide enough for the largest patch
-    // of this passage (imposed plus dynamic normal force), so no wear is
-    // clipped at its ends.
-    let peak_force = spec.loads.max_normal_force() + dynamic_force.iter().fold(0.0f64, |m, f| m.max(f.abs()));
+    // of this passage (imposed plus dynamic normal force, of any wheel), so
+    // no wear is clipped at its ends.
+    let peak_dynamic = forces.iter().flatten().fold(0.0f64, |m, f| m.max(f.abs()));
+    let peak_force = spec.loads.max_normal_force() + peak_dynamic;
     let a_max = shape.patch(peak_force).map(|p| p.a).unwrap_or(0.0);
     let a_max = a_max * normal.grid_scale();
     let reach = (a_max / grid.dx).ceil() as usize + 2;
     let ext = RailGrid { x_min: grid.x_min - reach as f64 * grid.dx, nx: grid.nx + 2 * reach, ..grid.clone() };
-    let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, progress)?;
-    let wear = fold_periodic(&passage.wear, &ext, grid);
-    let h = &passage.history;
+    // Every wheel over the whole stretch with its own force; the wear of
+    // one wheel passage is their mean (wheel passages are the traffic).
     let window = grid.x_min..grid.x_min + length;
-    let contact_loss_steps = h.x_c.iter().zip(&h.in_contact).filter(|(x, c)| window.contains(*x) && **c == 0.0).count();
-    let clipped_steps = passage.clipped_steps;
+    let mut wear = Array2::zeros((grid.ny, grid.nx));
+    let (mut contact_loss_steps, mut clipped_steps, mut fallback_steps) = (0, 0, 0);
+    let mut leading = None;
+    let wheels = forces.len();
+    for (w, force) in forces.iter().enumerate() {
+        spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: force.clone() });
+        let mut report = |done: usize, total: usize| progress(w * total + done, wheels * total);
+        let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, &mut report)?;
+        wear += &fold_periodic(&passage.wear, &ext, grid);
+        let h = &passage.history;
+        contact_loss_steps +=
+            h.x_c.iter().zip(&h.in_contact).filter(|(x, c)| window.contains(*x) && **c == 0.0).count();
+        clipped_steps += passage.clipped_steps;
+        fallback_steps += passage.fallback_steps;
+        leading.get_or_insert(passage);
+    }
+    if wheels > 1 {
+        wear /= wheels as f64;
+    }
+    let passage = PassageResult { fallback_steps, ..leading.expect("one wheel at least") };
+    let dynamic_force = forces.into_iter().next().expect("one wheel at least");
     Ok(GrowthPass { passage, wear, dynamic_force, contact_loss_steps, clipped_steps, linear_contact, rerun: None })
 }
 

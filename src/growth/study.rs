@@ -266,7 +266,7 @@ impl<'a> Study<'a> {
         let record_fields = keep_history && scene.output.store_fields;
         let normal = self.normal_contact();
         let clock = cpu_time::ProcessTime::now();
-        let steps = self.d.passage.n_steps();
+        let steps = self.d.passage.n_steps() * self.wheels();
         let (first, passes) = (self.first, self.passes);
         let total_steps = (passes - first) * steps;
         let mut report =
@@ -469,6 +469,12 @@ impl<'a> Study<'a> {
         };
         let previous = self.state.rows.iter().rev().find(|r| r.traffic_class == class).map(|r| r.traffic_scale);
         (self.scaling.scale(previous, rho), rho)
+    }
+
+    /// Wheels on the rail whose passages make one simulated passage (1
+    /// without a track model).
+    pub fn wheels(&self) -> usize {
+        self.models.iter().filter_map(|m| m.dynamics.as_deref()).map(|d| d.wheels()).max().unwrap_or(1)
     }
 
     /// Passages the study will have (`growth.passes`; 1 for one passage).

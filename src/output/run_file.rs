@@ -105,7 +105,7 @@ fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
         &["pass", "y", "x"],
         wear.view().into_dyn(),
         "m",
-        "wear depth of one simulated passage (unscaled by traffic)",
+        "wear depth of one simulated wheel passage, the mean of the vehicle's wheels (unscaled by traffic)",
     )?;
     g.var_f64(
         "state",

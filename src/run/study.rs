@@ -39,13 +39,6 @@ pub enum RunError {
     /// Writing the run file failed.
     #[error("{0}")]
     Output(#[from] NcError),
-    /// The scene has several wheels on the rail (`vehicle.wheels`), which
-    /// only `corrugation track` takes so far.
-    #[error(
-        "vehicle.wheels = {0:?}: a run rolls one wheel so far (the coupling of several wheels through the rail is \
-         in `corrugation track`'s transfer receptances, not yet in the passage); set vehicle.wheels = [0.0]"
-    )]
-    SeveralWheels(Vec<f64>),
 }
 
 /// Why a run could not be resumed.
@@ -137,10 +130,6 @@ pub struct RunSummary {
 /// Runs the scene (one passage, or a growth study over `growth.passes`
 /// passages) and writes the run file to `out`, with checkpoints.
 pub fn run_scene(resolved: &Resolved, out: &Path, progress: &mut dyn FnMut(Event)) -> Result<RunSummary, RunError> {
-    let wheels = &resolved.scene.vehicle.wheels;
-    if wheels.len() > 1 {
-        return Err(RunError::SeveralWheels(wheels.clone()));
-    }
     continue_run(resolved, initial_state(&resolved.scene), out, progress)
 }
 

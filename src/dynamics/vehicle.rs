@@ -1,0 +1,288 @@
+//! Several wheels of a vehicle on one rail (`[vehicle] wheels`): the
+//! moving-irregularity model with the wheels coupled through the rail's
+//! transfer receptances (Wu and Thompson, *J. Sound Vib.* 281 (2005)
+//! 1097-1118 for the continuous and discrete track; Nielsen, *Wear* 254
+//! (2003) 1212-1222 (two wheelsets of a bogie); Grassie et al. 1982 for
+//! one wheel).
+//!
+//! Wheel `j` runs `s_j` behind the leading one (`s_0 = 0`); the loads stand
+//! still and the rail is pulled through at the speed `V > 0`, so when
+//! wheel `i` is at `X` wheel `j` is at `X + s_i - s_j`. A profile harmonic
+//! `r_k exp(i k X)` (`w = k V`) reaches wheel `j` with the phase
+//! `exp(i k (s_i - s_j))`, and with `y_w = alpha_w P_j` (the wheel's
+//! mass), `alpha_c P_j` (the contact spring) and the rail's displacement
+//! under wheel `j`, `sum_l A_jl P_l` (`A_jl` the rail's displacement at
+//! wheel `j` under a unit force at wheel `l`: the point receptance on the
+//! diagonal, the transfer receptances off it), the contact closes
+//! (module [`super::receptance`], eq. 5, for every wheel):
+//!
+//! ```text
+//! sum_l M_jl P_l = r_j,   M = (alpha_w + alpha_c) I + A(w),
+//! P_i(X) = sum_k H_i(k) r_k exp(i k X),
+//! H_i(k) = sum_j [M^-1]_ij exp(i k (s_i - s_j)).                      (1)
+//! ```
+//!
+//! Far apart (`A_jl -> 0` for `j != l`) every wheel's `H_i` is the single
+//! wheel's `1 / (alpha_w + alpha_c + alpha_r)`. Two wheels a whole number
+//! of wavelengths apart meet the harmonic in phase and each sees
+//! `1 / (alpha_w + alpha_c + alpha_r(0) + alpha_r(L))`; half a wavelength
+//! off, `... - alpha_r(L)`: the wave between the wheels raises or lowers
+//! the rail's receptance as the wheels see it, which is the mechanism that
+//! can fix a wavelength to the wheel spacing.
+//!
+//! On the continuous track `A` depends on the frequency alone
+//! ([`CoupledReceptance`]). On the discrete track it depends on where the
+//! wheels are in the sleeper bay too ([`DiscreteVehicle`]: the
+//! position-dependent approximation of [`super::discrete_dynamics`],
+//! tabulated over the leading wheel's place across a whole bay), and each
+//! wheel's path includes the static deflection under all the wheels'
+//! loads (the parametric excitation).
+
+use super::TrackDynamics;
+use super::apply_periodic_response;
+use super::discrete::DiscreteTrack;
+use super::discrete_dynamics::harmonics;
+use super::receptance::{ReceptanceModel, WheelParams};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use rayon::prelude::*;
+use rustfft::FftPlanner;
+use std::f64::consts::PI;
+
+/// Places of the leading wheel across one sleeper bay at which the
+/// discrete vehicle's receptances are tabulated (every `d / 16`, the single
+/// wheel's spacing of [`super::discrete_dynamics::POSITIONS`] over the
+/// half bay).
+pub const BAY_PLACES: usize = 16;
+
+/// `[M^-1]` of eq. 1 for the receptance matrix `a` (row-major `n x n`, m/N)
+/// and the wheel and contact receptance `own` (m/N) on its diagonal.
+fn inverse(a: &[Complex64], own: Complex64, n: usize) -> DMatrix<Complex64> {
+    let m = DMatrix::from_fn(n, n, |i, j| a[i * n + j] + if i == j { own } else { Complex64::new(0.0, 0.0) });
+    m.try_inverse().expect("a passive track's receptance matrix plus the wheels' is invertible")
+}
+
+/// The wheels coupled through the continuous track (closed form).
+#[derive(Debug, Clone, PartialEq)]
+pub struct CoupledReceptance {
+    /// Track, wheel and contact spring (the same for every wheel).
+    pub model: ReceptanceModel,
+    /// Distances behind the leading wheel (m): 0 first, increasing.
+    pub wheels: Vec<f64>,
+}
+
+impl CoupledReceptance {
+    /// The receptance matrix `A(w)` (m/N, row-major) at angular frequency
+    /// `omega` (rad/s): `A_jl = alpha_r(|s_j - s_l|)`.
+    pub fn rail_matrix(&self, omega: f64) -> Vec<Complex64> {
+        let s = &self.wheels;
+        s.iter().flat_map(|a| s.iter().map(move |b| self.model.track.rail_transfer_receptance(omega, a - b))).collect()
+    }
+
+    /// `H_i(f)` of eq. 1 (N/m) for each wheel at frequency `f_hz` (Hz, > 0)
+    /// and speed `speed` (m/s, > 0).
+    pub fn force_per_roughness(&self, f_hz: f64, speed: f64) -> Vec<Complex64> {
+        let n = self.wheels.len();
+        let w = 2.0 * PI * f_hz;
+        let (aw, ac, _) = self.model.receptances(w);
+        let inv = inverse(&self.rail_matrix(w), aw + ac, n);
+        let k = w / speed;
+        let s = &self.wheels;
+        (0..n).map(|i| (0..n).map(|j| inv[(i, j)] * Complex64::from_polar(1.0, k * (s[i] - s[j]))).sum()).collect()
+    }
+}
+
+impl TrackDynamics for CoupledReceptance {
+    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
+        self.wheel_forces(profile, dx, speed).swap_remove(0)
+    }
+
+    fn describe_resonances(&self) -> Vec<(String, f64)> {
+        self.model.describe_resonances()
+    }
+
+    fn wheels(&self) -> usize {
+        self.wheels.len()
+    }
+
+    fn wheel_forces(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+        assert!(speed > 0.0, "the vehicle runs forwards (speed = {speed} m/s)");
+        (0..self.wheels.len())
+            .map(|i| {
+                apply_periodic_response(profile, dx, speed, |f| {
+                    if f == 0.0 { Complex64::new(0.0, 0.0) } else { self.force_per_roughness(f, speed)[i] }
+                })
+            })
+            .collect()
+    }
+}
+
+/// The wheels coupled through the discrete track, at one speed over one
+/// periodic stretch.
+#[derive(Debug, Clone)]
+pub struct DiscreteVehicle {
+    track: DiscreteTrack,
+    wheels: Vec<f64>,
+    /// Mean normal force per wheel (N), for the parametric excitation.
+    mean_load: f64,
+    /// First sleeper's position along the rail (m).
+    sleeper_x0: f64,
+    /// Speed (m/s) and stretch (nodes, spacing) the table was built for.
+    key: (f64, usize, f64),
+    /// `[M^-1]` of eq. 1 for the harmonics n = 1..=n_max (outer) at the
+    /// leading wheel's [`BAY_PLACES`] places (inner).
+    table: Vec<Vec<DMatrix<Complex64>>>,
+    /// The static receptance matrix (m/N, real part at 0.1 Hz) at the
+    /// leading wheel's places.
+    statics: Vec<DMatrix<f64>>,
+}
+
+impl DiscreteVehicle {
+    /// The model of `wheels` (m behind the leading one) on `track`, each
+    /// with `wheel`'s mass on a contact spring `contact_stiffness` (N/m)
+    /// under `mean_load` (N), for a stretch of `nodes` samples every `dx`
+    /// (m) starting at a sleeper at `sleeper_x0` (m), at `speed` (m/s, >
+    /// 0). Tabulates the receptance matrices of the harmonics up to
+    /// [`super::discrete_dynamics::F_MAX`] at [`BAY_PLACES`] places (about 3.5 times the single
+    /// wheel's time for two wheels).
+    #[allow(clippy::too_many_arguments)]
+    pub fn new(
+        track: DiscreteTrack,
+        wheel: WheelParams,
+        contact_stiffness: f64,
+        mean_load: f64,
+        wheels: Vec<f64>,
+        sleeper_x0: f64,
+        nodes: usize,
+        dx: f64,
+        speed: f64,
+    ) -> Self {
+        assert!(speed > 0.0, "the vehicle runs forwards (speed = {speed} m/s)");
+        let n = wheels.len();
+        let length = nodes as f64 * dx;
+        let leaders = bay_places(track.spacing);
+        let offsets: Vec<f64> = wheels.iter().map(|s| -s).collect();
+        let alpha_c = Complex64::new(1.0 / contact_stiffness, 0.0);
+        let table = (1..=harmonics(nodes, dx, speed))
+            .into_par_iter()
+            .map(|h| {
+                let w = 2.0 * PI * h as f64 * speed / length;
+                let own = wheel.receptance(w) + alpha_c;
+                track.vehicle_receptances(&leaders, &offsets, w).iter().map(|a| inverse(a, own, n)).collect()
+            })
+            .collect();
+        let statics = track
+            .vehicle_receptances(&leaders, &offsets, 2.0 * PI * 0.1)
+            .iter()
+            .map(|a| DMatrix::from_fn(n, n, |i, j| a[i * n + j].re))
+            .collect();
+        DiscreteVehicle { track, wheels, mean_load, sleeper_x0, key: (speed, nodes, dx), table, statics }
+    }
+
+    /// The leading wheel's place in the bay when it is at `x` (m), as a
+    /// place index (periodic over [`BAY_PLACES`]) and the weight of the next.
+    fn place(&self, x: f64) -> (usize, usize, f64) {
+        let d = self.track.spacing;
+        let u = (x - self.sleeper_x0).rem_euclid(d) / d * BAY_PLACES as f64;
+        let p = (u.floor() as usize).min(BAY_PLACES - 1);
+        (p, (p + 1) % BAY_PLACES, u - p as f64)
+    }
+
+    /// The path of each wheel on a smooth rail (m, positive up, zero mean)
+    /// at its own positions `x_min + i dx`: the static deflection under
+    /// all the wheels' mean loads, `-sum_l A_jl(x, 0) N0`.
+    pub fn parametric_profiles(&self, nodes: usize, dx: f64) -> Vec<Vec<f64>> {
+        let n = self.wheels.len();
+        (0..n)
+            .map(|j| {
+                let path: Vec<f64> = (0..nodes)
+                    .map(|i| {
+                        let (p, q, t) = self.place(self.sleeper_x0 + i as f64 * dx + self.wheels[j]);
+                        let row = |m: &DMatrix<f64>| (0..n).map(|l| m[(j, l)]).sum::<f64>();
+                        -((1.0 - t) * row(&self.statics[p]) + t * row(&self.statics[q])) * self.mean_load
+                    })
+                    .collect();
+                let mean = path.iter().sum::<f64>() / nodes.max(1) as f64;
+                path.iter().map(|v| v - mean).collect()
+            })
+            .collect()
+    }
+}
+
+/// The leading wheel's tabulated places across a bay of `spacing` (m).
+fn bay_places(spacing: f64) -> Vec<f64> {
+    (0..BAY_PLACES).map(|p| spacing * p as f64 / BAY_PLACES as f64).collect()
+}
+
+impl TrackDynamics for DiscreteVehicle {
+    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
+        self.wheel_forces(profile, dx, speed).swap_remove(0)
+    }
+
+    fn describe_resonances(&self) -> Vec<(String, f64)> {
+        vec![("pinned-pinned: the rail between two sleepers".into(), self.track.pinned_pinned_frequency())]
+    }
+
+    fn forces_smooth_rail(&self) -> bool {
+        true
+    }
+
+    fn wheels(&self) -> usize {
+        self.wheels.len()
+    }
+
+    fn wheel_forces(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+        let nodes = profile.len();
+        assert_eq!(
+            (speed, nodes, dx),
+            self.key,
+            "the discrete vehicle is tabulated for one speed and stretch (built with the growth study's)"
+        );
+        let n = self.wheels.len();
+        let length = nodes as f64 * dx;
+        // Each wheel's input: the rail's profile plus its parametric path.
+        let fft = FftPlanner::<f64>::new().plan_fft_forward(nodes);
+        let inputs: Vec<Vec<Complex64>> = self
+            .parametric_profiles(nodes, dx)
+            .iter()
+            .map(|path| {
+                let mut buf: Vec<Complex64> =
+                    profile.iter().zip(path).map(|(r, p)| Complex64::new(r + p, 0.0)).collect();
+                fft.process(&mut buf);
+                buf
+            })
+            .collect();
+        let s = &self.wheels;
+        (0..n)
+            .map(|i| {
+                // The inputs as wheel i meets them: r_j exp(i k (s_i - s_j)).
+                let seen: Vec<Vec<Complex64>> = (1..=self.table.len())
+                    .map(|h| {
+                        let k = 2.0 * PI * h as f64 / length;
+                        (0..n).map(|j| inputs[j][h] * Complex64::from_polar(1.0, k * (s[i] - s[j]))).collect()
+                    })
+                    .collect();
+                (0..nodes)
+                    .map(|m| {
+                        let x = m as f64 * dx;
+                        let (p, q, t) = self.place(self.sleeper_x0 + x + s[i]);
+                        let mut force = 0.0;
+                        for (h, (row, r)) in self.table.iter().zip(&seen).enumerate() {
+                            let h = h + 1;
+                            let mut sum = Complex64::new(0.0, 0.0);
+                            for (j, rj) in r.iter().enumerate() {
+                                sum += ((1.0 - t) * row[p][(i, j)] + t * row[q][(i, j)]) * rj;
+                            }
+                            // A real input: harmonic h and its mirror give
+                            // 2 Re[...] / N (the Nyquist harmonic once).
+                            let phase = Complex64::from_polar(1.0, 2.0 * PI * h as f64 * x / length);
+                            let weight = if 2 * h == nodes { 1.0 } else { 2.0 };
+                            force += weight * (sum * phase).re / nodes as f64;
+                        }
+                        force
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+}

@@ -1,0 +1,218 @@
+//! Several wheels on one rail (`[vehicle] wheels`): the coupled
+//! moving-irregularity model against its closed form on the continuous
+//! track, the discrete track's receptance matrices against its transfer
+//! receptances, one wheel as the single-wheel model, far-apart wheels as
+//! single wheels in the growth loop, and resume bit for bit.
+mod common;
+use corrugation::config::load_str;
+use corrugation::dynamics::TrackDynamics;
+use corrugation::dynamics::discrete::DiscreteTrack;
+use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
+use corrugation::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams};
+use corrugation::dynamics::track::TrackConfig;
+use corrugation::dynamics::vehicle::{CoupledReceptance, DiscreteVehicle};
+use corrugation::output::netcdf::read_f64;
+use corrugation::run::{resume, run_scene};
+use num_complex::Complex64;
+use std::f64::consts::PI;
+
+/// The continuous track's transfer receptance written out (Hetenyi's
+/// beam, independent of the library's): `exp(-b x) (cos b x + sin b x) /
+/// (8 EI b^3)`, `b` the principal fourth root of `(s(w) - m w^2) / (4 EI)`.
+fn hetenyi(t: &TrackParams, omega: f64, x: f64) -> Complex64 {
+    let sp = Complex64::new(t.pad_stiffness, t.pad_stiffness * t.pad_loss_factor);
+    let sb = Complex64::new(t.ballast_stiffness, t.ballast_stiffness * t.ballast_loss_factor);
+    let ms = t.sleeper_mass * omega * omega;
+    let s = sp * (sb - ms) / (sp + sb - ms);
+    let b4 = (s - t.rail_mass * omega * omega) / (4.0 * t.bending_stiffness);
+    let b = Complex64::from_polar(b4.norm().powf(0.25), b4.arg() / 4.0);
+    (-b * x).exp() * ((b * x).cos() + (b * x).sin()) / (8.0 * t.bending_stiffness * b * b * b)
+}
+
+#[test]
+fn two_wheels_on_the_continuous_track_against_the_closed_form() {
+    // Two equal wheels L apart: M = [[c, t], [t, c]] with c = alpha_w +
+    // alpha_c + alpha_r(0), t = alpha_r(L), so the leading wheel's
+    // H_0 = (c - t exp(-i k L)) / (c^2 - t^2); in phase (k L = 2 pi m)
+    // 1 / (c + t), half a wavelength off 1 / (c - t).
+    let model =
+        ReceptanceModel::new(TrackParams::uic60_default(), WheelParams { unsprung_mass: 600.0 }, 1.8e9).unwrap();
+    let (spacing, speed) = (2.5, 27.78);
+    let bogie = CoupledReceptance { model, wheels: vec![0.0, spacing] };
+    let mut worst = 0.0f64;
+    for f in [50.0, 120.0, 333.3, 700.0, 1070.0, 2000.0] {
+        let w = 2.0 * PI * f;
+        let t = &model.track;
+        let c = model.wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(t, w, 0.0);
+        let tr = hetenyi(t, w, spacing);
+        let k = w / speed;
+        let h = bogie.force_per_roughness(f, speed);
+        let lead = (c - tr * Complex64::from_polar(1.0, -k * spacing)) / (c * c - tr * tr);
+        let trail = (c - tr * Complex64::from_polar(1.0, k * spacing)) / (c * c - tr * tr);
+        worst = worst.max(((h[0] - lead) / lead).norm()).max(((h[1] - trail) / trail).norm());
+        // The wave between the wheels matters: the transfer is not small
+        // against the point receptance at every frequency here.
+        eprintln!("{f} Hz: |alpha_r(L) / c| = {:.3e}", (tr / c).norm());
+    }
+    assert!(worst < 1e-9, "closed form: {worst:e}");
+    // In phase and in anti-phase, on a profile harmonic whose frequency puts
+    // a whole (half) number of wavelengths between the wheels.
+    for (waves, sign) in [(3.0, 1.0), (3.5, -1.0)] {
+        let f = waves * speed / spacing;
+        let w = 2.0 * PI * f;
+        let c = model.wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(&model.track, w, 0.0);
+        let expected = 1.0 / (c + sign * hetenyi(&model.track, w, spacing));
+        for h in bogie.force_per_roughness(f, speed) {
+            assert!(((h - expected) / expected).norm() < 1e-9, "{waves} wavelengths: {h} vs {expected}");
+        }
+    }
+}
+
+#[test]
+fn the_discrete_vehicles_receptance_matrix_is_the_transfer_receptances() {
+    // Entry (a, b): the displacement at wheel a under a unit force at wheel
+    // b, for wheels at 0, 2.5 and 3.1 m behind a leader 0.13 m into a bay.
+    let track = DiscreteTrack::new(&TrackConfig::default());
+    let offsets = [0.0, -2.5, -3.1];
+    let leader = 0.13;
+    for f in [80.0, 600.0, 1070.0] {
+        let w = 2.0 * PI * f;
+        let m = &track.vehicle_receptances(&[leader], &offsets, w)[0];
+        let point = track.receptances(&offsets.map(|o| leader + o), w);
+        for a in 0..3 {
+            for b in 0..3 {
+                let (xa, xb) = (leader + offsets[a], leader + offsets[b]);
+                let expected = if a == b { point[a] } else { track.transfer_receptances(xb, &[xa - xb], w)[0] };
+                let e = m[a * 3 + b];
+                assert!(((e - expected) / point[0]).norm() < 1e-3, "{f} Hz ({a}, {b}): {e} vs {expected}");
+                // Reciprocity.
+                assert!(((e - m[b * 3 + a]) / point[0]).norm() < 1e-6, "{f} Hz: not reciprocal");
+            }
+        }
+    }
+}
+
+#[test]
+fn one_wheel_of_the_discrete_vehicle_is_the_single_wheel_model() {
+    // The same position-dependent model tabulated over a whole bay
+    // instead of the half bay: the same forces, sleeper passing included.
+    let (nodes, dx, speed) = (600, 1e-3, 27.78);
+    let (wheel, k_h, load) = (WheelParams { unsprung_mass: 600.0 }, 1.8e9, 1e5);
+    let track = DiscreteTrack::new(&TrackConfig::default());
+    let single = DiscreteDynamics::new(track, wheel, k_h, load, 0.0, nodes, dx, speed);
+    let vehicle = DiscreteVehicle::new(track, wheel, k_h, load, vec![0.0], 0.0, nodes, dx, speed);
+    let profile: Vec<f64> = (0..nodes)
+        .map(|i| 1e-6 * ((0.37 * i as f64).sin() + (2.0 * PI * 23.0 * i as f64 / nodes as f64).cos()))
+        .collect();
+    let (a, b) = (single.force_from_profile(&profile, dx, speed), vehicle.wheel_forces(&profile, dx, speed));
+    assert_eq!(b.len(), 1);
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = a.iter().zip(&b[0]).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(worst < 1e-9 * scale, "{worst:e} of {scale:e} N");
+}
+
+#[test]
+fn a_bogie_on_the_discrete_track_loads_each_wheel_with_the_others_deflection() {
+    // On a smooth rail each wheel runs on the static deflection under both
+    // wheels' loads: two wheels 2.4 m apart (whole bays) see the same path,
+    // deeper than the single wheel's by the other wheel's deflection, which
+    // is far smaller than its own at 2.4 m (the static transfer decays
+    // over about 1 m); both wheels' sleeper-passing forces are the single
+    // wheel's within the small difference.
+    let (nodes, dx, speed) = (600, 1e-3, 27.78);
+    let (wheel, k_h, load) = (WheelParams { unsprung_mass: 600.0 }, 1.8e9, 1e5);
+    let track = DiscreteTrack::new(&TrackConfig::default());
+    let bogie = DiscreteVehicle::new(track, wheel, k_h, load, vec![0.0, 2.4], 0.0, nodes, dx, speed);
+    let single = DiscreteDynamics::new(track, wheel, k_h, load, 0.0, nodes, dx, speed);
+    let paths = bogie.parametric_profiles(nodes, dx);
+    let path = single.parametric_profile(nodes, dx);
+    let span = |v: &[f64]| v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min);
+    assert!((span(&paths[0]) - span(&paths[1])).abs() < 1e-6 * span(&path));
+    assert!((span(&paths[0]) - span(&path)).abs() < 0.1 * span(&path), "{} vs {}", span(&paths[0]), span(&path));
+    let smooth = vec![0.0; nodes];
+    let forces = bogie.wheel_forces(&smooth, dx, speed);
+    let one = single.force_from_profile(&smooth, dx, speed);
+    for f in &forces {
+        assert!((span(f) - span(&one)).abs() < 0.2 * span(&one), "{} vs {}", span(f), span(&one));
+    }
+}
+
+/// growth_fastsim.toml at 4 passages, with `extra`.
+fn fastsim(extra: &[&str]) -> corrugation::config::Resolved {
+    let mut set: Vec<String> = ["growth.passes=4", "growth.store_every=1", "growth.checkpoint_every=2"]
+        .iter()
+        .chain(extra)
+        .map(|s| s.to_string())
+        .collect();
+    set.push("growth.contact_history=[0, 3]".into());
+    load_str(include_str!("../configs/growth_fastsim.toml"), "vehicle test", &set).unwrap()
+}
+
+#[test]
+fn wheels_far_apart_grow_the_rail_as_one_wheel() {
+    // On a track whose waves die within metres (viscous pads of 1e6 N s/m)
+    // two wheels 50 m apart do not feel each other: each wheel passage
+    // wears the rail as a single wheel's, so the study is the single
+    // wheel's (traffic counts wheel passages).
+    let dir = tempfile::tempdir().unwrap();
+    let damped = "track.pad_damping=1e6";
+    let (one, two) = (dir.path().join("one.h5"), dir.path().join("two.h5"));
+    run_scene(&fastsim(&[damped]), &one, &mut |_| {}).unwrap();
+    run_scene(&fastsim(&[damped, "vehicle.wheels=[0.0, 50.0]"]), &two, &mut |_| {}).unwrap();
+    for var in ["rms_corrugation", "traffic", "removed_volume"] {
+        let (a, b) = (read_f64(&one, "passes", var).unwrap(), read_f64(&two, "passes", var).unwrap());
+        for (x, y) in a.iter().zip(&b) {
+            assert!((x - y).abs() <= 1e-9 * x.abs(), "{var}: {x} vs {y}");
+        }
+    }
+    let (a, b) = (read_f64(&one, "rail", "profile").unwrap(), read_f64(&two, "rail", "profile").unwrap());
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = a.iter().zip(&b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(worst < 1e-9 * scale, "profile {worst:e} of {scale:e} m");
+}
+
+#[test]
+fn a_bogie_changes_the_growth_and_resumes_bit_for_bit() {
+    // Two wheels 2.5 m apart on the default track: the wave between them
+    // changes every wheel's force, so the profile differs from the single
+    // wheel's; a run stopped at its checkpoint and resumed is the
+    // uninterrupted run, bit for bit.
+    let dir = tempfile::tempdir().unwrap();
+    let bogie = fastsim(&["vehicle.wheels=[0.0, 2.5]"]);
+    let (whole, part, one) = (dir.path().join("whole.h5"), dir.path().join("part.h5"), dir.path().join("one.h5"));
+    run_scene(&bogie, &whole, &mut |_| {}).unwrap();
+    run_scene(&fastsim(&[]), &one, &mut |_| {}).unwrap();
+    let mut half = bogie.clone();
+    half.scene.growth.as_mut().unwrap().passes = 2;
+    run_scene(&half, &part, &mut |_| {}).unwrap();
+    resume(&part, Some(2), None, &mut |_| {}).unwrap();
+    for (group, var) in [("passes", "rms_corrugation"), ("rail", "profile"), ("passes", "growth_rate")] {
+        let (a, b) = (read_f64(&whole, group, var).unwrap(), read_f64(&part, group, var).unwrap());
+        assert_eq!(a, b, "{group}/{var}");
+    }
+    let (a, b) = (read_f64(&one, "rail", "profile").unwrap(), read_f64(&whole, "rail", "profile").unwrap());
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = a.iter().zip(&b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    eprintln!("bogie against one wheel: profiles differ by {diff:.3e} of {scale:.3e} m");
+    assert!(diff > 1e-6 * scale, "the bogie's coupling changed nothing");
+}
+
+#[test]
+fn several_wheels_need_a_track_model_and_room() {
+    let errors =
+        |text: &str, set: &[&str]| match load_str(text, "t", &set.iter().map(|s| s.to_string()).collect::<Vec<_>>()) {
+            Ok(_) => Vec::new(),
+            Err(e) => e.errors.iter().map(|e| e.to_string()).collect(),
+        };
+    let growth = include_str!("../configs/growth_fastsim.toml");
+    let single = include_str!("../configs/paper_normal_30mm.toml");
+    for (text, set, expected) in [
+        (single, vec!["vehicle.wheels=[0.0, 2.5]"], "a single passage rolls one wheel"),
+        (growth, vec!["vehicle.wheels=[0.0, 2.5]", "dynamics.model=imposed"], "dynamics.model = \"imposed\""),
+        (growth, vec!["vehicle.wheels=[0.0, 0.8]"], "closer than a wheel's diameter (2 geometry.wheel_radius = 1 m)"),
+    ] {
+        let e = errors(text, &set);
+        assert_eq!(e.len(), 1, "{set:?}: {e:?}");
+        assert!(e[0].starts_with("vehicle.wheels") && e[0].contains(expected), "{set:?}: {}", e[0]);
+    }
+}
