@@ -61,6 +61,7 @@ fn main() {
         dt: dx / speed,
         friction: 0.4,
         force_x: fx,
+        creepage_x: None,
         creepage_y: 0.0,
         spin: 0.0,
         position: 0.0,

@@ -51,6 +51,7 @@ pub fn derive(scene: &Scene) -> Derived {
     let passage = PassageSpec {
         speed: scene.speed,
         friction: scene.material.friction,
+        creepage_x: scene.creepage_x,
         creepage_y: scene.creepage_y,
         spin: scene.spin,
         loads: loads.clone(),

@@ -79,6 +79,17 @@ pub fn print_check(r: &Resolved) {
         }
     }
     println!("Hertz a/b          {:.4}", d.shape.aspect());
+    match s.creepage_x {
+        Some(xi) => println!(
+            "control            creepage: xi_x = {xi:e} prescribed, the longitudinal force its result (lateral \
+             creepage {:e}, spin {:e} 1/m)",
+            s.creepage_y, s.spin
+        ),
+        None => println!(
+            "control            force: F_x = {:.4e} N prescribed, the creepage found (lateral creepage {:e}, spin {:e} 1/m)",
+            s.loads.longitudinal_force, s.creepage_y, s.spin
+        ),
+    }
     if d.patch_min.is_none() {
         println!(
             "contact loss       N <= 0 on part of the stretch (min N = {:.4e} N): no patch there",

@@ -22,6 +22,9 @@ pub struct PassageSpec {
     pub speed: f64,
     /// Coulomb friction coefficient (1).
     pub friction: f64,
+    /// Prescribed longitudinal creepage (1) (`load.control = "creepage"`),
+    /// or None: the longitudinal force of `loads` prescribed.
+    pub creepage_x: Option<f64>,
     /// Prescribed lateral creepage (1).
     pub creepage_y: f64,
     /// Prescribed spin (1/m).
@@ -337,6 +340,7 @@ pub fn run_passage(
             dt,
             friction: spec.friction,
             force_x: spec.loads.longitudinal_force_at(x),
+            creepage_x: spec.creepage_x,
             creepage_y: spec.creepage_y,
             spin: spec.spin,
             position: x,

@@ -41,8 +41,17 @@ fn roll(solver: &mut FixedGrid, shape: &HertzShape, force_x: f64, steps: usize) 
     let patch = shape.patch(1e5).unwrap();
     let dx = solver.grid().dx;
     let speed = 27.778;
-    let input =
-        StepInput { patch, speed, dt: dx / speed, friction: 0.4, force_x, creepage_y: 0.0, spin: 0.0, position: 0.0 };
+    let input = StepInput {
+        patch,
+        speed,
+        dt: dx / speed,
+        friction: 0.4,
+        force_x,
+        creepage_x: None,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     solver.reset();
     (0..steps)
         .map(|_| {
@@ -257,6 +266,7 @@ fn kalker_cattaneo_to_carter_classic_on_the_grid() {
         dt: step,
         friction: mu,
         force_x: -0.657 * mu * n,
+        creepage_x: None,
         creepage_y: 0.0,
         spin: 0.0,
         position: 0.0,
@@ -341,6 +351,7 @@ fn higher_order_differences_approach_contacts_grid_limit() {
             dt: cell.0 / 27.778,
             friction: 0.4,
             force_x: 2e4,
+            creepage_x: None,
             creepage_y: 0.0,
             spin: 0.0,
             position: 0.0,

@@ -14,6 +14,7 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
     let spec = PassageSpec {
         speed: 27.78,
         friction: 0.4,
+        creepage_x: None,
         creepage_y: 0.0,
         spin: 0.0,
         loads: ImposedLoads { normal_force: 1e5, longitudinal_force: 2e4, harmonics: vec![] },

@@ -41,7 +41,17 @@ fn solver(dx: f64, dy: f64, length: f64) -> FixedGrid {
 /// patch centre at `position`.
 fn rolling(dx: f64, position: f64) -> StepInput {
     let patch = paper_shape(true).patch(N).unwrap();
-    StepInput { patch, speed: 27.78, dt: dx / 27.78, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0, position }
+    StepInput {
+        patch,
+        speed: 27.78,
+        dt: dx / 27.78,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_x: None,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position,
+    }
 }
 
 /// A line `f(X)` along the rail, uniform across, sampled every 10 um.
@@ -176,7 +186,7 @@ fn force_balance_and_the_traction_bound_at_every_step_of_a_corrugated_passage() 
     for step in 0..(lambda / dx) as usize {
         let x = step as f64 * dx;
         let n = N * (1.0 + 0.3 * (k * x).sin());
-        let input = StepInput { patch: shape.patch(n).unwrap(), force_x: 0.2 * n, ..rolling(dx, x) };
+        let input = StepInput { patch: shape.patch(n).unwrap(), force_x: 0.2 * n, creepage_x: None, ..rolling(dx, x) };
         let sol = s.step(&input).unwrap();
         // (The normal force holds by the pressure's scaling; a NaN would not.)
         let total: f64 = sol.pressure.iter().sum::<f64>() * area;

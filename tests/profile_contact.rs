@@ -54,7 +54,17 @@ fn sized(dx: f64, dy: f64, length: f64, n_max: f64) -> FixedGrid {
 /// A step of the paper's rolling (100 km/h, F_x = 20 kN, mu = 0.4) on a
 /// grid of element `dx`, with the patch centre at `position`.
 fn rolling(patch: corrugation::hertz::HertzPatch, dx: f64, position: f64) -> StepInput {
-    StepInput { patch, speed: 27.78, dt: dx / 27.78, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0, position }
+    StepInput {
+        patch,
+        speed: 27.78,
+        dt: dx / 27.78,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_x: None,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position,
+    }
 }
 
 /// A harmonic rail `Delta cos(2 pi X / lambda)`, uniform across, sampled
@@ -222,6 +232,7 @@ fn force_balance_and_complementarity_at_every_step_over_a_corrugated_rail() {
             dt: dx / speed,
             friction: 0.4,
             force_x: 0.2 * n,
+            creepage_x: None,
             creepage_y: 0.0,
             spin: 0.0,
             position: x,

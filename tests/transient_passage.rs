@@ -85,6 +85,7 @@ fn non_convergence_is_reported_with_step_and_residuals() {
         dt: 7.2e-6,
         friction: 0.4,
         force_x: 2e4,
+        creepage_x: None,
         creepage_y: 0.0,
         spin: 0.0,
         position: 0.0,

@@ -16,7 +16,17 @@ fn exact(shape: &HertzShape, el: Elastic, nx: usize, ny: usize, eps: f64) -> Tra
 }
 
 fn input(patch: HertzPatch, speed: f64, step: f64, mu: f64, force_x: f64) -> StepInput {
-    StepInput { patch, speed, dt: step / speed, friction: mu, force_x, creepage_y: 0.0, spin: 0.0, position: 0.0 }
+    StepInput {
+        patch,
+        speed,
+        dt: step / speed,
+        friction: mu,
+        force_x,
+        creepage_x: None,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    }
 }
 
 /// Area fraction of stick elements.

@@ -80,8 +80,17 @@ fn uniform_rate_gives_chord_over_speed() {
 fn fastsim_rates(n: usize) -> (EllipseMesh, Vec<f64>, f64, f64) {
     let patch = paper_shape(true).patch(1e5).unwrap();
     let f = Fastsim::new(n, n, PressureShape::Parabolic, paper_coefficients(true), STEEL.shear_modulus());
-    let input =
-        StepInput { patch, speed: V, dt: 0.0, friction: 0.4, force_x: 2e4, creepage_y: 0.0, spin: 0.0, position: 0.0 };
+    let input = StepInput {
+        patch,
+        speed: V,
+        dt: 0.0,
+        friction: 0.4,
+        force_x: 2e4,
+        creepage_x: None,
+        creepage_y: 0.0,
+        spin: 0.0,
+        position: 0.0,
+    };
     let sol = f.solve_force(&input).unwrap();
     (EllipseMesh::new(n, n), archard_rates(3.4e-14, &sol), patch.a, patch.b)
 }

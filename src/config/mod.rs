@@ -178,15 +178,69 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
 
     let mut s = section(&mut root, "rolling", errors);
     let speed = s.f64("speed", None, Range::OpenClosed(0.0, 200.0));
+    let creepage_x_given = s.has("creepage_x");
+    let creepage_x = s.f64("creepage_x", Some(0.0), Range::Closed(-0.1, 0.1));
     let creepage_y = s.f64("creepage_y", Some(0.0), Range::Closed(-0.1, 0.1));
     let spin = s.f64("spin", Some(0.0), Range::Closed(-100.0, 100.0));
     resolved.insert("rolling".into(), Value::Table(s.finish()));
 
     let mut s = section(&mut root, "load", errors);
     let normal = s.f64("normal_force", None, Range::Positive);
-    let longitudinal = s.f64("longitudinal_force", None, Range::Finite);
+    // Creepage control: the creepage rolling.creepage_x is prescribed and
+    // the longitudinal force is the result; force control (the default):
+    // the force is prescribed and the creepage found.
+    let control = s.choice("control", Some("force"), &["force", "creepage"]);
+    let by_creepage = control.as_deref() == Some("creepage");
+    let longitudinal = if by_creepage {
+        if s.has("longitudinal_force") {
+            s.f64("longitudinal_force", None, Range::Finite);
+            s.error(
+                "longitudinal_force",
+                "is a force, but load.control = \"creepage\" prescribes the creepage rolling.creepage_x (the force \
+                 is its result): remove it, or set load.control = \"force\""
+                    .into(),
+            );
+            None
+        } else {
+            Some(0.0)
+        }
+    } else {
+        s.f64("longitudinal_force", None, Range::Finite)
+    };
     let harmonics = s.array_of_tables("harmonics", read_harmonic);
     resolved.insert("load".into(), Value::Table(s.finish()));
+    let creepage_x = match (control.as_deref(), creepage_x_given) {
+        (Some("creepage"), false) => {
+            errors.push(ConfigError::new(
+                "rolling.creepage_x",
+                "is required with load.control = \"creepage\" (the longitudinal creepage, in [-0.1, 0.1])".into(),
+            ));
+            None
+        }
+        (Some("creepage"), true) => creepage_x.map(Some),
+        (_, true) => {
+            errors.push(ConfigError::new(
+                "rolling.creepage_x",
+                "is a creepage, but load.control = \"force\" (the default) prescribes load.longitudinal_force and \
+                 finds the creepage: remove it, or set load.control = \"creepage\""
+                    .into(),
+            ));
+            None
+        }
+        _ => Some(None),
+    };
+    if by_creepage && let Some(hs) = &harmonics {
+        for (i, h) in hs.iter().enumerate().filter(|(_, h)| h.quantity == LoadQuantity::LongitudinalForce) {
+            errors.push(ConfigError::new(
+                &format!("load.harmonics[{i}].quantity"),
+                format!(
+                    "= \"longitudinal_force\" (amplitude {} N) is a force, but load.control = \"creepage\" \
+                     prescribes the creepage",
+                    h.amplitude
+                ),
+            ));
+        }
+    }
 
     let contact = contact::read(&mut root, &mut resolved, errors);
 
@@ -241,8 +295,15 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let geometry = Geometry { wheel_radius, wheel_profile_radius: profile, rail_head_radius: rail_head };
     let shape = check_geometry(&material, &geometry, errors);
 
-    let (Some(speed), Some(creepage_y), Some(spin), Some(normal), Some(longitudinal), Some(harmonics)) =
-        (speed, creepage_y, spin, normal, longitudinal, harmonics)
+    let (
+        Some(speed),
+        Some(creepage_x),
+        Some(creepage_y),
+        Some(spin),
+        Some(normal),
+        Some(longitudinal),
+        Some(harmonics),
+    ) = (speed, creepage_x, creepage_y, spin, normal, longitudinal, harmonics)
     else {
         return (None, resolved);
     };
@@ -323,6 +384,17 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             ),
         ));
     }
+    if let (Some(g), Some(_)) = (&growth, creepage_x) {
+        for (i, c) in g.classes.iter().enumerate().filter(|(_, c)| c.longitudinal_force != 0.0) {
+            errors.push(ConfigError::new(
+                &format!("traffic.mix[{i}].longitudinal_force"),
+                format!(
+                    "= {} N is a force, but load.control = \"creepage\" prescribes the creepage rolling.creepage_x",
+                    c.longitudinal_force
+                ),
+            ));
+        }
+    }
     if let Some(g) = &growth {
         check_growth(g, &loads, max_normal, start, end, (x_min, x_max, dx), shape.as_ref(), errors);
     }
@@ -389,6 +461,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         material,
         geometry,
         speed,
+        creepage_x,
         creepage_y,
         spin,
         loads,

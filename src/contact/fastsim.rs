@@ -181,7 +181,8 @@ impl Fastsim {
     }
 
     /// Solves with the longitudinal force prescribed (lateral creepage and
-    /// spin prescribed), finding xi_x.
+    /// spin prescribed), finding xi_x; or, with the longitudinal creepage
+    /// prescribed too, at that creepage.
     pub fn solve_force(&self, input: &StepInput) -> Result<PatchSolution, ContactError> {
         input.check_friction_limit()?;
         let (moved, pressure, moved_by) = self.step_patch(input)?;
@@ -198,6 +199,9 @@ impl Fastsim {
             }
             s
         };
+        if let Some(xi) = input.creepage_x {
+            return Ok(at(xi));
+        }
         let residual = |xi: f64| (at(xi).force_x - force) / limit;
         let g = self.shear_modulus;
         let linear = (force.abs().max(1e-6 * limit)) / (g * patch.a * patch.b * self.coefficients.c11);

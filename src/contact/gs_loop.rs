@@ -51,6 +51,9 @@ pub(crate) struct Settings {
     pub force_tol: f64,
     /// Prescribed F_x (N).
     pub force_x: f64,
+    /// Whether the creepage is prescribed instead: it stays at the start's
+    /// and the force is not a condition (`force_x` unused).
+    pub creepage_prescribed: bool,
     /// mu N (N), the force scale.
     pub mu_n: f64,
     /// dF_x / dxi_x estimate (N), negative.
@@ -101,7 +104,7 @@ pub(crate) fn solve(
         sw.sweep(&mut p, &mut s, &mut u, xi);
         let r_max = sw.residual(&s, &u, xi);
         let force = sw.force(&p);
-        let r_force = (force - set.force_x) / set.mu_n;
+        let r_force = if set.creepage_prescribed { 0.0 } else { (force - set.force_x) / set.mu_n };
         history.push(r_max);
         if !r_max.is_finite() || !r_force.is_finite() {
             return Err(history);
@@ -114,13 +117,16 @@ pub(crate) fn solve(
                 return Ok(Solved { p, s, xi, u, sweeps: sweep_no + 1 });
             }
         }
-        let xi_next = xi - (force - set.force_x) / set.kappa;
+        let xi_next = if set.creepage_prescribed { xi } else { xi - (force - set.force_x) / set.kappa };
         let g = pack(&p, xi_next);
         let (mixed, u_mixed) = anderson.mix(&x, &g, DVector::from_column_slice(&u));
         for (pk, v) in p.iter_mut().zip(mixed.iter()) {
             *pk = v * p_scale;
         }
-        xi = mixed[m] / xi_scale;
+        // (A prescribed creepage is kept exactly: scaling is not.)
+        if !set.creepage_prescribed {
+            xi = mixed[m] / xi_scale;
+        }
         if (sweep_no + 1) % REFRESH == 0 {
             fresh(&p, &mut u);
         } else {

@@ -80,8 +80,13 @@ pub struct StepInput {
     pub dt: f64,
     /// Coulomb friction coefficient mu (1).
     pub friction: f64,
-    /// Prescribed longitudinal force on the wheel F_x (N).
+    /// Prescribed longitudinal force on the wheel F_x (N), unless the
+    /// creepage is prescribed.
     pub force_x: f64,
+    /// Prescribed longitudinal creepage (1) (`load.control = "creepage"`):
+    /// the force is then the result, `force_x` unused; None: `force_x`
+    /// prescribed and the creepage found.
+    pub creepage_x: Option<f64>,
     /// Prescribed lateral creepage (1).
     pub creepage_y: f64,
     /// Prescribed spin (1/m).
@@ -94,8 +99,12 @@ pub struct StepInput {
 impl StepInput {
     /// The prescribed longitudinal force must stay below the friction limit
     /// mu N; at or beyond it the patch slides entirely and no creepage
-    /// transmits the force.
+    /// transmits the force. (A prescribed creepage has a solution at any
+    /// value: full sliding at the limit.)
     pub fn check_friction_limit(&self) -> Result<(), ContactError> {
+        if self.creepage_x.is_some() {
+            return Ok(());
+        }
         let limit = self.friction * self.patch.normal_force;
         if self.force_x.abs() >= limit {
             return Err(ContactError::ForceExceedsFriction { force: self.force_x, limit });

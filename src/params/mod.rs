@@ -329,6 +329,9 @@ pub struct Scene {
     pub geometry: Geometry,
     /// Rolling speed V (m/s).
     pub speed: f64,
+    /// Prescribed longitudinal creepage (1) (`load.control = "creepage"`),
+    /// or None: the longitudinal force of `loads` prescribed.
+    pub creepage_x: Option<f64>,
     /// Prescribed lateral creepage (1).
     pub creepage_y: f64,
     /// Prescribed spin (1/m).

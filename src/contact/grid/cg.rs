@@ -178,7 +178,7 @@ pub fn solve(
         if !state.r_max.is_finite() || !state.f_res.is_finite() {
             break;
         }
-        if state.r_max < st.tol && (state.f_res / st.mu_n).abs() < st.force_tol {
+        if state.r_max < st.tol && (st.creepage_prescribed || (state.f_res / st.mu_n).abs() < st.force_tol) {
             let State { p, s, xi, u, .. } = state;
             return Ok(GridSolution { p, s, xi, u, sweeps: products });
         }
@@ -368,12 +368,19 @@ fn newton_system(
             out[2 * c + 1] = a[2 * c + 1] + h[c][1] * vx + h[c][2] * vy;
         }
     };
-    let e: Vec<f64> = (0..n).flat_map(|_| [1.0, 0.0]).collect();
+    // With the creepage prescribed there is no constraint: e = 0, no
+    // projection, lambda = 0, the start dp0 = 0.
+    let free = st.creepage_prescribed;
+    let e: Vec<f64> = (0..n).flat_map(|_| [if free { 0.0 } else { 1.0 }, 0.0]).collect();
     let mut pe = vec![0.0; 2 * n];
-    apply_pre(&e, &mut pe);
-    let epe = dot(w, &e, &pe);
+    let epe = if free {
+        1.0
+    } else {
+        apply_pre(&e, &mut pe);
+        dot(w, &e, &pe)
+    };
     // A feasible start: dp0 = c e, area <e, dp0>_w = F_x - F.
-    let c0 = -x.f_res / st.area / dot(w, &e, &e);
+    let c0 = if free { 0.0 } else { -x.f_res / st.area / dot(w, &e, &e) };
     let mut dp: Vec<f64> = e.iter().map(|v| c0 * v).collect();
     let mut adp = vec![0.0; 2 * n];
     if c0 != 0.0 {

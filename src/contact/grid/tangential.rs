@@ -120,6 +120,9 @@ pub struct GridStep<'a> {
     pub u_prev: &'a [f64],
     /// Prescribed F_x (N).
     pub force_x: f64,
+    /// Whether the creepage is prescribed instead (the warm start's is
+    /// kept; `force_x` unused).
+    pub creepage_prescribed: bool,
     /// mu N (N), the force scale.
     pub mu_n: f64,
     /// dF_x / dxi_x estimate (N), negative.
@@ -166,6 +169,7 @@ pub fn solve(
         tol: st.tol,
         force_tol: st.force_tol,
         force_x: st.force_x,
+        creepage_prescribed: st.creepage_prescribed,
         mu_n: st.mu_n,
         kappa: st.kappa,
         p_scale,

@@ -68,6 +68,9 @@ pub(super) struct GsStep<'a> {
     pub u_o: &'a [f64],
     /// Prescribed F_x (N).
     pub force_x: f64,
+    /// Whether the creepage is prescribed instead (the warm start's is
+    /// kept; `force_x` unused).
+    pub creepage_prescribed: bool,
     /// mu N (N), the force scale.
     pub mu_n: f64,
     /// Tolerance on the kinematic residual (m/s), as the Newton solver's.
@@ -105,6 +108,7 @@ pub(super) fn solve(st: &GsStep, s: &[f64], xi: f64) -> Result<GsSolution, Vec<f
         tol: st.tol,
         force_tol: FORCE_TOLERANCE,
         force_x: st.force_x,
+        creepage_prescribed: st.creepage_prescribed,
         mu_n: st.mu_n,
         kappa,
         p_scale,

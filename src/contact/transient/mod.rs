@@ -303,7 +303,11 @@ impl Transient {
             }
         }
         let force: f64 = (0..n).map(|k| p[2 * k] * area[k]).sum();
-        let r_force = (force - input.force_x) / (mu * input.patch.normal_force);
+        // A prescribed creepage leaves no force equation.
+        let r_force = match input.creepage_x {
+            Some(_) => 0.0,
+            None => (force - input.force_x) / (mu * input.patch.normal_force),
+        };
         Eval { p, d, r, r_force }
     }
 
@@ -386,7 +390,7 @@ impl Transient {
                 h1 += hx * rhs[(2 * k, 0)] + hy * rhs[(2 * k + 1, 0)];
                 h2 += hx * rhs[(2 * k, 1)] + hy * rhs[(2 * k + 1, 1)];
             }
-            let dxi = -(ev.r_force + h1) / h2;
+            let dxi = if input.creepage_x.is_some() { 0.0 } else { -(ev.r_force + h1) / h2 };
             let finite = dxi.is_finite() && (0..2 * n).all(|i| rhs[(i, 0)].is_finite() && rhs[(i, 1)].is_finite());
             if !finite {
                 if fresh {
@@ -491,6 +495,9 @@ impl Transient {
             }
             None => (vec![0.0; 2 * n], 0.0),
         };
+        if let Some(prescribed) = input.creepage_x {
+            xi = prescribed;
+        }
         if let (StepSolver::GaussSeidel, ElasticModel::Exact(e)) = (self.solver, &self.model) {
             let cr0 = Creepage { x: 0.0, y: input.creepage_y, spin: input.spin };
             let w0: Vec<f64> = (0..n).flat_map(|k| self.rigid(k, frame, cr0)).collect();
@@ -506,6 +513,7 @@ impl Transient {
                 w0: &w0,
                 u_o: &u_o,
                 force_x: force,
+                creepage_prescribed: input.creepage_x.is_some(),
                 mu_n: input.friction * patch.normal_force,
                 tol: self.tolerance * self.eps,
                 max_sweeps: GS_MAX_SWEEPS,

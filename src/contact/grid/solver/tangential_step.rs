@@ -71,6 +71,7 @@ impl FixedGrid {
             })
             .collect();
         let Earlier { u_prev, beta, s0, p0, xi0 } = self.earlier(&set);
+        let xi0 = input.creepage_x.unwrap_or(xi0);
         let law = self.law();
         let coupling = match folded {
             Some(f) => Coupling::Folded(f),
@@ -89,6 +90,7 @@ impl FixedGrid {
             w0: &w0,
             u_prev: &u_prev,
             force_x: force,
+            creepage_prescribed: input.creepage_x.is_some(),
             mu_n: mu * n_force,
             // Gauss-Seidel's creepage stiffness, set below where it runs.
             kappa: f64::NAN,

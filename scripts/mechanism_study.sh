@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Why corrugation grows (issue 24): growth-rate spectra with the consistent
+# chain (configs/growth_discrete.toml: UIC60 on discrete sleepers, one 0.6 m
+# bay, random roughness 10-120 mm, the exact model on the 0.4 mm fixed grid
+# with the rail's corrugation in the normal contact) at 60, 100 and 140
+# km/h for each mechanism:
+#   single  one wheel, the longitudinal force prescribed (20 kN; today's scene)
+#   bogie   two wheels 2.5 m apart on the rail, coupled through its
+#           transfer receptances (vehicle.wheels = [0.0, 2.5])
+#   curve   the leading wheelset in a curve: lateral creepage 5e-3 and spin
+#           0.5 1/m, no longitudinal force (the lateral force saturates)
+# then `corrugation_post speeds` per mechanism (growth rate against
+# wavelength and frequency with the track's resonances; speeds_summary.csv:
+# each study's peak wavelength, frequency and rate) and one table of all
+# of them, $out/mechanisms.csv.
+# Output in out/mechanism_study/. About 40 minutes on 2 cores with the
+# configs' 40 passages; PASSES=N runs N passages per study; CASES="single
+# bogie" picks mechanisms.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=out/mechanism_study
+bash scripts/setup.sh
+cargo build --release --quiet
+mkdir -p "$out"
+bin=./target/release/corrugation
+short=()
+if [ -n "${PASSES:-}" ]; then
+  short=(--set "growth.passes=$PASSES" --set "growth.store_every=$PASSES" --set "growth.checkpoint_every=$PASSES")
+fi
+"$bin" track --overwrite configs/growth_discrete.toml -o "$out/track.h5" --set 'vehicle.wheels=[0.0, 2.5]'
+# mechanism NAME [--set ...]: the three speeds, files $out/NAME_v<km/h>.h5.
+mechanism() {
+  local name=$1; shift
+  local made=()
+  for case in "60 16.67" "100 27.78" "140 38.89"; do
+    local f="$out/${name}_v${case% *}.h5"
+    echo "running $name at ${case% *} km/h"
+    "$bin" run --overwrite configs/growth_discrete.toml -o "$f" --set "rolling.speed=${case#* }" \
+      --set 'growth.contact_history=[]' --set "output.title=\"$name, ${case% *} km/h\"" "$@" "${short[@]}" \
+      2> "${f%.h5}.log"
+    grep -E "^(wrote|warning)" "${f%.h5}.log" || true
+    made+=("$f")
+  done
+  .venv/bin/corrugation-post speeds "${made[@]}" --track "$out/track.h5" --out "$out/$name"
+}
+for name in ${CASES:-single bogie curve}; do
+  case $name in
+    single) mechanism single ;;
+    bogie) mechanism bogie --set 'vehicle.wheels=[0.0, 2.5]' ;;
+    curve) mechanism curve --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 --set load.longitudinal_force=0 ;;
+    *) echo "unknown mechanism $name (single, bogie, curve)" >&2; exit 2 ;;
+  esac
+done
+# One table: mechanism, speed, peak wavelength / frequency / rate.
+{
+  head -n 1 "$out/$(echo ${CASES:-single bogie curve} | cut -d' ' -f1)/speeds_summary.csv" | sed 's/^/mechanism,/'
+  for name in ${CASES:-single bogie curve}; do
+    tail -n +2 "$out/$name/speeds_summary.csv" | sed "s/^/$name,/"
+  done
+} > "$out/mechanisms.csv"
+cat "$out/mechanisms.csv"
