@@ -7,12 +7,13 @@ use crate::contact::fastsim::Fastsim;
 use crate::contact::grid::{Alignment, FixedGrid, spec::FixedGridSpec};
 use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use crate::contact::transient::{ElasticModel, Transient};
-use crate::contact::{Elements, EllipseMesh, PressureShape, TangentialSolver};
+use crate::contact::{Elements, EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::TrackDynamics;
 use crate::dynamics::discrete::DiscreteTrack;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
+use crate::dynamics::torsion::{TorsionFeedback, WheelsetTorsion};
 use crate::dynamics::vehicle::{CoupledReceptance, DiscreteVehicle};
 use crate::hertz::{HertzPatch, HertzShape};
 use crate::params::{ContactGrid, ContactModel, DynamicsKind, NormalContact, Scene};
@@ -62,6 +63,8 @@ pub fn derive(scene: &Scene) -> Derived {
         substeps: scene.wear_substeps,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,
+        torsion: torsion_feedback(scene, &shape),
+        dynamic_creepage_x: None,
         surface: None,
     };
     Derived {
@@ -240,6 +243,44 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
     let nx = ((r.x_max - r.x_min) / r.dx).round().max(2.0) as usize;
     let full = RailGrid::new(r.x_min, r.x_max, r.dx, r.half_width, r.dy);
     RailGrid { x_min: r.x_min, dx: (r.x_max - r.x_min) / nx as f64, nx, ..full }
+}
+
+/// The wheelset's torsional feedback (`[wheelset]` with the creepage
+/// prescribed): the torsion of [`crate::dynamics::torsion`] with the steady
+/// creep curve's slopes `dF/dN` and `dF/dxi` at the mean load and
+/// creepage, by central differences (1e-3 relative steps) of FASTSIM's
+/// steady solution on a 40 x 40 mesh with the Hertz pressure (Kalker,
+/// *Veh. Syst. Dyn.* 11 (1982) 1-13; quasi-static).
+pub fn torsion_feedback(scene: &Scene, shape: &HertzShape) -> Option<TorsionFeedback> {
+    let (w, xi0) = (scene.wheelset?, scene.creepage_x?);
+    let elastic = scene.material.elastic;
+    let coefficients = creep_coefficients(shape.aspect(), elastic.poisson_ratio).expect("validated aspect");
+    let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, elastic.shear_modulus());
+    let n0 = scene.loads.normal_force;
+    let force = |n: f64, xi: f64| {
+        let input = StepInput {
+            patch: shape.patch(n).expect("validated loads keep N > 0"),
+            speed: scene.speed,
+            dt: 0.0,
+            friction: scene.material.friction,
+            force_x: 0.0,
+            creepage_x: Some(xi),
+            creepage_y: scene.creepage_y,
+            spin: scene.spin,
+            position: 0.0,
+        };
+        fastsim.solve_force(&input).expect("FASTSIM at a prescribed creepage").force_x
+    };
+    let (dn, dxi) = (1e-3 * n0, 1e-3 * xi0.abs().max(1e-5));
+    let force_per_normal = (force(n0 + dn, xi0) - force(n0 - dn, xi0)) / (2.0 * dn);
+    let force_per_creepage = (force(n0, xi0 + dxi) - force(n0, xi0 - dxi)) / (2.0 * dxi);
+    let torsion = WheelsetTorsion {
+        stiffness: w.stiffness,
+        loss_factor: w.loss_factor,
+        inertia: w.inertia,
+        radius: scene.geometry.wheel_radius,
+    };
+    Some(TorsionFeedback { torsion, force_per_normal, force_per_creepage })
 }
 
 /// The track model of a growth study, if it has one. The discrete model

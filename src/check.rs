@@ -10,6 +10,7 @@ use corrugation::model_choice::{AccuracyMap, SAFETY, departures};
 use corrugation::params::TrafficScaling;
 use corrugation::params::{AutoChoice, Candidate};
 use corrugation::params::{DynamicsKind, NormalContact};
+use std::f64::consts::PI;
 
 /// What contact.model = "auto" chose and why.
 fn print_auto(a: &AutoChoice, normal: NormalContact) {
@@ -184,6 +185,22 @@ pub fn print_check(r: &Resolved) {
             s.vehicle.wheels.len(),
             s.vehicle.wheels,
             s.vehicle.distances()
+        );
+    }
+    if let Some(t) = &d.passage.torsion {
+        let w = &t.torsion;
+        let corner = t.force_per_creepage.abs() * w.radius * w.radius / (w.inertia * s.speed) / (2.0 * PI);
+        println!(
+            "wheelset           torsional mode {:.1} Hz (k_t {:.3e} N m/rad, J {} kg m^2 per wheel), anti-resonance \
+             {:.1} Hz; creep curve dF/dN = {:.4}, dF/dxi = {:.4e} N (FASTSIM, mean state); the creepage varies with \
+             the dynamic normal force: the torque held below the resonance, the creepage above {:.0} Hz",
+            w.resonance(),
+            w.stiffness,
+            w.inertia,
+            (w.stiffness / w.inertia).sqrt() / (2.0 * PI),
+            t.force_per_normal,
+            t.force_per_creepage,
+            corner
         );
     }
     let cost = corrugation::cost::estimate(s);

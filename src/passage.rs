@@ -9,6 +9,7 @@
 //! progress is reported through a callback.
 
 use crate::contact::{ContactError, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
+use crate::dynamics::torsion::TorsionFeedback;
 use crate::hertz::{HertzError, HertzShape};
 use crate::loads::ImposedLoads;
 use crate::rail_grid::RailGrid;
@@ -46,6 +47,12 @@ pub struct PassageSpec {
     pub wear_window: (f64, f64),
     /// Dynamic normal force added to the imposed loads (growth studies).
     pub dynamic_normal_force: Option<PeriodicSignal>,
+    /// The wheelset's torsion, which turns the dynamic normal force into a
+    /// variation of the prescribed creepage (growth studies with
+    /// `[wheelset]`; [`crate::dynamics::torsion`]).
+    pub torsion: Option<TorsionFeedback>,
+    /// Variation of the prescribed creepage added to `creepage_x` (1).
+    pub dynamic_creepage_x: Option<PeriodicSignal>,
     /// The rail surface in the normal problem (`contact.normal =
     /// "linear"` or `"profile"`); `None`: the Hertz contact of the
     /// curvatures.
@@ -340,7 +347,7 @@ pub fn run_passage(
             dt,
             friction: spec.friction,
             force_x: spec.loads.longitudinal_force_at(x),
-            creepage_x: spec.creepage_x,
+            creepage_x: spec.creepage_x.map(|c| c + spec.dynamic_creepage_x.as_ref().map_or(0.0, |d| d.at(x))),
             creepage_y: spec.creepage_y,
             spin: spec.spin,
             position: x,

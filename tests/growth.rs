@@ -25,6 +25,8 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
         substeps: 4,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,
+        torsion: None,
+        dynamic_creepage_x: None,
         surface: None,
     };
     let dx = 1e-4;

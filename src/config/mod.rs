@@ -16,6 +16,7 @@ mod track;
 pub mod traffic;
 pub mod units;
 pub mod vehicle;
+pub mod wheelset;
 
 use crate::contact::friction::FrictionLaw;
 use crate::contact::grid::GridScheme;
@@ -274,6 +275,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         traffic::BaseClass { speed, normal_force: normal, longitudinal_force: longitudinal, unsprung_mass: None };
     let growth = growth::read(&mut root, &mut resolved, base, errors);
     let vehicle = vehicle::read(&mut root, &mut resolved, errors);
+    let wheelset = wheelset::read(&mut root, &mut resolved, errors);
     // The track matters to growth studies (and is read when given).
     let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
         track::read(&mut root, &mut resolved, errors)
@@ -355,7 +357,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into(),
         ));
     }
-    let Some(vehicle) = vehicle else {
+    let (Some(vehicle), Some(wheelset)) = (vehicle, wheelset) else {
         return (None, resolved);
     };
     let Some(track) = track else {
@@ -476,9 +478,11 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         growth,
         track,
         vehicle,
+        wheelset,
     };
     check_sleeper_bays(&scene, errors);
     vehicle::check(&scene, errors);
+    wheelset::check(&scene, errors);
     contact::check_grid_size(&scene, errors);
     contact::check_periodic_steps(&scene, errors);
     // contact.solver = "auto" on the fixed grid: the cheaper tangential

@@ -23,6 +23,7 @@ pub mod discrete;
 pub mod discrete_dynamics;
 pub mod rail;
 pub mod receptance;
+pub mod torsion;
 pub mod track;
 pub mod track_response;
 pub mod vehicle;

@@ -328,6 +328,12 @@ fn passage_with(
     let wheels = forces.len();
     for (w, force) in forces.iter().enumerate() {
         spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: force.clone() });
+        // The wheelset's torsion: the creepage's answer to this force.
+        spec.dynamic_creepage_x = spec.torsion.filter(|_| dynamics.is_some()).map(|t| PeriodicSignal {
+            x0: grid.x_min,
+            dx: grid.dx,
+            values: t.creepage(force, grid.dx, spec.speed),
+        });
         let mut report = |done: usize, total: usize| progress(w * total + done, wheels * total);
         let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, &mut report)?;
         wear += &fold_periodic(&passage.wear, &ext, grid);

@@ -311,6 +311,17 @@ impl VehicleParams {
     }
 }
 
+/// The wheelset's torsion (`[wheelset]`; [`crate::dynamics::torsion`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct WheelsetParams {
+    /// Axle torsional stiffness between the wheels (N m/rad).
+    pub stiffness: f64,
+    /// Polar moment of inertia of each wheel with its half axle (kg m^2).
+    pub inertia: f64,
+    /// Loss factor of the axle's torsion (1).
+    pub loss_factor: f64,
+}
+
 /// Output options.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OutputParams {
@@ -360,6 +371,8 @@ pub struct Scene {
     pub track: crate::dynamics::track::TrackConfig,
     /// The vehicle's wheels on the rail (`[vehicle]`; one by default).
     pub vehicle: VehicleParams,
+    /// The wheelset's torsional mode (`[wheelset]`), if modelled.
+    pub wheelset: Option<WheelsetParams>,
 }
 
 impl Scene {
