@@ -5,6 +5,10 @@
 # with the rail's corrugation in the normal contact) at 60, 100 and 140
 # km/h for each mechanism:
 #   single  one wheel, the longitudinal force prescribed (20 kN; today's scene)
+#   torsion one wheel, creepage-controlled (-1.26e-3, the exact model's
+#           steady creepage at 20 kN) with the wheelset's torsional mode
+#           ([wheelset] defaults: 71 Hz), the creepage varying with the
+#           dynamic normal force
 #   bogie   two wheels 2.5 m apart on the rail, coupled through its
 #           transfer receptances (vehicle.wheels = [0.0, 2.5])
 #   curve   the leading wheelset in a curve: lateral creepage 5e-3 and spin
@@ -14,7 +18,7 @@
 # each study's peak wavelength, frequency and rate) and one table of all
 # of them, $out/mechanisms.csv.
 # Output in out/mechanism_study/. About 40 minutes on 2 cores with the
-# configs' 40 passages; PASSES=N runs N passages per study; CASES="single
+# config's 40 passages; PASSES=N runs N passages per study; CASES="single
 # bogie" picks mechanisms.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,14 +32,17 @@ if [ -n "${PASSES:-}" ]; then
   short=(--set "growth.passes=$PASSES" --set "growth.store_every=$PASSES" --set "growth.checkpoint_every=$PASSES")
 fi
 "$bin" track --overwrite configs/growth_discrete.toml -o "$out/track.h5" --set 'vehicle.wheels=[0.0, 2.5]'
-# mechanism NAME [--set ...]: the three speeds, files $out/NAME_v<km/h>.h5.
+# Creepage control needs the config without its longitudinal force.
+grep -v '^longitudinal_force' configs/growth_discrete.toml > "$out/creepage.toml"
+printf '\n[wheelset]\n' >> "$out/creepage.toml"
+# mechanism NAME CONFIG [--set ...]: the three speeds, files $out/NAME_v<km/h>.h5.
 mechanism() {
-  local name=$1; shift
+  local name=$1 config=$2; shift 2
   local made=()
   for case in "60 16.67" "100 27.78" "140 38.89"; do
     local f="$out/${name}_v${case% *}.h5"
     echo "running $name at ${case% *} km/h"
-    "$bin" run --overwrite configs/growth_discrete.toml -o "$f" --set "rolling.speed=${case#* }" \
+    "$bin" run --overwrite "$config" -o "$f" --set "rolling.speed=${case#* }" \
       --set 'growth.contact_history=[]' --set "output.title=\"$name, ${case% *} km/h\"" "$@" "${short[@]}" \
       2> "${f%.h5}.log"
     grep -E "^(wrote|warning)" "${f%.h5}.log" || true
@@ -43,18 +50,21 @@ mechanism() {
   done
   .venv/bin/corrugation-post speeds "${made[@]}" --track "$out/track.h5" --out "$out/$name"
 }
-for name in ${CASES:-single bogie curve}; do
+cases=${CASES:-single torsion bogie curve}
+base=configs/growth_discrete.toml
+for name in $cases; do
   case $name in
-    single) mechanism single ;;
-    bogie) mechanism bogie --set 'vehicle.wheels=[0.0, 2.5]' ;;
-    curve) mechanism curve --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 --set load.longitudinal_force=0 ;;
-    *) echo "unknown mechanism $name (single, bogie, curve)" >&2; exit 2 ;;
+    single) mechanism single $base ;;
+    torsion) mechanism torsion "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-1.26e-3 ;;
+    bogie) mechanism bogie $base --set 'vehicle.wheels=[0.0, 2.5]' ;;
+    curve) mechanism curve $base --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 --set load.longitudinal_force=0 ;;
+    *) echo "unknown mechanism $name (single, torsion, bogie, curve)" >&2; exit 2 ;;
   esac
 done
 # One table: mechanism, speed, peak wavelength / frequency / rate.
 {
-  head -n 1 "$out/$(echo ${CASES:-single bogie curve} | cut -d' ' -f1)/speeds_summary.csv" | sed 's/^/mechanism,/'
-  for name in ${CASES:-single bogie curve}; do
+  head -n 1 "$out/$(echo $cases | cut -d' ' -f1)/speeds_summary.csv" | sed 's/^/mechanism,/'
+  for name in $cases; do
     tail -n +2 "$out/$name/speeds_summary.csv" | sed "s/^/$name,/"
   done
 } > "$out/mechanisms.csv"
