@@ -14,7 +14,7 @@ use crate::dynamics::discrete::DiscreteTrack;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
 use crate::dynamics::torsion::{TorsionFeedback, WheelsetTorsion};
-use crate::dynamics::vehicle::{CoupledReceptance, DiscreteVehicle};
+use crate::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
 use crate::hertz::{HertzPatch, HertzShape};
 use crate::params::{ContactGrid, ContactModel, DynamicsKind, NormalContact, Scene};
 use crate::passage::PassageSpec;
@@ -58,7 +58,7 @@ pub fn derive(scene: &Scene) -> Derived {
     // a prescribed creepage than the creepage at a prescribed force.
     let start = match (&scene.growth, scene.creepage_x) {
         (Some(_), Some(_)) => {
-            let need = scene.rail.x_min - CREEPAGE_RUN_IN * 2.0 * patch(loads.max_normal_force()).a;
+            let need = scene.rail.x_min - CREEPAGE_RUN_IN * 2.0 * patch(scene.vehicle.max_normal_force(loads)).a;
             let step = scene.contact.model.fixed_grid().map_or(scene.step_length, |f| f.dx);
             scene.start - ((scene.start - need) / step).ceil().max(0.0) * step
         }
@@ -77,6 +77,10 @@ pub fn derive(scene: &Scene) -> Derived {
         creepage_y: scene.creepage_y,
         spin: scene.spin,
         loads: loads.clone(),
+        wheel_loads: match (&scene.vehicle.normal_force, &scene.vehicle.longitudinal_force) {
+            (None, None) => Vec::new(),
+            _ => (0..scene.vehicle.wheels.len()).map(|i| scene.vehicle.wheel_loads(i, loads)).collect(),
+        },
         start,
         end,
         step_length: scene.step_length,
@@ -92,7 +96,7 @@ pub fn derive(scene: &Scene) -> Derived {
         shape,
         patch_mean: patch(loads.normal_force),
         patch_min: shape.patch(loads.min_normal_force()).ok(),
-        patch_max: patch(loads.max_normal_force()),
+        patch_max: patch(scene.vehicle.max_normal_force(loads)),
         passage,
         grid: derive_grid(scene),
     }
@@ -310,38 +314,47 @@ pub fn torsion_feedback(scene: &Scene, shape: &HertzShape) -> Option<TorsionFeed
 /// (`vehicle.wheels`) are coupled through the rail
 /// ([`crate::dynamics::vehicle`]).
 pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamics>> {
-    let k_h = hertz_stiffness(d.patch_mean.normal_force, d.patch_mean.approach);
-    let wheels = &scene.vehicle.wheels;
+    let v = &scene.vehicle;
+    // Each wheel's mass, and its contact spring at its mean load.
+    let coupled = |mass: f64| -> Vec<CoupledWheel> {
+        (0..v.wheels.len())
+            .map(|i| {
+                let n0 = v.wheel_loads(i, &scene.loads).normal_force;
+                let p = d.shape.patch(n0).expect("validated loads keep N > 0");
+                CoupledWheel {
+                    behind: v.wheels[i],
+                    wheel: WheelParams { unsprung_mass: v.wheel_mass(i, mass) },
+                    contact_stiffness: hertz_stiffness(p.normal_force, p.approach),
+                    mean_load: n0,
+                }
+            })
+            .collect()
+    };
     match scene.growth.as_ref()?.dynamics {
         DynamicsKind::Imposed => None,
         DynamicsKind::Receptance { unsprung_mass } => {
-            let wheel = WheelParams { unsprung_mass };
-            let model = ReceptanceModel::new(scene.track.smeared(), wheel, k_h).expect("validated parameters");
+            let wheels = coupled(unsprung_mass);
+            let lead = wheels[0];
+            let model = ReceptanceModel::new(scene.track.smeared(), lead.wheel, lead.contact_stiffness)
+                .expect("validated parameters");
             if wheels.len() > 1 {
-                return Some(Box::new(CoupledReceptance { model, wheels: wheels.clone() }));
+                return Some(Box::new(CoupledReceptance { model, wheels }));
             }
             Some(Box::new(model))
         }
         DynamicsKind::Discrete { unsprung_mass } => {
             let grid = periodic_grid(scene);
+            let wheels = coupled(unsprung_mass);
+            let track = DiscreteTrack::new(&scene.track);
             if wheels.len() > 1 {
-                return Some(Box::new(DiscreteVehicle::new(
-                    DiscreteTrack::new(&scene.track),
-                    WheelParams { unsprung_mass },
-                    k_h,
-                    scene.loads.normal_force,
-                    wheels.clone(),
-                    grid.x_min,
-                    grid.nx,
-                    grid.dx,
-                    scene.speed,
-                )));
+                return Some(Box::new(DiscreteVehicle::new(track, wheels, grid.x_min, grid.nx, grid.dx, scene.speed)));
             }
+            let lead = wheels[0];
             Some(Box::new(DiscreteDynamics::new(
-                DiscreteTrack::new(&scene.track),
-                WheelParams { unsprung_mass },
-                k_h,
-                scene.loads.normal_force,
+                track,
+                lead.wheel,
+                lead.contact_stiffness,
+                lead.mean_load,
                 grid.x_min,
                 grid.nx,
                 grid.dx,

@@ -32,6 +32,9 @@ pub struct PassageSpec {
     pub spin: f64,
     /// Imposed loads along the rail.
     pub loads: ImposedLoads,
+    /// Each wheel's imposed loads where a growth study's wheels differ
+    /// (`[vehicle]` per wheel); empty: every wheel has `loads`.
+    pub wheel_loads: Vec<ImposedLoads>,
     /// Patch-centre position at the first step (m).
     pub start: f64,
     /// Patch-centre position at the last step (m).

@@ -18,6 +18,7 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
         creepage_y: 0.0,
         spin: 0.0,
         loads: ImposedLoads { normal_force: 1e5, longitudinal_force: 2e4, harmonics: vec![] },
+        wheel_loads: vec![],
         start: -0.015,
         end: length,
         step_length: 2e-4,

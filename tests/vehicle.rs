@@ -10,11 +10,18 @@ use corrugation::dynamics::discrete::DiscreteTrack;
 use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
 use corrugation::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams};
 use corrugation::dynamics::track::TrackConfig;
-use corrugation::dynamics::vehicle::{CoupledReceptance, DiscreteVehicle};
+use corrugation::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};
 use num_complex::Complex64;
 use std::f64::consts::PI;
+
+/// Wheels of 600 kg on a 1.8e9 N/m contact spring under 100 kN, `behind`
+/// the leading one.
+fn equal_wheels(behind: &[f64]) -> Vec<CoupledWheel> {
+    let wheel = WheelParams { unsprung_mass: 600.0 };
+    behind.iter().map(|&b| CoupledWheel { behind: b, wheel, contact_stiffness: 1.8e9, mean_load: 1e5 }).collect()
+}
 
 /// The continuous track's transfer receptance written out (Hetenyi's
 /// beam, independent of the library's): `exp(-b x) (cos b x + sin b x) /
@@ -38,7 +45,7 @@ fn two_wheels_on_the_continuous_track_against_the_closed_form() {
     let model =
         ReceptanceModel::new(TrackParams::uic60_default(), WheelParams { unsprung_mass: 600.0 }, 1.8e9).unwrap();
     let (spacing, speed) = (2.5, 27.78);
-    let bogie = CoupledReceptance { model, wheels: vec![0.0, spacing] };
+    let bogie = CoupledReceptance { model, wheels: equal_wheels(&[0.0, spacing]) };
     let mut worst = 0.0f64;
     for f in [50.0, 120.0, 333.3, 700.0, 1070.0, 2000.0] {
         let w = 2.0 * PI * f;
@@ -55,6 +62,25 @@ fn two_wheels_on_the_continuous_track_against_the_closed_form() {
         eprintln!("{f} Hz: |alpha_r(L) / c| = {:.3e}", (tr / c).norm());
     }
     assert!(worst < 1e-9, "closed form: {worst:e}");
+    // Unequal wheels (a 900 kg wheel on a 2.2e9 N/m spring behind): c_1,
+    // c_2 on the diagonal, H_0 = (c_2 - t exp(-i k L)) / (c_1 c_2 - t^2),
+    // H_1 = (c_1 - t exp(i k L)) / (c_1 c_2 - t^2).
+    let mut wheels = equal_wheels(&[0.0, spacing]);
+    (wheels[1].wheel, wheels[1].contact_stiffness) = (WheelParams { unsprung_mass: 900.0 }, 2.2e9);
+    let unequal = CoupledReceptance { model, wheels };
+    for f in [120.0, 1070.0] {
+        let w = 2.0 * PI * f;
+        let t = &model.track;
+        let c1 = model.wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(t, w, 0.0);
+        let c2 = WheelParams { unsprung_mass: 900.0 }.receptance(w) + 1.0 / 2.2e9 + hetenyi(t, w, 0.0);
+        let tr = hetenyi(t, w, spacing);
+        let k = w / speed;
+        let det = c1 * c2 - tr * tr;
+        let h = unequal.force_per_roughness(f, speed);
+        let lead = (c2 - tr * Complex64::from_polar(1.0, -k * spacing)) / det;
+        let trail = (c1 - tr * Complex64::from_polar(1.0, k * spacing)) / det;
+        assert!(((h[0] - lead) / lead).norm() < 1e-9 && ((h[1] - trail) / trail).norm() < 1e-9, "{f} Hz");
+    }
     // In phase and in anti-phase, on a profile harmonic whose frequency puts
     // a whole (half) number of wavelengths between the wheels.
     for (waves, sign) in [(3.0, 1.0), (3.5, -1.0)] {
@@ -100,11 +126,14 @@ fn one_wheel_of_the_discrete_vehicle_is_the_single_wheel_model() {
     let (wheel, k_h, load) = (WheelParams { unsprung_mass: 600.0 }, 1.8e9, 1e5);
     let track = DiscreteTrack::new(&TrackConfig::default());
     let single = DiscreteDynamics::new(track, wheel, k_h, load, 0.0, nodes, dx, speed);
-    let vehicle = DiscreteVehicle::new(track, wheel, k_h, load, vec![0.0], 0.0, nodes, dx, speed);
+    let vehicle = DiscreteVehicle::new(track, equal_wheels(&[0.0]), 0.0, nodes, dx, speed);
     let profile: Vec<f64> = (0..nodes)
         .map(|i| 1e-6 * ((0.37 * i as f64).sin() + (2.0 * PI * 23.0 * i as f64 / nodes as f64).cos()))
         .collect();
-    let (a, b) = (single.force_from_profile(&profile, dx, speed), vehicle.wheel_forces(&profile, dx, speed));
+    let (a, b) = (
+        single.force_from_profile(&profile, dx, speed),
+        vehicle.wheel_forces(std::slice::from_ref(&profile), dx, speed),
+    );
     assert_eq!(b.len(), 1);
     let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let worst = a.iter().zip(&b[0]).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
@@ -122,7 +151,7 @@ fn a_bogie_on_the_discrete_track_loads_each_wheel_with_the_others_deflection() {
     let (nodes, dx, speed) = (600, 1e-3, 27.78);
     let (wheel, k_h, load) = (WheelParams { unsprung_mass: 600.0 }, 1.8e9, 1e5);
     let track = DiscreteTrack::new(&TrackConfig::default());
-    let bogie = DiscreteVehicle::new(track, wheel, k_h, load, vec![0.0, 2.4], 0.0, nodes, dx, speed);
+    let bogie = DiscreteVehicle::new(track, equal_wheels(&[0.0, 2.4]), 0.0, nodes, dx, speed);
     let single = DiscreteDynamics::new(track, wheel, k_h, load, 0.0, nodes, dx, speed);
     let paths = bogie.parametric_profiles(nodes, dx);
     let path = single.parametric_profile(nodes, dx);
@@ -130,7 +159,7 @@ fn a_bogie_on_the_discrete_track_loads_each_wheel_with_the_others_deflection() {
     assert!((span(&paths[0]) - span(&paths[1])).abs() < 1e-6 * span(&path));
     assert!((span(&paths[0]) - span(&path)).abs() < 0.1 * span(&path), "{} vs {}", span(&paths[0]), span(&path));
     let smooth = vec![0.0; nodes];
-    let forces = bogie.wheel_forces(&smooth, dx, speed);
+    let forces = bogie.wheel_forces(&[smooth.clone(), smooth.clone()], dx, speed);
     let one = single.force_from_profile(&smooth, dx, speed);
     for f in &forces {
         assert!((span(f) - span(&one)).abs() < 0.2 * span(&one), "{} vs {}", span(f), span(&one));
@@ -172,6 +201,30 @@ fn wheels_far_apart_grow_the_rail_as_one_wheel() {
 }
 
 #[test]
+fn far_apart_wheels_of_different_loads_wear_the_rail_as_their_two_single_wheels() {
+    // Wheels of 100 and 80 kN (and 600 and 900 kg) 50 m apart on the
+    // damped track: one vehicle passage wears the rail as the mean of a
+    // 100 kN / 600 kg wheel's passage and an 80 kN / 900 kg wheel's
+    // (fixed traffic scale, the first passage's wear).
+    let dir = tempfile::tempdir().unwrap();
+    let fixed = ["track.pad_damping=1e6", "growth.adaptive=false", "growth.traffic_scale=1e3", "growth.passes=1"];
+    let with = |extra: &[&str]| fastsim(&[&fixed[..], extra].concat());
+    let files: Vec<_> = ["heavy", "light", "pair"].iter().map(|n| dir.path().join(format!("{n}.h5"))).collect();
+    run_scene(&with(&[]), &files[0], &mut |_| {}).unwrap();
+    run_scene(&with(&["load.normal_force=8e4", "dynamics.unsprung_mass=900"]), &files[1], &mut |_| {}).unwrap();
+    let pair = ["vehicle.wheels=[0.0, 50.0]", "vehicle.normal_force=[1e5, 8e4]", "vehicle.unsprung_mass=[600, 900]"];
+    run_scene(&with(&pair), &files[2], &mut |_| {}).unwrap();
+    let wear: Vec<_> = files.iter().map(|f| read_f64(f, "rail", "wear").unwrap()).collect();
+    let scale = wear[0].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = wear[2]
+        .iter()
+        .zip(wear[0].iter().zip(wear[1].iter()))
+        .fold(0.0f64, |m, (p, (a, b))| m.max((p - 0.5 * (a + b)).abs()));
+    eprintln!("pair against the mean of its two wheels: {worst:.3e} of {scale:.3e} m");
+    assert!(worst < 1e-9 * scale, "{worst:e} of {scale:e}");
+}
+
+#[test]
 fn a_bogie_changes_the_growth_and_resumes_bit_for_bit() {
     // Two wheels 2.5 m apart on the default track: the wave between them
     // changes every wheel's force, so the profile differs from the single
@@ -210,9 +263,19 @@ fn several_wheels_need_a_track_model_and_room() {
         (single, vec!["vehicle.wheels=[0.0, 2.5]"], "a single passage rolls one wheel"),
         (growth, vec!["vehicle.wheels=[0.0, 2.5]", "dynamics.model=imposed"], "dynamics.model = \"imposed\""),
         (growth, vec!["vehicle.wheels=[0.0, 0.8]"], "closer than a wheel's diameter (2 geometry.wheel_radius = 1 m)"),
+        (growth, vec!["vehicle.wheels=[0.0, 2.5]", "vehicle.normal_force=[1e5]"], "has 1 values; one per wheel"),
+        (
+            growth,
+            vec![
+                "vehicle.wheels=[0.0, 2.5]",
+                "vehicle.longitudinal_force=[2e4, 4e4]",
+                "vehicle.normal_force=[1e5, 9e4]",
+            ],
+            "wheel 2: |F_x| reaches",
+        ),
     ] {
         let e = errors(text, &set);
         assert_eq!(e.len(), 1, "{set:?}: {e:?}");
-        assert!(e[0].starts_with("vehicle.wheels") && e[0].contains(expected), "{set:?}: {}", e[0]);
+        assert!(e[0].starts_with("vehicle.") && e[0].contains(expected), "{set:?}: {}", e[0]);
     }
 }

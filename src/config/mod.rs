@@ -180,7 +180,8 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let mut s = section(&mut root, "rolling", errors);
     let speed = s.f64("speed", None, Range::OpenClosed(0.0, 200.0));
     let creepage_x_given = s.has("creepage_x");
-    let creepage_x = s.f64("creepage_x", Some(0.0), Range::Closed(-0.1, 0.1));
+    // (Recorded in the resolved config only where given: force control has none.)
+    let creepage_x = if creepage_x_given { s.f64("creepage_x", None, Range::Closed(-0.1, 0.1)) } else { Some(0.0) };
     let creepage_y = s.f64("creepage_y", Some(0.0), Range::Closed(-0.1, 0.1));
     let spin = s.f64("spin", Some(0.0), Range::Closed(-100.0, 100.0));
     resolved.insert("rolling".into(), Value::Table(s.finish()));
@@ -370,10 +371,22 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let max_normal = match &growth {
         Some(g) => {
             check_classes(&g.classes, &loads, mu, errors);
-            g.classes.iter().map(|c| c.loads(&loads).max_normal_force()).fold(0.0, f64::max)
+            g.classes.iter().map(|c| vehicle.max_normal_force(&c.loads(&loads))).fold(0.0, f64::max)
         }
-        None => loads.max_normal_force(),
+        None => vehicle.max_normal_force(&loads),
     };
+    // Each wheel's own loads against friction.
+    if vehicle.normal_force.is_some() || vehicle.longitudinal_force.is_some() {
+        for i in 0..vehicle.wheels.len() {
+            if let Some(problem) = load_problem(&vehicle.wheel_loads(i, &loads), mu) {
+                let key = if vehicle.longitudinal_force.is_some() { "longitudinal_force" } else { "normal_force" };
+                errors.push(ConfigError::new(
+                    &format!("vehicle.{key}"),
+                    format!("wheel {}: {}", i + 1, problem.describe()),
+                ));
+            }
+        }
+    }
     if let Some(p) = shape.and_then(|s| s.patch(max_normal).ok())
         && half_width < p.b
     {
@@ -599,6 +612,20 @@ enum LoadProblem {
         /// Largest |F_x| (N).
         f_max: f64,
     },
+}
+
+impl LoadProblem {
+    /// The problem in words.
+    fn describe(&self) -> String {
+        match self {
+            LoadProblem::PullsWithoutContact { n_min, f_max } => {
+                format!("N reaches {n_min:.6e} N <= 0 (contact lost) while |F_x| reaches {f_max:.6e} N")
+            }
+            LoadProblem::FullSliding { limit, f_max } => {
+                format!("|F_x| reaches {f_max:.6e} N, which must be < mu * min N = {limit:.6e} N (full sliding)")
+            }
+        }
+    }
 }
 
 /// What keeps `loads` from being run with friction `mu`, if anything.

@@ -34,8 +34,29 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         }
         Some(w)
     });
+    // Per wheel where they differ: lists as long as `wheels`.
+    let n = wheels.as_ref().map_or(0, Vec::len);
+    let mut per_wheel = |key: &str, range: Range, unit: &str| -> Option<Option<Vec<f64>>> {
+        if !s.has(key) {
+            return Some(None);
+        }
+        let v = s.f64_list(key, Vec::new(), range, MAX_WHEELS)?;
+        if n > 0 && v.len() != n {
+            s.error(key, format!("has {} values; one per wheel of vehicle.wheels ({n}), in {unit}", v.len()));
+            return None;
+        }
+        Some(Some(v))
+    };
+    let unsprung_mass = per_wheel("unsprung_mass", Range::OpenClosed(0.0, 1e4), "kg");
+    let normal_force = per_wheel("normal_force", Range::Positive, "N");
+    let longitudinal_force = per_wheel("longitudinal_force", Range::Finite, "N");
     resolved.insert("vehicle".into(), Value::Table(s.finish()));
-    Some(VehicleParams { wheels: wheels? })
+    Some(VehicleParams {
+        wheels: wheels?,
+        unsprung_mass: unsprung_mass?,
+        normal_force: normal_force?,
+        longitudinal_force: longitudinal_force?,
+    })
 }
 
 /// Whether the scene's wheels fit the model that couples them: several
@@ -64,6 +85,26 @@ pub(super) fn check(scene: &Scene, errors: &mut Vec<ConfigError>) {
             ),
         )),
         Some(_) => {}
+    }
+    let v = &scene.vehicle;
+    let lists = [("unsprung_mass", v.unsprung_mass.is_some()), ("normal_force", v.normal_force.is_some())];
+    let mix = scene.growth.as_ref().is_some_and(|g| super::traffic::is_mix(&g.classes));
+    for (key, _) in lists.iter().filter(|(_, given)| *given && mix) {
+        errors.push(ConfigError::new(
+            &format!("vehicle.{key}"),
+            "per wheel with a [traffic] mix: the classes set one value per class; give it per class".into(),
+        ));
+    }
+    if v.longitudinal_force.is_some() && scene.creepage_x.is_some() {
+        errors.push(ConfigError::new(
+            "vehicle.longitudinal_force",
+            "is a force, but load.control = \"creepage\" prescribes the creepage rolling.creepage_x".into(),
+        ));
+    } else if v.longitudinal_force.is_some() && mix {
+        errors.push(ConfigError::new(
+            "vehicle.longitudinal_force",
+            "per wheel with a [traffic] mix: the classes set one value per class; give it per class".into(),
+        ));
     }
     let diameter = 2.0 * scene.geometry.wheel_radius;
     if let Some(k) = (1..wheels.len()).find(|&k| wheels[k] - wheels[k - 1] < diameter) {

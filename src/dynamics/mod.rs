@@ -61,11 +61,13 @@ pub trait TrackDynamics {
     }
 
     /// The dynamic normal force on each wheel (N, zero mean), `[wheel][j]`
-    /// the force on the wheel when it is at `X_j = j dx` (the profile's
-    /// samples, as [`Self::force_from_profile`]); [`Self::force_from_profile`]
-    /// is the leading wheel's.
-    fn wheel_forces(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<Vec<f64>> {
-        vec![self.force_from_profile(profile, dx, speed)]
+    /// the force on the wheel when it is at `X_j = j dx`, from the profile
+    /// each wheel sees (`profiles[wheel]`, sampled as in
+    /// [`Self::force_from_profile`]; wheels of different loads see it
+    /// through different patches); [`Self::force_from_profile`] is the
+    /// force of every wheel seeing the same profile, the leading wheel's.
+    fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+        vec![self.force_from_profile(&profiles[0], dx, speed)]
     }
 }
 

@@ -39,7 +39,6 @@
 //! loads (the parametric excitation).
 
 use super::TrackDynamics;
-use super::apply_periodic_response;
 use super::discrete::DiscreteTrack;
 use super::discrete_dynamics::harmonics;
 use super::receptance::{ReceptanceModel, WheelParams};
@@ -55,46 +54,116 @@ use std::f64::consts::PI;
 /// half bay).
 pub const BAY_PLACES: usize = 16;
 
-/// `[M^-1]` of eq. 1 for the receptance matrix `a` (row-major `n x n`, m/N)
-/// and the wheel and contact receptance `own` (m/N) on its diagonal.
-fn inverse(a: &[Complex64], own: Complex64, n: usize) -> DMatrix<Complex64> {
-    let m = DMatrix::from_fn(n, n, |i, j| a[i * n + j] + if i == j { own } else { Complex64::new(0.0, 0.0) });
+/// One wheel of the vehicle as the track sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoupledWheel {
+    /// Distance behind the leading wheel (m).
+    pub behind: f64,
+    /// The wheel (unsprung mass).
+    pub wheel: WheelParams,
+    /// Linearised Hertz contact stiffness at its mean load (N/m).
+    pub contact_stiffness: f64,
+    /// Its mean normal force (N), for the parametric excitation.
+    pub mean_load: f64,
+}
+
+impl CoupledWheel {
+    /// Its wheel and contact receptance `alpha_w + alpha_c` (m/N).
+    fn own(&self, omega: f64) -> Complex64 {
+        self.wheel.receptance(omega) + 1.0 / self.contact_stiffness
+    }
+}
+
+/// `[M^-1]` of eq. 1 for the rail's receptance matrix `a` (row-major `n x
+/// n`, m/N) and the wheels' own receptances on its diagonal (m/N).
+fn inverse(a: &[Complex64], own: &[Complex64]) -> DMatrix<Complex64> {
+    let n = own.len();
+    let m = DMatrix::from_fn(n, n, |i, j| a[i * n + j] + if i == j { own[i] } else { Complex64::new(0.0, 0.0) });
     m.try_inverse().expect("a passive track's receptance matrix plus the wheels' is invertible")
+}
+
+/// Each wheel's force from each wheel's input by a coupling per harmonic:
+/// `P_i = sum_j G_ij(f) Q_j` at `f = V m / L` (signed harmonic `m`),
+/// `G(-f) = conj G(f)`, the Nyquist harmonic by `Re G` and the mean
+/// dropped (as [`super::apply_periodic_response`]). `coupling(bin)` gives `G` at
+/// the harmonic `bin = 1..=N/2`.
+fn couple(inputs: &[Vec<f64>], coupling: impl Fn(usize) -> DMatrix<Complex64>) -> Vec<Vec<f64>> {
+    let (n, nodes) = (inputs.len(), inputs[0].len());
+    let mut planner = FftPlanner::<f64>::new();
+    let (fwd, inv) = (planner.plan_fft_forward(nodes), planner.plan_fft_inverse(nodes));
+    let spectra: Vec<Vec<Complex64>> = inputs
+        .iter()
+        .map(|q| {
+            let mut buf: Vec<Complex64> = q.iter().map(|v| Complex64::new(*v, 0.0)).collect();
+            fwd.process(&mut buf);
+            buf
+        })
+        .collect();
+    let mut out = vec![vec![Complex64::new(0.0, 0.0); nodes]; n];
+    for bin in 1..=nodes / 2 {
+        let g = coupling(bin);
+        let g = if 2 * bin == nodes { g.map(|v| Complex64::new(v.re, 0.0)) } else { g };
+        for i in 0..n {
+            let (mut up, mut down) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
+            for j in 0..n {
+                up += g[(i, j)] * spectra[j][bin];
+                down += g[(i, j)].conj() * spectra[j][nodes - bin];
+            }
+            out[i][bin] = up;
+            if 2 * bin != nodes {
+                out[i][nodes - bin] = down;
+            }
+        }
+    }
+    out.into_iter()
+        .map(|mut p| {
+            inv.process(&mut p);
+            p.iter().map(|c| c.re / nodes as f64).collect()
+        })
+        .collect()
 }
 
 /// The wheels coupled through the continuous track (closed form).
 #[derive(Debug, Clone, PartialEq)]
 pub struct CoupledReceptance {
-    /// Track, wheel and contact spring (the same for every wheel).
+    /// The leading wheel's model (track, wheel, contact spring), for its
+    /// resonances.
     pub model: ReceptanceModel,
-    /// Distances behind the leading wheel (m): 0 first, increasing.
-    pub wheels: Vec<f64>,
+    /// The wheels, the leading one first.
+    pub wheels: Vec<CoupledWheel>,
 }
 
 impl CoupledReceptance {
     /// The receptance matrix `A(w)` (m/N, row-major) at angular frequency
     /// `omega` (rad/s): `A_jl = alpha_r(|s_j - s_l|)`.
     pub fn rail_matrix(&self, omega: f64) -> Vec<Complex64> {
-        let s = &self.wheels;
+        let s: Vec<f64> = self.wheels.iter().map(|w| w.behind).collect();
         s.iter().flat_map(|a| s.iter().map(move |b| self.model.track.rail_transfer_receptance(omega, a - b))).collect()
     }
 
-    /// `H_i(f)` of eq. 1 (N/m) for each wheel at frequency `f_hz` (Hz, > 0)
-    /// and speed `speed` (m/s, > 0).
-    pub fn force_per_roughness(&self, f_hz: f64, speed: f64) -> Vec<Complex64> {
-        let n = self.wheels.len();
+    /// `G_ij(f) = [M^-1]_ij exp(i k (s_i - s_j))` of eq. 1 (N/m) at
+    /// frequency `f_hz` (Hz, > 0) and speed `speed` (m/s, > 0): wheel
+    /// `i`'s force per unit input seen by wheel `j`.
+    pub fn coupling(&self, f_hz: f64, speed: f64) -> DMatrix<Complex64> {
         let w = 2.0 * PI * f_hz;
-        let (aw, ac, _) = self.model.receptances(w);
-        let inv = inverse(&self.rail_matrix(w), aw + ac, n);
+        let own: Vec<Complex64> = self.wheels.iter().map(|c| c.own(w)).collect();
+        let inv = inverse(&self.rail_matrix(w), &own);
         let k = w / speed;
-        let s = &self.wheels;
-        (0..n).map(|i| (0..n).map(|j| inv[(i, j)] * Complex64::from_polar(1.0, k * (s[i] - s[j]))).sum()).collect()
+        let s: Vec<f64> = self.wheels.iter().map(|c| c.behind).collect();
+        DMatrix::from_fn(own.len(), own.len(), |i, j| inv[(i, j)] * Complex64::from_polar(1.0, k * (s[i] - s[j])))
+    }
+
+    /// `H_i(f)` of eq. 1 (N/m) for each wheel, every wheel seeing the same
+    /// profile: the rows' sums of [`Self::coupling`].
+    pub fn force_per_roughness(&self, f_hz: f64, speed: f64) -> Vec<Complex64> {
+        let g = self.coupling(f_hz, speed);
+        (0..g.nrows()).map(|i| g.row(i).iter().sum()).collect()
     }
 }
 
 impl TrackDynamics for CoupledReceptance {
     fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
-        self.wheel_forces(profile, dx, speed).swap_remove(0)
+        self.wheel_forces(&vec![profile.to_vec(); self.wheels.len()], dx, speed).swap_remove(0)
     }
 
     fn describe_resonances(&self) -> Vec<(String, f64)> {
@@ -105,15 +174,10 @@ impl TrackDynamics for CoupledReceptance {
         self.wheels.len()
     }
 
-    fn wheel_forces(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+    fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
         assert!(speed > 0.0, "the vehicle runs forwards (speed = {speed} m/s)");
-        (0..self.wheels.len())
-            .map(|i| {
-                apply_periodic_response(profile, dx, speed, |f| {
-                    if f == 0.0 { Complex64::new(0.0, 0.0) } else { self.force_per_roughness(f, speed)[i] }
-                })
-            })
-            .collect()
+        let length = profiles[0].len() as f64 * dx;
+        couple(profiles, |bin| self.coupling(speed * bin as f64 / length, speed))
     }
 }
 
@@ -122,9 +186,7 @@ impl TrackDynamics for CoupledReceptance {
 #[derive(Debug, Clone)]
 pub struct DiscreteVehicle {
     track: DiscreteTrack,
-    wheels: Vec<f64>,
-    /// Mean normal force per wheel (N), for the parametric excitation.
-    mean_load: f64,
+    wheels: Vec<CoupledWheel>,
     /// First sleeper's position along the rail (m).
     sleeper_x0: f64,
     /// Speed (m/s) and stretch (nodes, spacing) the table was built for.
@@ -138,20 +200,14 @@ pub struct DiscreteVehicle {
 }
 
 impl DiscreteVehicle {
-    /// The model of `wheels` (m behind the leading one) on `track`, each
-    /// with `wheel`'s mass on a contact spring `contact_stiffness` (N/m)
-    /// under `mean_load` (N), for a stretch of `nodes` samples every `dx`
-    /// (m) starting at a sleeper at `sleeper_x0` (m), at `speed` (m/s, >
-    /// 0). Tabulates the receptance matrices of the harmonics up to
-    /// [`super::discrete_dynamics::F_MAX`] at [`BAY_PLACES`] places (about 3.5 times the single
-    /// wheel's time for two wheels).
-    #[allow(clippy::too_many_arguments)]
+    /// The model of `wheels` on `track`, for a stretch of `nodes` samples
+    /// every `dx` (m) starting at a sleeper at `sleeper_x0` (m), at `speed`
+    /// (m/s, > 0). Tabulates the receptance matrices of the harmonics up to
+    /// [`super::discrete_dynamics::F_MAX`] at [`BAY_PLACES`] places (about
+    /// 3 times the single wheel's time for two wheels, 6 for four).
     pub fn new(
         track: DiscreteTrack,
-        wheel: WheelParams,
-        contact_stiffness: f64,
-        mean_load: f64,
-        wheels: Vec<f64>,
+        wheels: Vec<CoupledWheel>,
         sleeper_x0: f64,
         nodes: usize,
         dx: f64,
@@ -161,14 +217,13 @@ impl DiscreteVehicle {
         let n = wheels.len();
         let length = nodes as f64 * dx;
         let leaders = bay_places(track.spacing);
-        let offsets: Vec<f64> = wheels.iter().map(|s| -s).collect();
-        let alpha_c = Complex64::new(1.0 / contact_stiffness, 0.0);
+        let offsets: Vec<f64> = wheels.iter().map(|w| -w.behind).collect();
         let table = (1..=harmonics(nodes, dx, speed))
             .into_par_iter()
             .map(|h| {
                 let w = 2.0 * PI * h as f64 * speed / length;
-                let own = wheel.receptance(w) + alpha_c;
-                track.vehicle_receptances(&leaders, &offsets, w).iter().map(|a| inverse(a, own, n)).collect()
+                let own: Vec<Complex64> = wheels.iter().map(|c| c.own(w)).collect();
+                track.vehicle_receptances(&leaders, &offsets, w).iter().map(|a| inverse(a, &own)).collect()
             })
             .collect();
         let statics = track
@@ -176,11 +231,12 @@ impl DiscreteVehicle {
             .iter()
             .map(|a| DMatrix::from_fn(n, n, |i, j| a[i * n + j].re))
             .collect();
-        DiscreteVehicle { track, wheels, mean_load, sleeper_x0, key: (speed, nodes, dx), table, statics }
+        DiscreteVehicle { track, wheels, sleeper_x0, key: (speed, nodes, dx), table, statics }
     }
 
-    /// The leading wheel's place in the bay when it is at `x` (m), as a
-    /// place index (periodic over [`BAY_PLACES`]) and the weight of the next.
+    /// The leading wheel's place in the bay when it is at `x` (m): the
+    /// tabulated place before it, the one after (periodic over
+    /// [`BAY_PLACES`]) and the weight of the one after.
     fn place(&self, x: f64) -> (usize, usize, f64) {
         let d = self.track.spacing;
         let u = (x - self.sleeper_x0).rem_euclid(d) / d * BAY_PLACES as f64;
@@ -190,16 +246,16 @@ impl DiscreteVehicle {
 
     /// The path of each wheel on a smooth rail (m, positive up, zero mean)
     /// at its own positions `x_min + i dx`: the static deflection under
-    /// all the wheels' mean loads, `-sum_l A_jl(x, 0) N0`.
+    /// all the wheels' mean loads, `-sum_l A_jl(x, 0) N0_l`.
     pub fn parametric_profiles(&self, nodes: usize, dx: f64) -> Vec<Vec<f64>> {
         let n = self.wheels.len();
         (0..n)
             .map(|j| {
                 let path: Vec<f64> = (0..nodes)
                     .map(|i| {
-                        let (p, q, t) = self.place(self.sleeper_x0 + i as f64 * dx + self.wheels[j]);
-                        let row = |m: &DMatrix<f64>| (0..n).map(|l| m[(j, l)]).sum::<f64>();
-                        -((1.0 - t) * row(&self.statics[p]) + t * row(&self.statics[q])) * self.mean_load
+                        let (p, q, t) = self.place(self.sleeper_x0 + i as f64 * dx + self.wheels[j].behind);
+                        let row = |m: &DMatrix<f64>| (0..n).map(|l| m[(j, l)] * self.wheels[l].mean_load).sum::<f64>();
+                        -((1.0 - t) * row(&self.statics[p]) + t * row(&self.statics[q]))
                     })
                     .collect();
                 let mean = path.iter().sum::<f64>() / nodes.max(1) as f64;
@@ -216,7 +272,7 @@ fn bay_places(spacing: f64) -> Vec<f64> {
 
 impl TrackDynamics for DiscreteVehicle {
     fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
-        self.wheel_forces(profile, dx, speed).swap_remove(0)
+        self.wheel_forces(&vec![profile.to_vec(); self.wheels.len()], dx, speed).swap_remove(0)
     }
 
     fn describe_resonances(&self) -> Vec<(String, f64)> {
@@ -231,8 +287,8 @@ impl TrackDynamics for DiscreteVehicle {
         self.wheels.len()
     }
 
-    fn wheel_forces(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<Vec<f64>> {
-        let nodes = profile.len();
+    fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+        let nodes = profiles[0].len();
         assert_eq!(
             (speed, nodes, dx),
             self.key,
@@ -240,19 +296,20 @@ impl TrackDynamics for DiscreteVehicle {
         );
         let n = self.wheels.len();
         let length = nodes as f64 * dx;
-        // Each wheel's input: the rail's profile plus its parametric path.
+        // Each wheel's input: the profile it sees plus its parametric path.
         let fft = FftPlanner::<f64>::new().plan_fft_forward(nodes);
         let inputs: Vec<Vec<Complex64>> = self
             .parametric_profiles(nodes, dx)
             .iter()
-            .map(|path| {
+            .zip(profiles)
+            .map(|(path, profile)| {
                 let mut buf: Vec<Complex64> =
                     profile.iter().zip(path).map(|(r, p)| Complex64::new(r + p, 0.0)).collect();
                 fft.process(&mut buf);
                 buf
             })
             .collect();
-        let s = &self.wheels;
+        let s: Vec<f64> = self.wheels.iter().map(|w| w.behind).collect();
         (0..n)
             .map(|i| {
                 // The inputs as wheel i meets them: r_j exp(i k (s_i - s_j)).

@@ -25,6 +25,7 @@ use crate::contact::grid::RailSurface;
 use crate::contact::{RailContact, TangentialSolver};
 use crate::dynamics::TrackDynamics;
 use crate::hertz::HertzShape;
+use crate::loads::ImposedLoads;
 use crate::metrics::centre_row;
 use crate::params::NormalContact;
 use crate::passage::{PassageError, PassageResult, PassageSpec, PeriodicSignal, run_passage};
@@ -272,38 +273,46 @@ fn passage_with(
 ) -> Result<GrowthPass, PassageError> {
     let length = grid.nx as f64 * grid.dx;
     let mut spec = spec.clone();
-    // The linear contact's equivalent roughness at the mean patch.
-    let linear_seen = || match shape.patch(spec.loads.normal_force) {
-        Ok(p) if dynamics.is_some() => linear_roughness(profile, grid, p.a, p.b),
-        _ => vec![0.0; grid.nx],
-    };
     let linear_contact = linear.is_some();
-    let seen = match (normal, linear) {
-        (NormalContact::Hertz, _) => {
-            let b_mean = shape.patch(spec.loads.normal_force).map(|p| p.b).unwrap_or(grid.half_width);
-            contact_filtered_line(profile, grid, b_mean)
-        }
+    // The rail surface in the normal problem of every step.
+    let seen_by = match (normal, linear) {
+        (NormalContact::Hertz, _) => Seen::HertzLine,
         (_, Some(linear)) => {
             let surface = RailContact::Linear(linear);
             solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
             spec.surface = Some(surface);
-            linear_seen()
+            Seen::Linear
         }
         _ => {
             let surface = RailContact::Profile(Arc::new(RailSurface::corrugation(profile, grid)));
             solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
             spec.surface = Some(surface);
-            if dynamics.is_some() {
-                let n = (length / spec.step_length).round().max(1.0) as usize;
-                let step = length / n as f64;
-                let r = equivalent_roughness(solver, grid.x_min, step, n, spec.loads.normal_force)?;
-                let signal = PeriodicSignal { x0: grid.x_min, dx: step, values: r };
-                grid.xs().iter().map(|x| signal.at(*x)).collect()
-            } else {
-                vec![0.0; grid.nx]
-            }
+            Seen::Profile
         }
     };
+    // Each wheel's loads, and the profile it sees at its mean load (the
+    // same for wheels of the same load).
+    let wheels = dynamics.map_or(1, |d| d.wheels());
+    let loads: Vec<ImposedLoads> =
+        if spec.wheel_loads.is_empty() { vec![spec.loads.clone(); wheels] } else { spec.wheel_loads.clone() };
+    let mut seen: Vec<Vec<f64>> = Vec::with_capacity(wheels);
+    for (w, l) in loads.iter().enumerate() {
+        let same = loads[..w].iter().position(|o| o.normal_force == l.normal_force);
+        let line = match same {
+            Some(o) => seen[o].clone(),
+            None => seen_profile(
+                seen_by,
+                solver,
+                profile,
+                grid,
+                shape,
+                l.normal_force,
+                spec.step_length,
+                dynamics.is_some(),
+            )?,
+        };
+        seen.push(line);
+    }
     // Each wheel's force when it is at X (one wheel without dynamics).
     let forces = match dynamics {
         Some(d) => d.wheel_forces(&seen, grid.dx, spec.speed),
@@ -313,8 +322,11 @@ fn passage_with(
     // Extended grid on the same lattice, wide enough for the largest patch
     // of this passage (imposed plus dynamic normal force, of any wheel), so
     // no wear is clipped at its ends.
-    let peak_dynamic = forces.iter().flatten().fold(0.0f64, |m, f| m.max(f.abs()));
-    let peak_force = spec.loads.max_normal_force() + peak_dynamic;
+    let peak_force = forces
+        .iter()
+        .zip(&loads)
+        .map(|(f, l)| l.max_normal_force() + f.iter().fold(0.0f64, |m, v| m.max(v.abs())))
+        .fold(0.0f64, f64::max);
     let a_max = shape.patch(peak_force).map(|p| p.a).unwrap_or(0.0);
     let a_max = a_max * normal.grid_scale();
     let reach = (a_max / grid.dx).ceil() as usize + 2;
@@ -327,6 +339,7 @@ fn passage_with(
     let mut leading = None;
     let wheels = forces.len();
     for (w, force) in forces.iter().enumerate() {
+        spec.loads = loads[w].clone();
         spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: force.clone() });
         // The wheelset's torsion: the creepage's answer to this force.
         spec.dynamic_creepage_x = spec.torsion.filter(|_| dynamics.is_some()).map(|t| PeriodicSignal {
@@ -350,6 +363,50 @@ fn passage_with(
     let passage = PassageResult { fallback_steps, ..leading.expect("one wheel at least") };
     let dynamic_force = forces.into_iter().next().expect("one wheel at least");
     Ok(GrowthPass { passage, wear, dynamic_force, contact_loss_steps, clipped_steps, linear_contact, rerun: None })
+}
+
+/// How a passage's dynamics sees the profile (module docs of
+/// [`growth_passage`]).
+#[derive(Debug, Clone, Copy)]
+enum Seen {
+    /// The profile weighted across the patch by the Hertz line load.
+    HertzLine,
+    /// The linear profile contact's flat-punch average.
+    Linear,
+    /// The nonlinear profile contact's equivalent roughness.
+    Profile,
+}
+
+/// The profile a wheel of mean load `force` (N) sees, as `seen` says, on
+/// the rail grid's nodes; zero where there are no dynamics to see it.
+#[allow(clippy::too_many_arguments)]
+fn seen_profile(
+    seen: Seen,
+    solver: &mut dyn TangentialSolver,
+    profile: &Array2<f64>,
+    grid: &RailGrid,
+    shape: &HertzShape,
+    force: f64,
+    step_length: f64,
+    dynamics: bool,
+) -> Result<Vec<f64>, PassageError> {
+    let patch = shape.patch(force);
+    Ok(match seen {
+        Seen::HertzLine => contact_filtered_line(profile, grid, patch.map(|p| p.b).unwrap_or(grid.half_width)),
+        _ if !dynamics => vec![0.0; grid.nx],
+        Seen::Linear => match patch {
+            Ok(p) => linear_roughness(profile, grid, p.a, p.b),
+            Err(_) => vec![0.0; grid.nx],
+        },
+        Seen::Profile => {
+            let length = grid.nx as f64 * grid.dx;
+            let n = (length / step_length).round().max(1.0) as usize;
+            let step = length / n as f64;
+            let r = equivalent_roughness(solver, grid.x_min, step, n, force)?;
+            let signal = PeriodicSignal { x0: grid.x_min, dx: step, values: r };
+            grid.xs().iter().map(|x| signal.at(*x)).collect()
+        }
+    })
 }
 
 #[cfg(test)]

@@ -291,16 +291,49 @@ pub struct RailParams {
 pub struct VehicleParams {
     /// Positions behind the leading wheel (m): 0 first, increasing.
     pub wheels: Vec<f64>,
+    /// Unsprung mass per wheel (kg), where the wheels differ
+    /// (`dynamics.unsprung_mass` otherwise).
+    pub unsprung_mass: Option<Vec<f64>>,
+    /// Mean normal force per wheel (N), where the wheels differ
+    /// (`load.normal_force` otherwise).
+    pub normal_force: Option<Vec<f64>>,
+    /// Mean longitudinal force per wheel (N), where the wheels differ
+    /// (`load.longitudinal_force` otherwise).
+    pub longitudinal_force: Option<Vec<f64>>,
 }
 
 impl Default for VehicleParams {
     /// One wheel.
     fn default() -> Self {
-        VehicleParams { wheels: vec![0.0] }
+        VehicleParams { wheels: vec![0.0], unsprung_mass: None, normal_force: None, longitudinal_force: None }
     }
 }
 
 impl VehicleParams {
+    /// Wheel `i`'s imposed loads: `loads` (its harmonics kept) with the
+    /// wheel's own mean normal and longitudinal force where given.
+    pub fn wheel_loads(&self, i: usize, loads: &crate::loads::ImposedLoads) -> crate::loads::ImposedLoads {
+        let mut l = loads.clone();
+        if let Some(n) = &self.normal_force {
+            l.normal_force = n[i];
+        }
+        if let Some(f) = &self.longitudinal_force {
+            l.longitudinal_force = f[i];
+        }
+        l
+    }
+
+    /// The largest normal force of any wheel under `loads` (N), imposed
+    /// harmonics included.
+    pub fn max_normal_force(&self, loads: &crate::loads::ImposedLoads) -> f64 {
+        (0..self.wheels.len()).map(|i| self.wheel_loads(i, loads).max_normal_force()).fold(0.0, f64::max)
+    }
+
+    /// Wheel `i`'s unsprung mass (kg): its own where given, else `default`.
+    pub fn wheel_mass(&self, i: usize, default: f64) -> f64 {
+        self.unsprung_mass.as_ref().map_or(default, |m| m[i])
+    }
+
     /// The distinct distances between two wheels (m), increasing.
     pub fn distances(&self) -> Vec<f64> {
         let mut d: Vec<f64> =
@@ -394,8 +427,10 @@ impl Scene {
     /// included (N).
     pub fn max_normal_force(&self) -> f64 {
         match &self.growth {
-            Some(g) => g.classes.iter().map(|c| c.loads(&self.loads).max_normal_force()).fold(0.0, f64::max),
-            None => self.loads.max_normal_force(),
+            Some(g) => {
+                g.classes.iter().map(|c| self.vehicle.max_normal_force(&c.loads(&self.loads))).fold(0.0, f64::max)
+            }
+            None => self.vehicle.max_normal_force(&self.loads),
         }
     }
 }
