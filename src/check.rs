@@ -194,6 +194,16 @@ pub fn print_check(r: &Resolved) {
             s.vehicle.wheels,
             s.vehicle.distances()
         );
+        let v = &s.vehicle;
+        for (key, unit, values) in [
+            ("unsprung mass", "kg", &v.unsprung_mass),
+            ("normal force", "N", &v.normal_force),
+            ("longitudinal force", "N", &v.longitudinal_force),
+        ] {
+            if let Some(values) = values {
+                println!("vehicle            {key} per wheel {values:?} {unit}");
+            }
+        }
     }
     if let Some(t) = &d.passage.torsion {
         let w = &t.torsion;

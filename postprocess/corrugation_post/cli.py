@@ -1,4 +1,4 @@
-"""Command line: ``corrugation-post {figures,compare,growth,speeds,sweep,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}`` (or ``python -m corrugation_post``).
+"""Command line: ``corrugation-post {figures,compare,growth,speeds,mechanisms,sweep,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}`` (or ``python -m corrugation_post``).
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -54,6 +54,11 @@ def _parser() -> argparse.ArgumentParser:
     grw.add_argument("--wavelength", type=float, default=None,
                      help="harmonic to follow (m; default: the one that grew most in the first run)")
 
+    mech = sub.add_parser("mechanisms", help="the mechanism study side by side: each mechanism's growth rate against "
+                          "frequency and wavelength at its speeds (scripts/mechanism_study.sh)")
+    mech.add_argument("folders", nargs="+", help="one folder per mechanism, named after it, holding the speeds.csv "
+                      "of `corrugation-post speeds`")
+    mech.add_argument("--out", required=True, help="output folder")
     spd = sub.add_parser("speeds", help="growth rate against wavelength and frequency: studies at several speeds "
                          "and mixed traffic (scripts/discrete_speeds.sh)")
     spd.add_argument("runs", nargs="+", help="growth-study run files (single speeds, and mixes of them)")
@@ -136,6 +141,12 @@ def _speeds(args) -> int:
     return _print_table(speed_study(args.runs, args.out, args.track), format_table)
 
 
+def _mechanisms(args) -> int:
+    from .mechanisms import format_table, mechanism_figure
+
+    return _print_table(mechanism_figure(args.folders, args.out), format_table)
+
+
 def _sweep(args) -> int:
     from .sweep import format_table, sweep_map
 
@@ -213,7 +224,7 @@ def main(argv: list[str] | None = None) -> int:
 
     matplotlib.use("Agg")
     args = _parser().parse_args(argv)
-    handler = {"figures": _figures, "compare": _compare, "growth": _growth, "speeds": _speeds, "sweep": _sweep,
+    handler = {"figures": _figures, "compare": _compare, "growth": _growth, "speeds": _speeds, "mechanisms": _mechanisms, "sweep": _sweep,
                "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "grid-convergence": _grid_convergence,
                "validity-map": _validity_map, "track": _track, "check": _check}[args.command]
     try:
