@@ -160,9 +160,18 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     // Wear ~ 20 ns per node visit (the fixed grid's cell deposit is in its
     // step's fit).
     let deposit = if fixed.is_some() { 0.0 } else { p.substeps as f64 * nodes * 20e-9 };
-    // Every wheel of the vehicle rolls over the stretch in a passage.
+    // Every wheel of the vehicle rolls over the stretch in a passage (under
+    // a mix whose classes are vehicles of their own, the share-weighted
+    // mean of their wheels).
     let wheels = s.vehicle.wheels.len();
-    let per_passage = p.n_steps() as f64 * (contact + deposit) * wheels as f64;
+    let mean_wheels = match &s.growth {
+        Some(g) if g.classes.iter().any(|c| c.wheels.is_some()) => {
+            g.classes.iter().map(|c| c.share * c.wheels.as_ref().map_or(wheels, Vec::len) as f64).sum::<f64>()
+                / g.classes.iter().map(|c| c.share).sum::<f64>()
+        }
+        _ => wheels as f64,
+    };
+    let per_passage = p.n_steps() as f64 * (contact + deposit) * mean_wheels;
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
     // The discrete model tabulates its receptances once per traffic class
     // (0.9 s CPU for the 108 harmonics up to 5 kHz of growth_discrete.toml,

@@ -225,6 +225,35 @@ fn far_apart_wheels_of_different_loads_wear_the_rail_as_their_two_single_wheels(
 }
 
 #[test]
+fn a_traffic_class_may_be_a_vehicle() {
+    // Two classes of the same wheel, one of them a vehicle of two wheels
+    // 50 m apart on the damped track: every passage wears the rail as the
+    // single wheel does, so the mix grows the profile of the study of one
+    // wheel (fixed traffic scale).
+    let dir = tempfile::tempdir().unwrap();
+    let fixed = ["track.pad_damping=1e6", "growth.adaptive=false", "growth.traffic_scale=1e3", "growth.passes=2"];
+    let text = include_str!("../configs/growth_fastsim.toml");
+    let mix = format!(
+        "{text}\n[[traffic.mix]]\nname = \"car\"\nshare = 1.0\nwheels = [0.0, 50.0]\n\
+         [[traffic.mix]]\nname = \"wheel\"\nshare = 1.0\n"
+    );
+    let set: Vec<String> = fixed.iter().map(|s| s.to_string()).chain(["growth.contact_history=[]".into()]).collect();
+    let (one, two) = (dir.path().join("one.h5"), dir.path().join("mix.h5"));
+    run_scene(&load_str(text, "g", &set).unwrap(), &one, &mut |_| {}).unwrap();
+    let resolved = load_str(&mix, "g", &set).unwrap();
+    assert_eq!(resolved.scene.growth.as_ref().unwrap().classes[0].wheels, Some(vec![0.0, 50.0]));
+    run_scene(&resolved, &two, &mut |_| {}).unwrap();
+    let (a, b) = (read_f64(&one, "rail", "state").unwrap(), read_f64(&two, "rail", "state").unwrap());
+    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = a.iter().zip(&b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    assert!(worst < 1e-9 * scale, "{worst:e} of {scale:e}");
+    // A class's wheels are checked as vehicle.wheels are.
+    let bad = mix.replace("wheels = [0.0, 50.0]", "wheels = [0.0, 0.5]");
+    let e = load_str(&bad, "g", &set).unwrap_err().to_string();
+    assert!(e.contains("traffic.mix[0].wheels") && e.contains("closer than a wheel's diameter"), "{e}");
+}
+
+#[test]
 fn a_bogie_changes_the_growth_and_resumes_bit_for_bit() {
     // Two wheels 2.5 m apart on the default track: the wave between them
     // changes every wheel's force, so the profile differs from the single

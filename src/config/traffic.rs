@@ -53,6 +53,7 @@ pub fn read(
             longitudinal_force: longitudinal_force?,
             unsprung_mass: unsprung_mass?,
             share: 1.0,
+            wheels: None,
         }]);
     }
     let mut s = Section::new(root, "", "traffic", errors);
@@ -122,6 +123,8 @@ fn read_class(s: &mut Section, index: usize, base: BaseClass) -> Option<TrafficC
     let longitudinal_force = number("longitudinal_force", base.longitudinal_force, Range::Finite);
     let unsprung_mass = number("unsprung_mass", base.unsprung_mass, Range::OpenClosed(0.0, 1e4));
     let share = s.f64("share", None, Range::OpenClosed(0.0, 1e9));
+    // A class may be a vehicle of its own.
+    let wheels = if s.has("wheels") { super::vehicle::positions(s).map(Some) } else { Some(None) };
     Some(TrafficClass {
         name: name.filter(|n| valid(n))?,
         speed: speed?,
@@ -129,5 +132,6 @@ fn read_class(s: &mut Section, index: usize, base: BaseClass) -> Option<TrafficC
         longitudinal_force: longitudinal_force?,
         unsprung_mass: unsprung_mass?,
         share: share?,
+        wheels: wheels?,
     })
 }

@@ -12,6 +12,24 @@ pub const MAX_WHEELS: usize = 8;
 /// Longest distance of a wheel behind the leading one (m): a car.
 pub const MAX_WHEEL_DISTANCE: f64 = 50.0;
 
+/// The key `wheels` of section `s`: positions behind the leading wheel,
+/// the first 0, increasing (`[vehicle]`, or a traffic class's own).
+pub(super) fn positions(s: &mut Section) -> Option<Vec<f64>> {
+    let w = s.f64_list("wheels", vec![0.0], Range::Closed(0.0, MAX_WHEEL_DISTANCE), MAX_WHEELS)?;
+    if w[0] != 0.0 {
+        s.error("wheels", format!("starts at {} m; the first is the leading wheel, at 0 m", w[0]));
+        return None;
+    }
+    if let Some(k) = (1..w.len()).find(|&k| w[k] <= w[k - 1]) {
+        s.error(
+            "wheels",
+            format!("must increase: wheel {} at {} m is not behind wheel {} at {} m", k + 1, w[k], k, w[k - 1]),
+        );
+        return None;
+    }
+    Some(w)
+}
+
 /// Reads `[vehicle]` where the config has one (the resolved config of a
 /// config without it gets none); None when a key is invalid.
 pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError>) -> Option<VehicleParams> {
@@ -19,21 +37,7 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         return Some(VehicleParams::default());
     }
     let mut s = Section::new(root, "", "vehicle", errors);
-    let wheels = s.f64_list("wheels", vec![0.0], Range::Closed(0.0, MAX_WHEEL_DISTANCE), MAX_WHEELS);
-    let wheels = wheels.and_then(|w| {
-        if w[0] != 0.0 {
-            s.error("wheels", format!("starts at {} m; the first is the leading wheel, at 0 m", w[0]));
-            return None;
-        }
-        if let Some(k) = (1..w.len()).find(|&k| w[k] <= w[k - 1]) {
-            s.error(
-                "wheels",
-                format!("must increase: wheel {} at {} m is not behind wheel {} at {} m", k + 1, w[k], k, w[k - 1]),
-            );
-            return None;
-        }
-        Some(w)
-    });
+    let wheels = positions(&mut s);
     // Per wheel where they differ: lists as long as `wheels`.
     let n = wheels.as_ref().map_or(0, Vec::len);
     let mut per_wheel = |key: &str, range: Range, unit: &str| -> Option<Option<Vec<f64>>> {
@@ -64,21 +68,33 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
 /// through the rail's receptances; a single passage and imposed dynamics
 /// roll one wheel), and no two wheels closer than a wheel's diameter.
 pub(super) fn check(scene: &Scene, errors: &mut Vec<ConfigError>) {
-    let wheels = &scene.vehicle.wheels;
+    check_wheels("vehicle.wheels", &scene.vehicle.wheels, scene, errors);
+    check_lists(scene, errors);
+    if let Some(g) = &scene.growth {
+        for (i, c) in g.classes.iter().enumerate() {
+            if let Some(w) = &c.wheels {
+                check_wheels(&format!("traffic.mix[{i}].wheels"), w, scene, errors);
+            }
+        }
+    }
+}
+
+/// [`check`] of one vehicle's `wheels`, named `key`.
+fn check_wheels(key: &str, wheels: &[f64], scene: &Scene, errors: &mut Vec<ConfigError>) {
     if wheels.len() < 2 {
         return;
     }
     let coupled = "several wheels are coupled through the track's receptances";
     match scene.growth.as_ref().map(|g| g.dynamics) {
         None => errors.push(ConfigError::new(
-            "vehicle.wheels",
+            key,
             format!(
                 "= {wheels:?} m: {coupled} in a growth study (a [growth] section with dynamics.model = \"receptance\" \
                  or \"discrete\"); a single passage rolls one wheel: set vehicle.wheels = [0.0]"
             ),
         )),
         Some(DynamicsKind::Imposed) => errors.push(ConfigError::new(
-            "vehicle.wheels",
+            key,
             format!(
                 "= {wheels:?} m with dynamics.model = \"imposed\": {coupled}; set dynamics.model = \"receptance\" \
                  or \"discrete\", or vehicle.wheels = [0.0]"
@@ -86,6 +102,21 @@ pub(super) fn check(scene: &Scene, errors: &mut Vec<ConfigError>) {
         )),
         Some(_) => {}
     }
+    let diameter = 2.0 * scene.geometry.wheel_radius;
+    if let Some(k) = (1..wheels.len()).find(|&k| wheels[k] - wheels[k - 1] < diameter) {
+        errors.push(ConfigError::new(
+            key,
+            format!(
+                "wheels {k} and {} are {} m apart, closer than a wheel's diameter (2 geometry.wheel_radius = {diameter} m)",
+                k + 1,
+                wheels[k] - wheels[k - 1]
+            ),
+        ));
+    }
+}
+
+/// The per-wheel lists of `[vehicle]` against the scene.
+fn check_lists(scene: &Scene, errors: &mut Vec<ConfigError>) {
     let v = &scene.vehicle;
     let lists = [("unsprung_mass", v.unsprung_mass.is_some()), ("normal_force", v.normal_force.is_some())];
     let mix = scene.growth.as_ref().is_some_and(|g| super::traffic::is_mix(&g.classes));
@@ -104,17 +135,6 @@ pub(super) fn check(scene: &Scene, errors: &mut Vec<ConfigError>) {
         errors.push(ConfigError::new(
             "vehicle.longitudinal_force",
             "per wheel with a [traffic] mix: the classes set one value per class; give it per class".into(),
-        ));
-    }
-    let diameter = 2.0 * scene.geometry.wheel_radius;
-    if let Some(k) = (1..wheels.len()).find(|&k| wheels[k] - wheels[k - 1] < diameter) {
-        errors.push(ConfigError::new(
-            "vehicle.wheels",
-            format!(
-                "wheels {k} and {} are {} m apart, closer than a wheel's diameter (2 geometry.wheel_radius = {diameter} m)",
-                k + 1,
-                wheels[k] - wheels[k - 1]
-            ),
         ));
     }
 }

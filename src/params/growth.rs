@@ -130,6 +130,9 @@ pub struct TrafficClass {
     pub unsprung_mass: f64,
     /// Share of the real wheel passages (1; the shares of a mix sum to 1).
     pub share: f64,
+    /// The class's vehicle: its wheels behind the leading one (m), where
+    /// it differs from `vehicle.wheels`.
+    pub wheels: Option<Vec<f64>>,
 }
 
 impl TrafficClass {

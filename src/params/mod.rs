@@ -417,6 +417,9 @@ impl Scene {
         let mut scene = self.clone();
         scene.speed = c.speed;
         scene.loads = c.loads(&self.loads);
+        if let Some(w) = &c.wheels {
+            scene.vehicle = VehicleParams { wheels: w.clone(), ..VehicleParams::default() };
+        }
         if let Some(g) = scene.growth.as_mut() {
             g.dynamics = g.dynamics.with_unsprung_mass(c.unsprung_mass);
         }
