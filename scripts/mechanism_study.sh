@@ -13,10 +13,11 @@
 #           transfer receptances (vehicle.wheels = [0.0, 2.5])
 #   curve   the leading wheelset in a curve: lateral creepage 5e-3 and spin
 #           0.5 1/m, no longitudinal force (the lateral force saturates)
-# then `corrugation_post speeds` per mechanism (growth rate against
+# then `corrugation-post speeds` per mechanism (growth rate against
 # wavelength and frequency with the track's resonances; speeds_summary.csv:
-# each study's peak wavelength, frequency and rate) and one table of all
-# of them, $out/mechanisms.csv.
+# each study's peak wavelength, frequency and rate) and `corrugation-post
+# mechanisms`: all of them side by side (mechanisms.png,
+# mechanisms_summary.csv).
 # Output in out/mechanism_study/. About 40 minutes on 2 cores with the
 # config's 40 passages; PASSES=N runs N passages per study; CASES="single
 # bogie" picks mechanisms.
@@ -61,11 +62,9 @@ for name in $cases; do
     *) echo "unknown mechanism $name (single, torsion, bogie, curve)" >&2; exit 2 ;;
   esac
 done
-# One table: mechanism, speed, peak wavelength / frequency / rate.
-{
-  head -n 1 "$out/$(echo $cases | cut -d' ' -f1)/speeds_summary.csv" | sed 's/^/mechanism,/'
-  for name in $cases; do
-    tail -n +2 "$out/$name/speeds_summary.csv" | sed "s/^/$name,/"
-  done
-} > "$out/mechanisms.csv"
-cat "$out/mechanisms.csv"
+# The mechanisms side by side: mechanisms.png, mechanisms_summary.csv (per
+# mechanism and speed the fastest-growing harmonic and those above 0.1 dB
+# per 1e5 passages).
+folders=()
+for name in $cases; do folders+=("$out/$name"); done
+.venv/bin/corrugation-post mechanisms "${folders[@]}" --out "$out"

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from .figures import DPI
 from .io import RunFileError, read_csv, write_csv
@@ -53,7 +54,7 @@ def mechanism_figure(folders, out_dir):
     out_dir.mkdir(parents=True, exist_ok=True)
     data = [(f.name, _load(f)) for f in folders]
     fig = Figure(figsize=(4 * len(data), 7), layout="constrained")
-    axes = fig.subplots(2, len(data), sharey=True, squeeze=False)
+    axes = fig.subplots(2, len(data), sharey="col", squeeze=False)
     rows = []
     for col, (name, studies) in enumerate(data):
         ax_f, ax_wl = axes[0][col], axes[1][col]
@@ -75,11 +76,13 @@ def mechanism_figure(folders, out_dir):
         ax_f.set(title=name, xlabel="frequency V / wavelength (Hz)", xscale="log")
         ax_wl.set(xlabel="wavelength (mm)", xscale="log")
         for ax in (ax_f, ax_wl):
+            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+            ax.xaxis.set_minor_formatter(NullFormatter())
             ax.axhline(0.0, color="black", lw=0.6)
             ax.grid(alpha=0.3, which="both")
             ax.legend(fontsize=8)
-    axes[0][0].set_ylabel("mean growth rate (dB per 1e5 passages)")
-    axes[1][0].set_ylabel("mean growth rate (dB per 1e5 passages)")
+    for ax in axes[:, 0] if hasattr(axes, "shape") else [row[0] for row in axes]:
+        ax.set_ylabel("mean growth rate (dB per 1e5 passages)")
     png = out_dir / "mechanisms.png"
     fig.savefig(png, dpi=DPI)
     return rows, [png, write_csv(out_dir / SUMMARY_NAME, SUMMARY_COLUMNS, rows)]
