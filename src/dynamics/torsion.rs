@@ -2,10 +2,11 @@
 //! coupled by its torsional stiffness, in the frequency domain like the
 //! vertical dynamics, so that the longitudinal creepage of the modelled
 //! wheel responds to the variation of its normal force (the feedback of
-//! the torsional models of driven and braked wheelsets: Claus and
-//! Schiehlen, *Veh. Syst. Dyn.* 29 (1998) suppl. 2-34; Grassie and
-//! Elkins, *Wear* 258 (2005) 1235-1244; Jin et al., *Wear* 258 (2005)
-//! 1214-1223).
+//! the torsional models of driven and braked wheelsets; Grassie and
+//! Kalousek, Proc. IMechE F 207 (1993) 57-68, and Grassie, Proc. IMechE F
+//! (2009), doi:10.1243/09544097JRRT264, reviews of corrugation, name the
+//! wheelset's torsional resonance the wavelength-fixing mechanism of
+//! rutting).
 //!
 //! # Equations
 //!
@@ -66,7 +67,7 @@ use std::f64::consts::PI;
 /// Torsional stiffness of a freight axle between its wheels (N m/rad):
 /// 3 MN m/rad, which with [`WHEEL_POLAR_INERTIA`] puts the first torsional
 /// mode at 71 Hz (measured modes of freight and passenger wheelsets lie
-/// at 40-100 Hz; Grassie and Elkins 2005).
+/// at 40-100 Hz).
 pub const AXLE_TORSIONAL_STIFFNESS: f64 = 3e6;
 
 /// Polar moment of inertia of a wheel with its half axle (kg m^2): 30 kg

@@ -1,9 +1,8 @@
 //! Several wheels of a vehicle on one rail (`[vehicle] wheels`): the
 //! moving-irregularity model with the wheels coupled through the rail's
-//! transfer receptances (Wu and Thompson, *J. Sound Vib.* 281 (2005)
-//! 1097-1118 for the continuous and discrete track; Nielsen, *Wear* 254
-//! (2003) 1212-1222 (two wheelsets of a bogie); Grassie et al. 1982 for
-//! one wheel).
+//! transfer receptances (the multiple-wheel models of Wu and Thompson,
+//! 2005, and Nielsen, 2003, the latter's two-wheelset bogie against field
+//! data; Grassie et al. 1982 for one wheel).
 //!
 //! Wheel `j` runs `s_j` behind the leading one (`s_0 = 0`); the loads stand
 //! still and the rail is pulled through at the speed `V > 0`, so when
