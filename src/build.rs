@@ -88,7 +88,12 @@ pub fn derive(scene: &Scene) -> Derived {
         substeps: scene.wear_substeps,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,
-        torsion: torsion_feedback(scene, &shape),
+        torsion: match scene.vehicle.normal_force {
+            Some(_) => (0..scene.vehicle.wheels.len())
+                .filter_map(|i| torsion_feedback(scene, &shape, scene.vehicle.wheel_loads(i, loads).normal_force))
+                .collect(),
+            None => torsion_feedback(scene, &shape, loads.normal_force).into_iter().collect(),
+        },
         dynamic_creepage_x: None,
         surface: None,
     };
@@ -275,13 +280,13 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
 /// creep curve's slopes `dF/dN` and `dF/dxi` at the mean load and
 /// creepage, by central differences (1e-3 relative steps) of FASTSIM's
 /// steady solution on a 40 x 40 mesh with the Hertz pressure (Kalker,
-/// *Veh. Syst. Dyn.* 11 (1982) 1-13; quasi-static).
-pub fn torsion_feedback(scene: &Scene, shape: &HertzShape) -> Option<TorsionFeedback> {
+/// *Veh. Syst. Dyn.* 11 (1982) 1-13; quasi-static), for a wheel of mean
+/// normal force `n0` (N).
+pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<TorsionFeedback> {
     let (w, xi0) = (scene.wheelset?, scene.creepage_x?);
     let elastic = scene.material.elastic;
     let coefficients = creep_coefficients(shape.aspect(), elastic.poisson_ratio).expect("validated aspect");
     let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, elastic.shear_modulus());
-    let n0 = scene.loads.normal_force;
     let force = |n: f64, xi: f64| {
         let input = StepInput {
             patch: shape.patch(n).expect("validated loads keep N > 0"),

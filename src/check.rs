@@ -205,7 +205,7 @@ pub fn print_check(r: &Resolved) {
             }
         }
     }
-    if let Some(t) = &d.passage.torsion {
+    if let Some(t) = d.passage.torsion.first() {
         let w = &t.torsion;
         let corner = t.force_per_creepage.abs() * w.radius * w.radius / (w.inertia * s.speed) / (2.0 * PI);
         println!(

@@ -50,10 +50,12 @@ pub struct PassageSpec {
     pub wear_window: (f64, f64),
     /// Dynamic normal force added to the imposed loads (growth studies).
     pub dynamic_normal_force: Option<PeriodicSignal>,
-    /// The wheelset's torsion, which turns the dynamic normal force into a
-    /// variation of the prescribed creepage (growth studies with
-    /// `[wheelset]`; [`crate::dynamics::torsion`]).
-    pub torsion: Option<TorsionFeedback>,
+    /// The wheelset's torsion, which turns the normal force's variation
+    /// into a variation of the prescribed creepage (growth studies with
+    /// `[wheelset]`; [`crate::dynamics::torsion`]): one per wheel where the
+    /// wheels' loads differ (`wheel_loads`), else one for every wheel;
+    /// empty without.
+    pub torsion: Vec<TorsionFeedback>,
     /// Variation of the prescribed creepage added to `creepage_x` (1).
     pub dynamic_creepage_x: Option<PeriodicSignal>,
     /// The rail surface in the normal problem (`contact.normal =

@@ -26,7 +26,7 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
         substeps: 4,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,
-        torsion: None,
+        torsion: vec![],
         dynamic_creepage_x: None,
         surface: None,
     };

@@ -80,6 +80,36 @@ fn two_wheels_on_the_continuous_track_against_the_closed_form() {
         let lead = (c2 - tr * Complex64::from_polar(1.0, -k * spacing)) / det;
         let trail = (c1 - tr * Complex64::from_polar(1.0, k * spacing)) / det;
         assert!(((h[0] - lead) / lead).norm() < 1e-9 && ((h[1] - trail) / trail).norm() < 1e-9, "{f} Hz");
+        // Entry by entry: G = [[c_2, -t e^{-ikL}], [-t e^{ikL}, c_1]] / det.
+        let g = unequal.coupling(f, speed);
+        let expected = [
+            [c2 / det, -tr * Complex64::from_polar(1.0, -k * spacing) / det],
+            [-tr * Complex64::from_polar(1.0, k * spacing) / det, c1 / det],
+        ];
+        for i in 0..2 {
+            for j in 0..2 {
+                assert!(((g[(i, j)] - expected[i][j]) / expected[0][0]).norm() < 1e-9, "{f} Hz G[{i}][{j}]");
+            }
+        }
+    }
+    // The forces of wheels that see different profiles (a harmonic of
+    // amplitude 1 um and 0.6 um at a phase 0.7 rad): P_i = Re[sum_j G_ij
+    // R_j exp(i k X)], through the FFT path of wheel_forces.
+    let (nodes, dx) = (600, 2e-4);
+    let m = 7;
+    let k = 2.0 * PI * m as f64 / (nodes as f64 * dx);
+    let seen =
+        |amp: f64, phase: f64| -> Vec<f64> { (0..nodes).map(|i| amp * (k * i as f64 * dx + phase).cos()).collect() };
+    let profiles = [seen(1e-6, 0.0), seen(0.6e-6, 0.7)];
+    let forces = unequal.wheel_forces(&profiles, dx, speed);
+    let g = unequal.coupling(speed * k / (2.0 * PI), speed);
+    let r = [Complex64::new(1e-6, 0.0), Complex64::from_polar(0.6e-6, 0.7)];
+    for (i, p) in forces.iter().enumerate() {
+        let amp = g[(i, 0)] * r[0] + g[(i, 1)] * r[1];
+        for (n, v) in p.iter().enumerate().step_by(37) {
+            let expected = (amp * Complex64::from_polar(1.0, k * n as f64 * dx)).re;
+            assert!((v - expected).abs() < 1e-9 * amp.norm(), "wheel {i}, node {n}: {v} vs {expected}");
+        }
     }
     // In phase and in anti-phase, on a profile harmonic whose frequency puts
     // a whole (half) number of wavelengths between the wheels.
@@ -155,6 +185,42 @@ fn a_bogie_on_the_discrete_track_loads_each_wheel_with_the_others_deflection() {
     let single = DiscreteDynamics::new(track, wheel, k_h, load, 0.0, nodes, dx, speed);
     let paths = bogie.parametric_profiles(nodes, dx);
     let path = single.parametric_profile(nodes, dx);
+    // Wheel j's path against the static transfer receptances directly:
+    // -N0 (alpha(x_j; x_j) + alpha(x_j; x_other)) at 0.1 Hz, less the mean,
+    // at the tabulated places (every d/16 of the leading wheel's bay).
+    let w0 = 2.0 * PI * 0.1;
+    for (j, other) in [(0usize, 2.4f64), (1, -2.4)] {
+        let direct: Vec<f64> = (0..16)
+            .map(|p| {
+                let x = p as f64 * 0.6 / 16.0 + if j == 1 { 2.4 } else { 0.0 };
+                let own = track.receptance(x - if j == 1 { 2.4 } else { 0.0 }, w0).re;
+                let cross = track.transfer_receptances(x + other - if j == 1 { 2.4 } else { 0.0 }, &[-other], w0)[0].re;
+                -1e5 * (own + cross)
+            })
+            .collect();
+        let mean = direct.iter().sum::<f64>() / 16.0;
+        // The other wheel's share varies along the bay by more than the
+        // tolerance below: the check sees it.
+        let cross: Vec<f64> = (0..16)
+            .map(|p| {
+                let x = p as f64 * 0.6 / 16.0;
+                -1e5 * track.transfer_receptances(x + 2.4, &[-2.4], w0)[0].re
+            })
+            .collect();
+        eprintln!(
+            "wheel {j}: path span {:.3e} m, the other wheel's share's span {:.3e} m",
+            span_of(&direct),
+            span_of(&cross)
+        );
+        assert!(span_of(&cross) > 10.0 * 2e-3 * span_of(&direct));
+        // The path's samples at the places (every 37.5 mm = 37.5 nodes: the
+        // even places, nodes 0, 75, ...), less the path's own mean.
+        let path_mean = paths[j].iter().sum::<f64>() / nodes as f64;
+        for p in (0..16).step_by(2) {
+            let (got, want) = (paths[j][p * 75 / 2] - path_mean, direct[p] - mean);
+            assert!((got - want).abs() < 2e-3 * span_of(&direct), "wheel {j}, place {p}: {got:e} vs {want:e}");
+        }
+    }
     let span = |v: &[f64]| v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min);
     assert!((span(&paths[0]) - span(&paths[1])).abs() < 1e-6 * span(&path));
     assert!((span(&paths[0]) - span(&path)).abs() < 0.1 * span(&path), "{} vs {}", span(&paths[0]), span(&path));
@@ -164,6 +230,11 @@ fn a_bogie_on_the_discrete_track_loads_each_wheel_with_the_others_deflection() {
     for f in &forces {
         assert!((span(f) - span(&one)).abs() < 0.2 * span(&one), "{} vs {}", span(f), span(&one));
     }
+}
+
+/// Largest minus smallest value.
+fn span_of(v: &[f64]) -> f64 {
+    v.iter().cloned().fold(f64::MIN, f64::max) - v.iter().cloned().fold(f64::MAX, f64::min)
 }
 
 /// growth_fastsim.toml at 4 passages, with `extra`.
@@ -226,29 +297,33 @@ fn far_apart_wheels_of_different_loads_wear_the_rail_as_their_two_single_wheels(
 
 #[test]
 fn a_traffic_class_may_be_a_vehicle() {
-    // Two classes of the same wheel, one of them a vehicle of two wheels
-    // 50 m apart on the damped track: every passage wears the rail as the
-    // single wheel does, so the mix grows the profile of the study of one
-    // wheel (fixed traffic scale).
+    // Two equal classes that are each a bogie (wheels 2.5 m apart) grow
+    // the profile of the study whose vehicle is that bogie, and not the
+    // single wheel's (fixed traffic scale).
     let dir = tempfile::tempdir().unwrap();
-    let fixed = ["track.pad_damping=1e6", "growth.adaptive=false", "growth.traffic_scale=1e3", "growth.passes=2"];
+    let fixed = ["growth.adaptive=false", "growth.traffic_scale=1e3", "growth.passes=2", "growth.contact_history=[]"];
+    let set: Vec<String> = fixed.iter().map(|s| s.to_string()).collect();
     let text = include_str!("../configs/growth_fastsim.toml");
-    let mix = format!(
-        "{text}\n[[traffic.mix]]\nname = \"car\"\nshare = 1.0\nwheels = [0.0, 50.0]\n\
-         [[traffic.mix]]\nname = \"wheel\"\nshare = 1.0\n"
-    );
-    let set: Vec<String> = fixed.iter().map(|s| s.to_string()).chain(["growth.contact_history=[]".into()]).collect();
-    let (one, two) = (dir.path().join("one.h5"), dir.path().join("mix.h5"));
-    run_scene(&load_str(text, "g", &set).unwrap(), &one, &mut |_| {}).unwrap();
-    let resolved = load_str(&mix, "g", &set).unwrap();
-    assert_eq!(resolved.scene.growth.as_ref().unwrap().classes[0].wheels, Some(vec![0.0, 50.0]));
-    run_scene(&resolved, &two, &mut |_| {}).unwrap();
-    let (a, b) = (read_f64(&one, "rail", "state").unwrap(), read_f64(&two, "rail", "state").unwrap());
-    let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let worst = a.iter().zip(&b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    assert!(worst < 1e-9 * scale, "{worst:e} of {scale:e}");
+    let class = |name: &str, wheels: &str| format!("[[traffic.mix]]\nname = \"{name}\"\nshare = 1.0\n{wheels}\n");
+    let bogies = format!("{text}\n{}{}", class("a", "wheels = [0.0, 2.5]"), class("b", "wheels = [0.0, 2.5]"));
+    let singles = format!("{text}\n{}{}", class("a", ""), class("b", ""));
+    let mut vehicle = set.clone();
+    vehicle.push("vehicle.wheels=[0.0, 2.5]".into());
+    let files: Vec<_> = ["bogies", "vehicle", "singles"].iter().map(|n| dir.path().join(format!("{n}.h5"))).collect();
+    let resolved = load_str(&bogies, "g", &set).unwrap();
+    assert_eq!(resolved.scene.growth.as_ref().unwrap().classes[0].wheels, Some(vec![0.0, 2.5]));
+    run_scene(&resolved, &files[0], &mut |_| {}).unwrap();
+    run_scene(&load_str(text, "g", &vehicle).unwrap(), &files[1], &mut |_| {}).unwrap();
+    run_scene(&load_str(&singles, "g", &set).unwrap(), &files[2], &mut |_| {}).unwrap();
+    let state: Vec<_> = files.iter().map(|f| read_f64(f, "rail", "state").unwrap()).collect();
+    let scale = state[1].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = |a: &ndarray::ArrayD<f64>, b: &ndarray::ArrayD<f64>| {
+        a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+    };
+    assert!(diff(&state[0], &state[1]) < 1e-12 * scale, "the bogie classes against the bogie vehicle");
+    assert!(diff(&state[2], &state[1]) > 1e-6 * scale, "the single-wheel classes grew the bogie's profile");
     // A class's wheels are checked as vehicle.wheels are.
-    let bad = mix.replace("wheels = [0.0, 50.0]", "wheels = [0.0, 0.5]");
+    let bad = bogies.replacen("wheels = [0.0, 2.5]", "wheels = [0.0, 0.5]", 1);
     let e = load_str(&bad, "g", &set).unwrap_err().to_string();
     assert!(e.contains("traffic.mix[0].wheels") && e.contains("closer than a wheel's diameter"), "{e}");
 }
@@ -293,6 +368,7 @@ fn several_wheels_need_a_track_model_and_room() {
         (growth, vec!["vehicle.wheels=[0.0, 2.5]", "dynamics.model=imposed"], "dynamics.model = \"imposed\""),
         (growth, vec!["vehicle.wheels=[0.0, 0.8]"], "closer than a wheel's diameter (2 geometry.wheel_radius = 1 m)"),
         (growth, vec!["vehicle.wheels=[0.0, 2.5]", "vehicle.normal_force=[1e5]"], "has 1 values; one per wheel"),
+        (single, vec!["vehicle.normal_force=[1e5]"], "a single passage takes load.*"),
         (
             growth,
             vec![

@@ -120,6 +120,17 @@ fn check_lists(scene: &Scene, errors: &mut Vec<ConfigError>) {
     let v = &scene.vehicle;
     let lists = [("unsprung_mass", v.unsprung_mass.is_some()), ("normal_force", v.normal_force.is_some())];
     let mix = scene.growth.as_ref().is_some_and(|g| super::traffic::is_mix(&g.classes));
+    if scene.growth.is_none() {
+        let given = [("unsprung_mass", v.unsprung_mass.is_some()), ("normal_force", v.normal_force.is_some())]
+            .into_iter()
+            .chain([("longitudinal_force", v.longitudinal_force.is_some())]);
+        for (key, _) in given.filter(|(_, g)| *g) {
+            errors.push(ConfigError::new(
+                &format!("vehicle.{key}"),
+                "is per wheel of a growth study's vehicle; a single passage takes load.* and dynamics.*".into(),
+            ));
+        }
+    }
     for (key, _) in lists.iter().filter(|(_, given)| *given && mix) {
         errors.push(ConfigError::new(
             &format!("vehicle.{key}"),

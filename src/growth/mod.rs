@@ -341,11 +341,17 @@ fn passage_with(
     for (w, force) in forces.iter().enumerate() {
         spec.loads = loads[w].clone();
         spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: force.clone() });
-        // The wheelset's torsion: the creepage's answer to this force.
-        spec.dynamic_creepage_x = spec.torsion.filter(|_| dynamics.is_some()).map(|t| PeriodicSignal {
-            x0: grid.x_min,
-            dx: grid.dx,
-            values: t.creepage(force, grid.dx, spec.speed),
+        // The wheelset's torsion: the creepage's answer to the normal
+        // force's variation (the imposed harmonics' and the dynamic force).
+        let torsion = spec.torsion.get(w).or(spec.torsion.first()).filter(|_| dynamics.is_some());
+        spec.dynamic_creepage_x = torsion.map(|t| {
+            let variation: Vec<f64> = grid
+                .xs()
+                .iter()
+                .zip(force)
+                .map(|(x, f)| f + spec.loads.normal_force_at(*x) - spec.loads.normal_force)
+                .collect();
+            PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: t.creepage(&variation, grid.dx, spec.speed) }
         });
         let mut report = |done: usize, total: usize| progress(w * total + done, wheels * total);
         let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, &mut report)?;

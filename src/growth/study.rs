@@ -266,11 +266,15 @@ impl<'a> Study<'a> {
         let record_fields = keep_history && scene.output.store_fields;
         let normal = self.normal_contact();
         let clock = cpu_time::ProcessTime::now();
-        let steps = self.d.passage.n_steps() * self.wheels();
+        // Progress in units of the longest passage of any class: this
+        // passage's own steps (its class's run-in and wheels) scaled to it.
+        let steps = self.steps_per_passage();
         let (first, passes) = (self.first, self.passes);
         let total_steps = (passes - first) * steps;
-        let mut report =
-            |done: usize, _: usize| progress(Event::Steps { done: (pass - first) * steps + done, total: total_steps });
+        let mut report = |done: usize, total: usize| {
+            let scaled = (done * steps).checked_div(total).unwrap_or(0);
+            progress(Event::Steps { done: (pass - first) * steps + scaled, total: total_steps })
+        };
         let (mut loss, mut clipped, mut linear_contact) = (0, 0, false);
         let fallbacks;
         let (wear, history) = match growth {
@@ -469,6 +473,13 @@ impl<'a> Study<'a> {
         };
         let previous = self.state.rows.iter().rev().find(|r| r.traffic_class == class).map(|r| r.traffic_scale);
         (self.scaling.scale(previous, rho), rho)
+    }
+
+    /// Contact steps of the longest simulated passage of any class (its
+    /// run-in and all its wheels), the unit of [`Event::Steps`].
+    fn steps_per_passage(&self) -> usize {
+        let of = |m: &ClassModel| m.passage.n_steps() * m.dynamics.as_deref().map_or(1, |d| d.wheels());
+        self.models.iter().map(of).max().unwrap_or(0).max(self.d.passage.n_steps())
     }
 
     /// Wheels on the rail whose passages make one simulated passage (1
