@@ -13,12 +13,15 @@
 #           transfer receptances (vehicle.wheels = [0.0, 2.5])
 #   curve   the leading wheelset in a curve: lateral creepage 5e-3 and spin
 #           0.5 1/m, no longitudinal force (the lateral force saturates)
+#   rutting the curve with the wheelset's torsional mode and a longitudinal
+#           creepage of -2e-3 (the rolling-radius difference), creepage
+#           control: the low rail's rutting mechanism of the literature
 # then `corrugation-post speeds` per mechanism (growth rate against
 # wavelength and frequency with the track's resonances; speeds_summary.csv:
 # each study's peak wavelength, frequency and rate) and `corrugation-post
 # mechanisms`: all of them side by side (mechanisms.png,
 # mechanisms_summary.csv).
-# Output in out/mechanism_study/. About 40 minutes on 2 cores with the
+# Output in out/mechanism_study/. About 45 minutes on 2 cores with the
 # config's 40 passages; PASSES=N runs N passages per study; CASES="single
 # bogie" picks mechanisms.
 set -euo pipefail
@@ -51,7 +54,7 @@ mechanism() {
   done
   .venv/bin/corrugation-post speeds "${made[@]}" --track "$out/track.h5" --out "$out/$name"
 }
-cases=${CASES:-single torsion bogie curve}
+cases=${CASES:-single torsion bogie curve rutting}
 base=configs/growth_discrete.toml
 for name in $cases; do
   case $name in
@@ -59,7 +62,9 @@ for name in $cases; do
     torsion) mechanism torsion "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-1.26e-3 ;;
     bogie) mechanism bogie $base --set 'vehicle.wheels=[0.0, 2.5]' ;;
     curve) mechanism curve $base --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 --set load.longitudinal_force=0 ;;
-    *) echo "unknown mechanism $name (single, torsion, bogie, curve)" >&2; exit 2 ;;
+    rutting) mechanism rutting "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-2e-3 \
+      --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 ;;
+    *) echo "unknown mechanism $name (single, torsion, bogie, curve, rutting)" >&2; exit 2 ;;
   esac
 done
 # The mechanisms side by side: mechanisms.png, mechanisms_summary.csv (per
