@@ -384,3 +384,50 @@ fn several_wheels_need_a_track_model_and_room() {
         assert!(e[0].starts_with("vehicle.") && e[0].contains(expected), "{set:?}: {}", e[0]);
     }
 }
+
+#[test]
+fn a_curving_wheel_in_the_consistent_chain_wears_the_rail_unevenly_across() {
+    // growth_exact.toml (the exact model on the fixed grid, the rail in
+    // the contact, F_x = 20 kN) with lateral creepage 2e-3 and spin 0.5
+    // 1/m: the whole grid is solved (no folding), with the nonlinear and
+    // the linear profile contact alike. Without lateral creepage and spin
+    // the wear is symmetric across the rail to rounding; with spin and a
+    // longitudinal creepage the slip (xi - phi y, eta + phi x) is not, nor
+    // is the wear, and the two contacts agree on it (the 1 um roughness is
+    // far inside the linear contact's range). (With F_x = 0 the slip's
+    // size is even in y and so is the wear: spin alone does not tilt it.)
+    let text = include_str!("../configs/growth_exact.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let base = ["growth.passes=1", "growth.contact_history=[]", "growth.store_every=1"];
+    let run = |name: &str, extra: &[&str]| {
+        let set: Vec<String> = base.iter().chain(extra).map(|s| s.to_string()).collect();
+        let out = dir.path().join(format!("{name}.h5"));
+        run_scene(&load_str(text, "g", &set).unwrap(), &out, &mut |_| {}).unwrap();
+        (read_f64(&out, "rail", "wear").unwrap(), read_f64(&out, "passes", "removed_volume").unwrap()[0])
+    };
+    // The wear's share on the y > 0 half less its share on y < 0.
+    let imbalance = |w: &ndarray::ArrayD<f64>| {
+        let (ny, nx) = (w.shape()[1], w.shape()[2]);
+        let (mut lo, mut hi) = (0.0, 0.0);
+        for j in 0..ny {
+            let row: f64 = (0..nx).map(|i| w[[0, j, i]]).sum();
+            if 2 * j + 1 < ny {
+                lo += row;
+            } else if 2 * j + 1 > ny {
+                hi += row;
+            }
+        }
+        (hi - lo) / (hi + lo)
+    };
+    let curve = ["rolling.creepage_y=2e-3", "rolling.spin=0.5"];
+    let (straight, _) = run("straight", &[]);
+    let (nonlinear, v_nonlinear) = run("nonlinear", &[&curve[..], &["contact.normal=profile"]].concat());
+    let (linear, v_linear) = run("linear", &[&curve[..], &["contact.normal=linear"]].concat());
+    let (s, n, l) = (imbalance(&straight), imbalance(&nonlinear), imbalance(&linear));
+    eprintln!(
+        "imbalance across the rail: straight {s:.2e}, curving {n:.4} (nonlinear), {l:.4} (linear); removed {v_nonlinear:.4e} / {v_linear:.4e} m^3"
+    );
+    assert!(s.abs() < 1e-9, "straight: {s}");
+    assert!(n.abs() > 0.01 && (n - l).abs() < 0.05 * n.abs(), "curving: {n} vs {l}");
+    assert!((v_nonlinear - v_linear).abs() < 0.01 * v_linear, "{v_nonlinear} vs {v_linear}");
+}
