@@ -84,8 +84,10 @@
 //! - Shear deformation and rotary inertia of the rail (Timoshenko beam),
 //!   which soften the rail above about 500 Hz, and the rail's own damping.
 //! - The load's motion along the rail (valid for `V` far below the critical
-//!   speed of the track), the second wheel and the other rail, the primary
-//!   suspension, wheel modes, and contact filtering (done by the caller).
+//!   speed of the track), the other rail, the primary suspension, wheel
+//!   modes, and contact filtering (done by the caller). Several wheels on
+//!   this rail are coupled by [`super::vehicle::CoupledReceptance`] (the
+//!   transfer receptance [`winkler_transfer_receptance`] between them).
 
 use super::{TrackDynamics, apply_periodic_response};
 use num_complex::Complex64;

@@ -25,9 +25,9 @@ pub struct TrackResponse {
     pub frequency: Vec<f64>,
     /// Positions from a sleeper (m): 0 (above it) to d/2 (mid-span).
     pub position: Vec<f64>,
-    /// Rail point receptance of the discrete model (m/N), [position][frequency].
+    /// Rail point receptance of the discrete model (m/N), (position, frequency).
     pub rail: Vec<Vec<Complex64>>,
-    /// Rail point receptance of the continuous model (m/N), [frequency].
+    /// Rail point receptance of the continuous model (m/N), (frequency).
     pub continuous: Vec<Complex64>,
     /// Places of the force for the transfer receptances (m from a sleeper):
     /// above it and mid-span.
@@ -35,11 +35,11 @@ pub struct TrackResponse {
     /// Distances between wheels (m), increasing (empty for one wheel).
     pub distance: Vec<f64>,
     /// The discrete model's rail displacement at each distance ahead of a
-    /// unit force at each source (m/N), [source][distance][frequency].
+    /// unit force at each source (m/N), (source, distance, frequency).
     pub transfer: Vec<Vec<Vec<Complex64>>>,
-    /// The continuous model's (m/N), [distance][frequency].
+    /// The continuous model's (m/N), (distance, frequency).
     pub continuous_transfer: Vec<Vec<Complex64>>,
-    /// Wheel receptance `-1 / (M w^2)` (m/N), [frequency].
+    /// Wheel receptance `-1 / (M w^2)` (m/N), (frequency).
     pub wheel: Vec<f64>,
     /// Contact receptance `1 / k_H` (m/N).
     pub contact: f64,

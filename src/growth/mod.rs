@@ -206,7 +206,7 @@ pub const LINEAR_CONTACT_CURVATURE: f64 = 0.5;
 ///
 /// A passage `Auto` gives the linear contact that stops at a step (a long
 /// wave that moves the patch by half of it while its curvature is small,
-/// which the linearisation refuses, [`ContactError::LinearRange`]; or a
+/// which the linearisation refuses, [`crate::contact::ContactError::LinearRange`]; or a
 /// patch beyond the block of the grid the linear contact runs on) is run
 /// again with the nonlinear contact ([`GrowthPass::rerun`]).
 #[allow(clippy::too_many_arguments)]
