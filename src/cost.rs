@@ -179,13 +179,15 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     // times that per wheel: 1.4 s for two wheels, 2.9 s for four), and
     // runs one passage per class over the smooth rail for the update bound
     // (its forced wear).
-    let table = if wheels > 1 { 1.5 * wheels as f64 } else { 1.0 };
+    let table = |n: usize| if n > 1 { 1.5 * n as f64 } else { 1.0 };
     let setup: f64 = match &s.growth {
         Some(gr) if matches!(gr.dynamics, DynamicsKind::Discrete { .. }) => gr
             .classes
             .iter()
             .map(|c| {
-                0.0042 * table * crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64 + per_passage
+                let n = c.wheels.as_ref().map_or(wheels, Vec::len);
+                let harmonics = crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64;
+                0.0042 * table(n) * harmonics + per_passage * n as f64 / mean_wheels
             })
             .sum(),
         _ => 0.0,
