@@ -28,7 +28,7 @@ use crate::hertz::HertzShape;
 use crate::loads::ImposedLoads;
 use crate::metrics::centre_row;
 use crate::params::NormalContact;
-use crate::passage::{PassageError, PassageResult, PassageSpec, PeriodicSignal, run_passage};
+use crate::passage::{PassageError, PassageResult, PassageSpec, PatchHistory, PeriodicSignal, run_passage};
 use crate::rail_grid::RailGrid;
 use crate::wear::WearKernel;
 use ndarray::Array2;
@@ -147,6 +147,9 @@ pub struct GrowthPass {
     /// The leading wheel's passage on the extended grid (history, unfolded
     /// wear), with the fallback steps of every wheel's.
     pub passage: PassageResult,
+    /// The other wheels' patch histories, the second wheel first (empty
+    /// for one wheel).
+    pub wheel_histories: Vec<PatchHistory>,
     /// Wear of one simulated wheel passage on the periodic grid (m): with
     /// several wheels, the mean of theirs.
     pub wear: Array2<f64>,
@@ -337,6 +340,7 @@ fn passage_with(
     let mut wear = Array2::zeros((grid.ny, grid.nx));
     let (mut contact_loss_steps, mut clipped_steps, mut fallback_steps) = (0, 0, 0);
     let mut leading = None;
+    let mut wheel_histories = Vec::new();
     let wheels = forces.len();
     for (w, force) in forces.iter().enumerate() {
         spec.loads = loads[w].clone();
@@ -361,14 +365,26 @@ fn passage_with(
             h.x_c.iter().zip(&h.in_contact).filter(|(x, c)| window.contains(*x) && **c == 0.0).count();
         clipped_steps += passage.clipped_steps;
         fallback_steps += passage.fallback_steps;
-        leading.get_or_insert(passage);
+        match leading {
+            None => leading = Some(passage),
+            Some(_) => wheel_histories.push(passage.history),
+        }
     }
     if wheels > 1 {
         wear /= wheels as f64;
     }
     let passage = PassageResult { fallback_steps, ..leading.expect("one wheel at least") };
     let dynamic_force = forces.into_iter().next().expect("one wheel at least");
-    Ok(GrowthPass { passage, wear, dynamic_force, contact_loss_steps, clipped_steps, linear_contact, rerun: None })
+    Ok(GrowthPass {
+        wheel_histories,
+        passage,
+        wear,
+        dynamic_force,
+        contact_loss_steps,
+        clipped_steps,
+        linear_contact,
+        rerun: None,
+    })
 }
 
 /// How a passage's dynamics sees the profile (module docs of

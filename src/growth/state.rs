@@ -72,6 +72,10 @@ pub struct RunState {
     pub rows: Vec<PassRow>,
     /// Stored rail states.
     pub rail: Vec<RailSnapshot>,
-    /// Stored patch histories: (passage index, history).
+    /// Stored patch histories: (passage index, history); with several
+    /// wheels the leading wheel's.
     pub histories: Vec<(i64, PatchHistory)>,
+    /// The other wheels' histories of the same stored passages (passage
+    /// index, the second wheel's first); only passages with several wheels.
+    pub wheel_histories: Vec<(i64, Vec<PatchHistory>)>,
 }

@@ -166,7 +166,7 @@ pub fn initial_state(scene: &Scene) -> RunState {
         }
         None => Array2::zeros((grid.ny, grid.nx)),
     };
-    RunState { profile, rows: Vec::new(), rail: Vec::new(), histories: Vec::new() }
+    RunState { profile, rows: Vec::new(), rail: Vec::new(), histories: Vec::new(), wheel_histories: Vec::new() }
 }
 
 impl<'a> Study<'a> {
@@ -277,6 +277,7 @@ impl<'a> Study<'a> {
         };
         let (mut loss, mut clipped, mut linear_contact) = (0, 0, false);
         let fallbacks;
+        let mut others = Vec::new();
         let (wear, history) = match growth {
             None => {
                 let r = run_passage(
@@ -367,6 +368,7 @@ impl<'a> Study<'a> {
                     let w0 = passage(&smooth, false, &mut |_, _| {}).map_err(fail)?;
                     model.forced = Some(line(&w0.wear));
                 }
+                others = g.wheel_histories;
                 (g.wear, g.passage.history)
             }
         };
@@ -433,6 +435,9 @@ impl<'a> Study<'a> {
         }
         if keep_history {
             state.histories.push((pass as i64, history));
+            if !others.is_empty() {
+                state.wheel_histories.push((pass as i64, others));
+            }
         }
         state.rows.push(row);
         self.stopped = stop_reason(growth, &state.rows);

@@ -25,6 +25,9 @@ pub struct StateLayout<'a> {
     pub history_passes: &'a [usize],
     /// Traffic classes of the study.
     pub classes: usize,
+    /// Wheels on the rail of each traffic class's vehicle (the stored
+    /// passages of a class of several wheels hold the others' histories).
+    pub class_wheels: Vec<usize>,
 }
 
 /// Reads the state of the run file at `path`, checking every shape against
@@ -85,7 +88,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         Err(_) if layout.classes <= 1 => ndarray::Array1::zeros(done),
         Err(e) => return Err(e),
     };
-    let rows = (0..done)
+    let rows: Vec<PassRow> = (0..done)
         .map(|k| PassRow {
             index: k as i64,
             traffic: traffic[k],
@@ -142,13 +145,20 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         })
         .collect();
 
-    // Group `contact`.
-    let mut histories = Vec::new();
+    // Group `contact`, and the other wheels' subgroups.
+    let (mut histories, mut wheel_histories) = (Vec::new(), Vec::new());
     for k in (0..done).filter(|k| layout.history_passes.contains(k)) {
         let group = format!("contact/pass_{k:05}");
         histories.push((k as i64, read_history(path, &group, layout)?));
+        let wheels = layout.class_wheels.get(rows[k].traffic_class).copied().unwrap_or(1);
+        if wheels > 1 {
+            let others = (2..=wheels)
+                .map(|w| read_history(path, &format!("{group}/wheel_{w}"), layout))
+                .collect::<Result<Vec<_>, _>>()?;
+            wheel_histories.push((k as i64, others));
+        }
     }
-    Ok(RunState { profile, rows, rail, histories })
+    Ok(RunState { profile, rows, rail, histories, wheel_histories })
 }
 
 fn read_history(path: &Path, group: &str, layout: &StateLayout) -> Result<PatchHistory, NcError> {

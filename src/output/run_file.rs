@@ -69,7 +69,13 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         }
         let contact = root.group("contact")?;
         for (index, history) in &record.state.histories {
-            write_history(&contact.group(&format!("pass_{index:05}"))?, history, record)?;
+            let group = contact.group(&format!("pass_{index:05}"))?;
+            write_history(&group, history, record)?;
+            // The other wheels' histories: subgroups wheel_2, wheel_3, ...
+            let others = record.state.wheel_histories.iter().filter(|(i, _)| i == index).flat_map(|(_, h)| h);
+            for (k, h) in others.enumerate() {
+                write_history(&group.group(&format!("wheel_{}", k + 2))?, h, record)?;
+            }
         }
         Ok(())
     })

@@ -176,6 +176,11 @@ pub fn resume(
         fields: scene.output.store_fields,
         history_passes: &growth.contact_history,
         classes: growth.classes.len(),
+        class_wheels: growth
+            .classes
+            .iter()
+            .map(|c| c.wheels.as_ref().map_or(scene.vehicle.wheels.len(), Vec::len))
+            .collect(),
     };
     if done > growth.passes {
         let msg = format!("holds {done} passages, more than its config's growth.passes = {}", growth.passes);
