@@ -10,6 +10,7 @@
 mod auto;
 pub mod contact;
 mod growth;
+mod load;
 mod overrides;
 mod reader;
 mod track;
@@ -22,7 +23,7 @@ use crate::contact::friction::FrictionLaw;
 use crate::contact::grid::GridScheme;
 use crate::creep_coefficients::creep_coefficients;
 use crate::hertz::{Elastic, HertzShape};
-use crate::loads::{Harmonic, ImposedLoads, LoadQuantity};
+use crate::loads::ImposedLoads;
 use crate::model_choice::FIXED_ASPECT;
 use crate::params::{
     ContactGrid, ContactModel, ContactModelKind, ContactParams, FixedGridParams, Geometry, Material, Mesh,
@@ -186,63 +187,8 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     let spin = s.f64("spin", Some(0.0), Range::Closed(-100.0, 100.0));
     resolved.insert("rolling".into(), Value::Table(s.finish()));
 
-    let mut s = section(&mut root, "load", errors);
-    let normal = s.f64("normal_force", None, Range::Positive);
-    // Creepage control: the creepage rolling.creepage_x is prescribed and
-    // the longitudinal force is the result; force control (the default):
-    // the force is prescribed and the creepage found.
-    let control = s.choice("control", Some("force"), &["force", "creepage"]);
-    let by_creepage = control.as_deref() == Some("creepage");
-    let longitudinal = if by_creepage {
-        if s.has("longitudinal_force") {
-            s.f64("longitudinal_force", None, Range::Finite);
-            s.error(
-                "longitudinal_force",
-                "is a force, but load.control = \"creepage\" prescribes the creepage rolling.creepage_x (the force \
-                 is its result): remove it, or set load.control = \"force\""
-                    .into(),
-            );
-            None
-        } else {
-            Some(0.0)
-        }
-    } else {
-        s.f64("longitudinal_force", None, Range::Finite)
-    };
-    let harmonics = s.array_of_tables("harmonics", read_harmonic);
-    resolved.insert("load".into(), Value::Table(s.finish()));
-    let creepage_x = match (control.as_deref(), creepage_x_given) {
-        (Some("creepage"), false) => {
-            errors.push(ConfigError::new(
-                "rolling.creepage_x",
-                "is required with load.control = \"creepage\" (the longitudinal creepage, in [-0.1, 0.1])".into(),
-            ));
-            None
-        }
-        (Some("creepage"), true) => creepage_x.map(Some),
-        (_, true) => {
-            errors.push(ConfigError::new(
-                "rolling.creepage_x",
-                "is a creepage, but load.control = \"force\" (the default) prescribes load.longitudinal_force and \
-                 finds the creepage: remove it, or set load.control = \"creepage\""
-                    .into(),
-            ));
-            None
-        }
-        _ => Some(None),
-    };
-    if by_creepage && let Some(hs) = &harmonics {
-        for (i, h) in hs.iter().enumerate().filter(|(_, h)| h.quantity == LoadQuantity::LongitudinalForce) {
-            errors.push(ConfigError::new(
-                &format!("load.harmonics[{i}].quantity"),
-                format!(
-                    "= \"longitudinal_force\" (amplitude {} N) is a force, but load.control = \"creepage\" \
-                     prescribes the creepage",
-                    h.amplitude
-                ),
-            ));
-        }
-    }
+    let load::LoadKeys { normal, longitudinal, harmonics, creepage_x } =
+        load::read(&mut root, &mut resolved, (creepage_x_given, creepage_x), errors);
 
     let contact = contact::read(&mut root, &mut resolved, errors);
 
@@ -311,7 +257,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         return (None, resolved);
     };
     let loads = ImposedLoads { normal_force: normal, longitudinal_force: longitudinal, harmonics };
-    check_loads(&loads, mu, dx, errors);
+    load::check_loads(&loads, mu, dx, errors);
 
     let Some(mut fixed_grid) = contact::reconcile_step(&contact, step_length, step_given, &mut resolved, errors) else {
         return (None, resolved);
@@ -370,23 +316,12 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     // The largest normal force of any traffic class.
     let max_normal = match &growth {
         Some(g) => {
-            check_classes(&g.classes, &loads, mu, errors);
+            load::check_classes(&g.classes, &loads, mu, errors);
             g.classes.iter().map(|c| vehicle.max_normal_force(&c.loads(&loads))).fold(0.0, f64::max)
         }
         None => vehicle.max_normal_force(&loads),
     };
-    // Each wheel's own loads against friction.
-    if vehicle.normal_force.is_some() || vehicle.longitudinal_force.is_some() {
-        for i in 0..vehicle.wheels.len() {
-            if let Some(problem) = load_problem(&vehicle.wheel_loads(i, &loads), mu) {
-                let key = if vehicle.longitudinal_force.is_some() { "longitudinal_force" } else { "normal_force" };
-                errors.push(ConfigError::new(
-                    &format!("vehicle.{key}"),
-                    format!("wheel {}: {}", i + 1, problem.describe()),
-                ));
-            }
-        }
-    }
+    load::check_wheel_loads(&vehicle, &loads, mu, errors);
     if let Some(p) = shape.and_then(|s| s.patch(max_normal).ok())
         && half_width < p.b
     {
@@ -561,95 +496,6 @@ fn check_growth(
     }
 }
 
-/// Each traffic class of a mix must keep contact where it pulls and stay
-/// below full sliding, as [`check_loads`] requires of `[load]` (the one
-/// class of a study without `[traffic]` is `[load]` itself).
-fn check_classes(
-    classes: &[crate::params::TrafficClass],
-    loads: &ImposedLoads,
-    mu: f64,
-    errors: &mut Vec<ConfigError>,
-) {
-    if !traffic::is_mix(classes) {
-        return;
-    }
-    for (i, c) in classes.iter().enumerate() {
-        let (key, message) = match load_problem(&c.loads(loads), mu) {
-            Some(LoadProblem::PullsWithoutContact { n_min, f_max }) => (
-                "normal_force",
-                format!(
-                    "= {:.6e} N: with the load.harmonics the normal force reaches {n_min:.6e} N <= 0 (contact lost) \
-                     while the class pulls with |F_x| up to {f_max:.6e} N; it must stay > 0",
-                    c.normal_force
-                ),
-            ),
-            Some(LoadProblem::FullSliding { limit, f_max }) => (
-                "longitudinal_force",
-                format!(
-                    "= {:.6e} N: |F_x| reaches {f_max:.6e} N, which must be < mu * min N = {limit:.6e} N (full sliding)",
-                    c.longitudinal_force
-                ),
-            ),
-            None => continue,
-        };
-        errors.push(ConfigError::new(&format!("traffic.mix[{i}].{key}"), message));
-    }
-}
-
-/// Why imposed loads cannot be run.
-enum LoadProblem {
-    /// N reaches `n_min` <= 0 (contact lost) while |F_x| reaches `f_max` > 0.
-    PullsWithoutContact {
-        /// Smallest normal force (N).
-        n_min: f64,
-        /// Largest |F_x| (N).
-        f_max: f64,
-    },
-    /// |F_x| reaches `f_max` >= `limit` = mu min N.
-    FullSliding {
-        /// mu times the smallest normal force (N).
-        limit: f64,
-        /// Largest |F_x| (N).
-        f_max: f64,
-    },
-}
-
-impl LoadProblem {
-    /// The problem in words.
-    fn describe(&self) -> String {
-        match self {
-            LoadProblem::PullsWithoutContact { n_min, f_max } => {
-                format!("N reaches {n_min:.6e} N <= 0 (contact lost) while |F_x| reaches {f_max:.6e} N")
-            }
-            LoadProblem::FullSliding { limit, f_max } => {
-                format!("|F_x| reaches {f_max:.6e} N, which must be < mu * min N = {limit:.6e} N (full sliding)")
-            }
-        }
-    }
-}
-
-/// What keeps `loads` from being run with friction `mu`, if anything.
-fn load_problem(loads: &ImposedLoads, mu: f64) -> Option<LoadProblem> {
-    let (n_min, f_max) = (loads.min_normal_force(), loads.max_longitudinal_force());
-    if n_min <= 0.0 && f_max > 0.0 {
-        Some(LoadProblem::PullsWithoutContact { n_min, f_max })
-    } else if n_min > 0.0 && f_max >= mu * n_min {
-        Some(LoadProblem::FullSliding { limit: mu * n_min, f_max })
-    } else {
-        None
-    }
-}
-
-fn read_harmonic(s: &mut Section) -> Option<Harmonic> {
-    let quantity = s.choice("quantity", None, &["normal_force", "longitudinal_force"]);
-    let amplitude = s.f64("amplitude", None, Range::NonNegative);
-    let wavelength = s.f64("wavelength", None, Range::OpenClosed(0.0, 1000.0));
-    let phase = s.f64("phase", Some(0.0), Range::Finite);
-    let quantity =
-        if quantity? == "normal_force" { LoadQuantity::NormalForce } else { LoadQuantity::LongitudinalForce };
-    Some(Harmonic { quantity, amplitude: amplitude?, wavelength: wavelength?, phase: phase? })
-}
-
 fn check_geometry(material: &Material, geometry: &Geometry, errors: &mut Vec<ConfigError>) -> Option<HertzShape> {
     let c = geometry.curvatures();
     if c.b <= 0.0 {
@@ -676,35 +522,6 @@ fn check_geometry(material: &Material, geometry: &Geometry, errors: &mut Vec<Con
         ));
     }
     Some(shape)
-}
-
-fn check_loads(loads: &ImposedLoads, mu: f64, rail_dx: Option<f64>, errors: &mut Vec<ConfigError>) {
-    match load_problem(loads, mu) {
-        Some(LoadProblem::PullsWithoutContact { n_min, f_max }) => errors.push(ConfigError::new(
-            "load.harmonics",
-            format!(
-                "normal-force amplitudes sum to {:.6e} N >= load.normal_force = {:.6e} N: contact is lost where N <= 0, \
-                 which is only allowed with no longitudinal force (|F_x| reaches {f_max:.6e} N)",
-                loads.normal_force - n_min,
-                loads.normal_force
-            ),
-        )),
-        Some(LoadProblem::FullSliding { limit, f_max }) => errors.push(ConfigError::new(
-            "load.longitudinal_force",
-            format!("|F_x| reaches {f_max:.6e} N, which must be < mu * min N = {limit:.6e} N (full sliding)"),
-        )),
-        None => {}
-    }
-    if let Some(dx) = rail_dx {
-        for (i, h) in loads.harmonics.iter().enumerate() {
-            if h.wavelength < 2.0 * dx {
-                errors.push(ConfigError::new(
-                    &format!("load.harmonics[{i}].wavelength"),
-                    format!("= {} m is shorter than two rail-grid cells (2 * rail.dx = {} m)", h.wavelength, 2.0 * dx),
-                ));
-            }
-        }
-    }
 }
 
 /// With the discrete track the periodic stretch is a whole number of
