@@ -115,37 +115,27 @@ fn check_wheels(key: &str, wheels: &[f64], scene: &Scene, errors: &mut Vec<Confi
     }
 }
 
-/// The per-wheel lists of `[vehicle]` against the scene.
+/// The per-wheel lists of `[vehicle]` against the scene: growth studies
+/// only, not with a traffic mix (its classes set one value each), and no
+/// force under creepage control.
 fn check_lists(scene: &Scene, errors: &mut Vec<ConfigError>) {
     let v = &scene.vehicle;
-    let lists = [("unsprung_mass", v.unsprung_mass.is_some()), ("normal_force", v.normal_force.is_some())];
     let mix = scene.growth.as_ref().is_some_and(|g| super::traffic::is_mix(&g.classes));
-    if scene.growth.is_none() {
-        let given = [("unsprung_mass", v.unsprung_mass.is_some()), ("normal_force", v.normal_force.is_some())]
-            .into_iter()
-            .chain([("longitudinal_force", v.longitudinal_force.is_some())]);
-        for (key, _) in given.filter(|(_, g)| *g) {
-            errors.push(ConfigError::new(
-                &format!("vehicle.{key}"),
-                "is per wheel of a growth study's vehicle; a single passage takes load.* and dynamics.*".into(),
-            ));
-        }
-    }
-    for (key, _) in lists.iter().filter(|(_, given)| *given && mix) {
-        errors.push(ConfigError::new(
-            &format!("vehicle.{key}"),
-            "per wheel with a [traffic] mix: the classes set one value per class; give it per class".into(),
-        ));
-    }
-    if v.longitudinal_force.is_some() && scene.creepage_x.is_some() {
-        errors.push(ConfigError::new(
-            "vehicle.longitudinal_force",
-            "is a force, but load.control = \"creepage\" prescribes the creepage rolling.creepage_x".into(),
-        ));
-    } else if v.longitudinal_force.is_some() && mix {
-        errors.push(ConfigError::new(
-            "vehicle.longitudinal_force",
-            "per wheel with a [traffic] mix: the classes set one value per class; give it per class".into(),
-        ));
+    let lists = [
+        ("unsprung_mass", v.unsprung_mass.is_some()),
+        ("normal_force", v.normal_force.is_some()),
+        ("longitudinal_force", v.longitudinal_force.is_some()),
+    ];
+    for (key, _) in lists.iter().filter(|(_, given)| *given) {
+        let why = if scene.growth.is_none() {
+            "is per wheel of a growth study's vehicle; a single passage takes load.* and dynamics.*"
+        } else if *key == "longitudinal_force" && scene.creepage_x.is_some() {
+            "is a force, but load.control = \"creepage\" prescribes the creepage rolling.creepage_x"
+        } else if mix {
+            "per wheel with a [traffic] mix: the classes set one value per class; give it per class"
+        } else {
+            continue;
+        };
+        errors.push(ConfigError::new(&format!("vehicle.{key}"), why.into()));
     }
 }

@@ -141,13 +141,7 @@ impl DiscreteTrack {
         let mut sums = vec![Complex64::new(0.0, 0.0); xs.len()];
         self.over_zone(omega, |kappa, a, t0| {
             for ((sum, phase), &x0) in sums.iter_mut().zip(&phases).zip(xs) {
-                let (mut tp, mut tm) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
-                for (ai, ph) in a.iter().zip(phase) {
-                    tp += ai * ph;
-                    tm += ai * ph.conj();
-                }
-                let shift = Complex64::from_polar(1.0, kappa * x0);
-                let (tp, tm) = (tp * shift, tm * shift.conj());
+                let (tp, tm) = place_sums(a, phase, kappa, x0);
                 *sum += t0 - ks * tp * tm / (d + ks * t0);
             }
         });
@@ -175,14 +169,10 @@ impl DiscreteTrack {
         let mut sums = vec![Complex64::new(0.0, 0.0); distances.len()];
         self.over_zone(omega, |kappa, a, t0| {
             // T(kappa, -x0), the source's side of the supports' response.
-            let tm = a.iter().zip(&source).map(|(ai, ph)| ai * ph.conj()).sum::<Complex64>()
-                * Complex64::from_polar(1.0, -kappa * x0);
+            let tm = place_sums(a, &source, kappa, x0).1;
             for (k, &l) in distances.iter().enumerate() {
-                let tp = a.iter().zip(&watched[k]).map(|(ai, ph)| ai * ph).sum::<Complex64>()
-                    * Complex64::from_polar(1.0, kappa * (x0 + l));
-                let shift = Complex64::from_polar(1.0, kappa * l);
-                let tail_l = if whole_bays[k] { tail * shift } else { Complex64::new(0.0, 0.0) };
-                let tl = a.iter().zip(&free[k]).map(|(ai, ph)| ai * ph).sum::<Complex64>() * shift + tail_l;
+                let tp = place_sums(a, &watched[k], kappa, x0 + l).0;
+                let tl = free_sum(a, &free[k], kappa, l, whole_bays[k].then_some(tail));
                 sums[k] += tl - ks * tp * tm / (d + ks * t0);
             }
         });
@@ -216,18 +206,10 @@ impl DiscreteTrack {
         let mut tl = vec![Complex64::new(0.0, 0.0); pairs.len()];
         self.over_zone(omega, |kappa, a, t0| {
             for (k, (&x, phase)) in places.iter().zip(&phases).enumerate() {
-                let (mut p, mut m) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
-                for (ai, ph) in a.iter().zip(phase) {
-                    p += ai * ph;
-                    m += ai * ph.conj();
-                }
-                let shift = Complex64::from_polar(1.0, kappa * x);
-                (tp[k], tm[k]) = (p * shift, m * shift.conj());
+                (tp[k], tm[k]) = place_sums(a, phase, kappa, x);
             }
             for (k, &l) in pairs.iter().enumerate() {
-                let shift = Complex64::from_polar(1.0, kappa * l);
-                let tail_l = if whole_bays[k] { tail * shift } else { Complex64::new(0.0, 0.0) };
-                tl[k] = a.iter().zip(&free[k]).map(|(ai, ph)| ai * ph).sum::<Complex64>() * shift + tail_l;
+                tl[k] = free_sum(a, &free[k], kappa, l, whole_bays[k].then_some(tail));
             }
             let support = ks / (d + ks * t0);
             for (p, sum) in sums.iter_mut().enumerate() {
@@ -292,6 +274,29 @@ impl DiscreteTrack {
         let w2 = if a > 0.0 { (b - (b * b - 4.0 * a * c).sqrt()) / (2.0 * a) } else { c / b };
         w2.sqrt() / (2.0 * PI)
     }
+}
+
+/// The supports' lattice sums at the place `x` (m from a support):
+/// `T(kappa, x) = sum_j alpha^(kappa_j) exp(i kappa_j x)` and `T(kappa, -x)`,
+/// from the free rail's spectral receptances `a` and the place's phasors
+/// `phase` ([`DiscreteTrack::phasors`]).
+fn place_sums(a: &[Complex64], phase: &[Complex64], kappa: f64, x: f64) -> (Complex64, Complex64) {
+    let (mut p, mut m) = (Complex64::new(0.0, 0.0), Complex64::new(0.0, 0.0));
+    for (ai, ph) in a.iter().zip(phase) {
+        p += ai * ph;
+        m += ai * ph.conj();
+    }
+    let shift = Complex64::from_polar(1.0, kappa * x);
+    (p * shift, m * shift.conj())
+}
+
+/// The free rail's `T(kappa, l)` at the distance `l` (m) from the load
+/// (phasors `phase` of `l`), with the lattice tail `tail` where given (`l`
+/// a whole number of bays, where its terms do not oscillate).
+fn free_sum(a: &[Complex64], phase: &[Complex64], kappa: f64, l: f64, tail: Option<Complex64>) -> Complex64 {
+    let shift = Complex64::from_polar(1.0, kappa * l);
+    let tail_l = tail.map_or(Complex64::new(0.0, 0.0), |t| t * shift);
+    a.iter().zip(phase).map(|(ai, ph)| ai * ph).sum::<Complex64>() * shift + tail_l
 }
 
 #[cfg(test)]

@@ -341,7 +341,6 @@ fn passage_with(
     let (mut contact_loss_steps, mut clipped_steps, mut fallback_steps) = (0, 0, 0);
     let mut leading = None;
     let mut wheel_histories = Vec::new();
-    let wheels = forces.len();
     for (w, force) in forces.iter().enumerate() {
         spec.loads = loads[w].clone();
         spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: force.clone() });
