@@ -16,11 +16,10 @@ from pathlib import Path
 
 import numpy as np
 from matplotlib.figure import Figure
-from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from .figures import DPI
 from .io import RunFileError, read_csv, write_csv
-from .speeds import CSV_NAME
+from .speeds import CSV_NAME, growth_rate_axes
 
 SUMMARY_NAME = "mechanisms_summary.csv"
 SUMMARY_COLUMNS = ("mechanism", "label", "speed_m_s", "peak_wavelength_m", "peak_frequency_hz",
@@ -76,12 +75,8 @@ def mechanism_figure(folders, out_dir):
         ax_f.set(title=name, xlabel="frequency V / wavelength (Hz)", xscale="log")
         ax_wl.set(xlabel="wavelength (mm)", xscale="log")
         for ax in (ax_f, ax_wl):
-            ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-            ax.xaxis.set_minor_formatter(NullFormatter())
-            ax.axhline(0.0, color="black", lw=0.6)
-            ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=8)
-    for ax in axes[:, 0] if hasattr(axes, "shape") else [row[0] for row in axes]:
+            growth_rate_axes(ax)
+    for ax in axes[:, 0]:
         ax.set_ylabel("mean growth rate (dB per 1e5 passages)")
     png = out_dir / "mechanisms.png"
     fig.savefig(png, dpi=DPI)

@@ -98,6 +98,16 @@ def _resonances(track) -> list[tuple[str, float]]:
     return [(name, float(attrs[key])) for key, name in names if key in attrs]
 
 
+def growth_rate_axes(ax) -> None:
+    """A growth rate against a logarithmic wavelength or frequency: plain
+    numbers on the axis, the zero line, the grid and the legend."""
+    ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.axhline(0.0, color="black", lw=0.6)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+
+
 def speed_study(paths, out_dir, track=None):
     """Writes ``speeds.png``, ``speeds.csv`` and ``speeds_summary.csv``;
     returns ``(rows, paths)`` with one summary row per study."""
@@ -152,11 +162,7 @@ def speed_study(paths, out_dir, track=None):
               title="Growth rate against wavelength")
     ax_f.set(xlabel="frequency V / wavelength (Hz)", xscale="log", title="Growth rate against frequency")
     for ax in (ax_wl, ax_f):
-        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-        ax.xaxis.set_minor_formatter(NullFormatter())
-        ax.axhline(0.0, color="black", lw=0.6)
-        ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=8)
+        growth_rate_axes(ax)
     png = out_dir / "speeds.png"
     fig.savefig(png, dpi=DPI)
     return summary, [png, write_csv(out_dir / CSV_NAME, CSV_COLUMNS, rows),
