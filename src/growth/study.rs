@@ -487,12 +487,6 @@ impl<'a> Study<'a> {
         self.models.iter().map(of).max().unwrap_or(0).max(self.d.passage.n_steps())
     }
 
-    /// Wheels on the rail whose passages make one simulated passage (1
-    /// without a track model).
-    pub fn wheels(&self) -> usize {
-        self.models.iter().filter_map(|m| m.dynamics.as_deref()).map(|d| d.wheels()).max().unwrap_or(1)
-    }
-
     /// Passages the study will have (`growth.passes`; 1 for one passage).
     pub fn passes(&self) -> usize {
         self.passes
