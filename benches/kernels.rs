@@ -7,6 +7,7 @@ use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::spec::FixedGridSpec;
+use corrugation::contact::grid::symmetric::{SymmetricConvolution, SymmetricScratch};
 use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::transient::elastic::ExactElastic;
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
@@ -199,6 +200,23 @@ fn fixed_grid(c: &mut Criterion) {
         let inverse = FftConvolution::circulant_inverse_single(&kernel);
         g.bench_function(format!("fft_preconditioner_{mm}mm_{}x{}", grid.nx, grid.ny), |b| {
             b.iter(|| inverse.tangential(&mut scratch_single, (black_box(&px), &py), (&mut ux, &mut uy)))
+        });
+        // The same three on a folded grid's symmetric fields (x even, y
+        // odd about the centre line).
+        let py_odd: Vec<f64> = (0..n).map(|k| if k / grid.nx < grid.ny / 2 { 1e7 } else { -1e7 }).collect();
+        let exact = SymmetricConvolution::padded(&kernel);
+        let mut sym_scratch = SymmetricScratch::default();
+        g.bench_function(format!("symmetric_product_{mm}mm_{}x{}", grid.nx, grid.ny), |b| {
+            b.iter(|| exact.tangential(&mut sym_scratch, (black_box(&px), &py_odd), (&mut ux, &mut uy)))
+        });
+        let single = exact.to_single();
+        let mut sym_single = SymmetricScratch::default();
+        g.bench_function(format!("symmetric_product_single_{mm}mm_{}x{}", grid.nx, grid.ny), |b| {
+            b.iter(|| single.tangential(&mut sym_single, (black_box(&px), &py_odd), (&mut ux, &mut uy)))
+        });
+        let inverse = SymmetricConvolution::circulant_inverse(&kernel).to_single();
+        g.bench_function(format!("symmetric_preconditioner_{mm}mm_{}x{}", grid.nx, grid.ny), |b| {
+            b.iter(|| inverse.tangential(&mut sym_single, (black_box(&px), &py_odd), (&mut ux, &mut uy)))
         });
         let input = StepInput {
             patch,

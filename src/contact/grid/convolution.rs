@@ -141,13 +141,38 @@ pub fn smooth_padding(n: usize) -> usize {
     smooth_length(2 * n - 1)
 }
 
+/// A length at least `n` whose prime factors are 2, 3 and 5 with at least
+/// 2^2 and at most one 5: rustfft's single-precision AVX transforms have
+/// no fast butterflies for the other such lengths (90 points take 1.3
+/// times as long as 96; the symmetric tangential product at 0.2 mm, 67 x
+/// 45 elements, 48.8 us on 135 x 90 points, 36.3 us on 144 x 96).
+pub(super) fn single_length(n: usize) -> usize {
+    (n..)
+        .find(|&m| {
+            let (mut m, mut twos, mut fives) = (m, 0, 0);
+            while m % 2 == 0 {
+                m /= 2;
+                twos += 1;
+            }
+            while m % 3 == 0 {
+                m /= 3;
+            }
+            while m % 5 == 0 {
+                m /= 5;
+                fives += 1;
+            }
+            m == 1 && twos >= 2 && fives <= 1
+        })
+        .expect("such numbers are unbounded")
+}
+
 /// A length at least `n` whose prime factors are 2, 3 and 5 (fast for
 /// rustfft's mixed-radix algorithms). (Lengths with at least 2^2 and at
 /// most one 5, which single-precision transforms alone take faster, 1.5
 /// times in criterion at 0.2 mm, made paper_normal_30mm no faster: 2 %
 /// slower, median of 5, within this 2-vCPU machine's A/B noise of about
 /// 5 %.)
-fn smooth_length(n: usize) -> usize {
+pub(super) fn smooth_length(n: usize) -> usize {
     (n..)
         .find(|&m| {
             let mut m = m;
@@ -240,16 +265,7 @@ impl FftConvolution<f64> {
     fn padded_to(kernel: &ToeplitzKernel, (mx, my): (usize, usize)) -> Self {
         let (nx, ny) = kernel.shape();
         let mut conv = FftConvolution::planned((nx, ny), (mx, my));
-        let scale = 1.0 / (mx * my) as f64;
-        // The table zero-padded: an index's image within the table's
-        // offsets, if any (at most one: the period holds 2 n - 1).
-        let image = |i: usize, m: usize, n: usize| -> Option<isize> {
-            [i as isize, i as isize - m as isize].into_iter().find(|d| d.unsigned_abs() < n)
-        };
-        conv.spectra = conv.spectra_of(kernel.components(), |c, i, j| match (image(i, mx, nx), image(j, my, ny)) {
-            (Some(dix), Some(diy)) => kernel.at(c, dix, diy) * scale,
-            _ => 0.0,
-        });
+        conv.spectra = conv.padded_tables(kernel);
         conv.spectra = if kernel.components() == 3 {
             // The tangential product's combinations (see `tangential`).
             let (xx, xy, yy) = (&conv.spectra[0], &conv.spectra[1], &conv.spectra[2]);
@@ -293,25 +309,7 @@ impl FftConvolution<f64> {
     fn circulant_inverse_on(kernel: &ToeplitzKernel, (mx, my): (usize, usize)) -> Self {
         let (nx, ny) = kernel.shape();
         let mut conv = FftConvolution::planned((nx, ny), (mx, my));
-        // The nearest images of a periodic index, both at half the period.
-        let images = |i: usize, m: usize| -> Vec<isize> {
-            let (a, b) = (i as isize, i as isize - m as isize);
-            match (2 * i).cmp(&m) {
-                std::cmp::Ordering::Less => vec![a],
-                std::cmp::Ordering::Equal => vec![a, b],
-                std::cmp::Ordering::Greater => vec![b],
-            }
-        };
-        let raw = conv.spectra_of(kernel.components(), |c, i, j| {
-            let (xs, ys) = (images(i, mx), images(j, my));
-            let mut v = 0.0;
-            for &dix in &xs {
-                for &diy in &ys {
-                    v += kernel.at(c, dix, diy);
-                }
-            }
-            v / (xs.len() * ys.len()) as f64
-        });
+        let raw = conv.strang_tables(kernel);
         let scale = 1.0 / (mx * my) as f64;
         if kernel.components() == 1 {
             // The normal kernel's real, even symbol: its reciprocal, half
@@ -351,6 +349,50 @@ impl FftConvolution<f64> {
         conv
     }
 
+    /// The spectra (transposed layout) of the kernel's components
+    /// zero-padded to the transform's lengths, with the `1/(mx my)` of the
+    /// inverse transform.
+    pub(super) fn padded_tables(&self, kernel: &ToeplitzKernel) -> Vec<Vec<Complex64>> {
+        let (nx, ny, mx, my) = (self.nx, self.ny, self.mx, self.my);
+        let scale = 1.0 / (mx * my) as f64;
+        // The table zero-padded: an index's image within the table's
+        // offsets, if any (at most one: the period holds 2 n - 1).
+        let image = |i: usize, m: usize, n: usize| -> Option<isize> {
+            [i as isize, i as isize - m as isize].into_iter().find(|d| d.unsigned_abs() < n)
+        };
+        self.spectra_of(kernel.components(), |c, i, j| match (image(i, mx, nx), image(j, my, ny)) {
+            (Some(dix), Some(diy)) => kernel.at(c, dix, diy) * scale,
+            _ => 0.0,
+        })
+    }
+
+    /// The spectra (transposed layout) of the kernel's components as
+    /// Strang's circulant on the transform's lengths (each periodic offset
+    /// takes the kernel at its nearest image, the mean of the two at half
+    /// the period), without the inverse transform's scale.
+    pub(super) fn strang_tables(&self, kernel: &ToeplitzKernel) -> Vec<Vec<Complex64>> {
+        let (mx, my) = (self.mx, self.my);
+        // The nearest images of a periodic index, both at half the period.
+        let images = |i: usize, m: usize| -> Vec<isize> {
+            let (a, b) = (i as isize, i as isize - m as isize);
+            match (2 * i).cmp(&m) {
+                std::cmp::Ordering::Less => vec![a],
+                std::cmp::Ordering::Equal => vec![a, b],
+                std::cmp::Ordering::Greater => vec![b],
+            }
+        };
+        self.spectra_of(kernel.components(), |c, i, j| {
+            let (xs, ys) = (images(i, mx), images(j, my));
+            let mut v = 0.0;
+            for &dix in &xs {
+                for &diy in &ys {
+                    v += kernel.at(c, dix, diy);
+                }
+            }
+            v / (xs.len() * ys.len()) as f64
+        })
+    }
+
     /// The spectra (transposed layout) of `components` periodic tables on
     /// the transform's points, `value(c, i, j)` at column `i`, row `j`.
     fn spectra_of(&self, components: usize, value: impl Fn(usize, usize, usize) -> f64) -> Vec<Vec<Complex64>> {
@@ -382,7 +424,7 @@ impl FftConvolution<f64> {
 impl<T: Real> FftConvolution<T> {
     /// The transforms of an `nx x ny` grid on `mx x my` points, no
     /// spectra yet.
-    fn planned((nx, ny): (usize, usize), (mx, my): (usize, usize)) -> Self {
+    pub(super) fn planned((nx, ny): (usize, usize), (mx, my): (usize, usize)) -> Self {
         let mut planner = FftPlanner::<T>::new();
         let mut real = RealFftPlanner::<T>::new();
         FftConvolution {

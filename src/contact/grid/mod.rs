@@ -33,6 +33,7 @@ pub mod normal;
 pub mod solver;
 pub mod spec;
 pub mod surface;
+pub mod symmetric;
 pub mod tangential;
 
 pub use solver::FixedGrid;

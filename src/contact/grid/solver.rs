@@ -23,8 +23,9 @@
 
 use super::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use super::coupling::FoldedKernel;
-use super::normal::{self, NormalError};
+use super::normal::{self, NormalError, NormalProducts};
 use super::spec::{FixedGridSpec, GRID_TOLERANCE, GridSolver};
+use super::symmetric::{SymmetricConvolution, SymmetricNormal};
 use super::tangential::Law;
 mod edge;
 mod on_set;
@@ -66,6 +67,15 @@ struct History {
 /// The approaches of a chain of positions (m) and its last pressure (Pa).
 type Chain = (Vec<f64>, Option<Vec<f64>>);
 
+/// The tangential products of a folded grid's symmetric fields: as
+/// `tangential`, `tangential_single` and `inverse_single`.
+#[derive(Debug, Clone)]
+struct SymmetricProducts {
+    exact: SymmetricConvolution,
+    single: SymmetricConvolution<f32>,
+    inverse: SymmetricConvolution<f32>,
+}
+
 /// The fixed-grid exact transient model.
 #[derive(Debug, Clone)]
 pub struct FixedGrid {
@@ -92,6 +102,10 @@ pub struct FixedGrid {
     tolerance: f64,
     /// The folded coupling of a grid symmetric about y = 0.
     folded: Option<FoldedKernel>,
+    /// Its products of symmetric fields: tangential, and normal with the
+    /// normal CG's preconditioner.
+    symmetric: Option<SymmetricProducts>,
+    normal_symmetric: Option<(SymmetricNormal, SymmetricNormal)>,
     /// The rail surface in the gap (`None`: the quadratic gap alone).
     surface: Option<RailContact>,
     /// Warm start of [`FixedGrid::approach`]'s normal solves (Pa).
@@ -147,6 +161,8 @@ impl FixedGrid {
             history: None,
             tolerance: GRID_TOLERANCE,
             folded: None,
+            symmetric: None,
+            normal_symmetric: None,
             surface: None,
             approach_start: None,
             fallbacks: 0,
@@ -154,15 +170,22 @@ impl FixedGrid {
             window: None,
             active: None,
         }
-        .fold_if_symmetric()
+        .fold_if_symmetric(&normal_kernel)
     }
 
     /// Folds the coupling when the grid is symmetric about y = 0 (it is used
     /// on the steps whose loads are: no lateral creepage, no spin).
-    fn fold_if_symmetric(mut self) -> Self {
+    fn fold_if_symmetric(mut self, normal_kernel: &ToeplitzKernel) -> Self {
         let g = &self.grid;
         if (g.y_low + 0.5 * g.ny as f64 * g.dy).abs() <= 1e-9 * g.dy {
+            self.normal_symmetric =
+                Some((SymmetricNormal::padded(normal_kernel), SymmetricNormal::circulant_inverse(normal_kernel)));
             self.folded = Some(FoldedKernel::new(&self.kernel));
+            self.symmetric = Some(SymmetricProducts {
+                exact: SymmetricConvolution::padded(&self.kernel),
+                single: SymmetricConvolution::padded_single(&self.kernel),
+                inverse: SymmetricConvolution::circulant_inverse_single(&self.kernel),
+            });
         }
         self
     }
@@ -227,7 +250,7 @@ impl FixedGrid {
         start: Option<&[f64]>,
     ) -> Result<normal::NormalSolution, ContactError> {
         let gap = self.gap_at(position);
-        normal::solve(self.normal_products(), scratch, &gap, self.grid.area(), force, start)
+        normal::solve(self.normal_products(&gap), scratch, &gap, self.grid.area(), force, start)
             .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })
     }
 
@@ -259,9 +282,14 @@ impl FixedGrid {
         (0..gap.len()).all(|k| (gap[k] - gap[(ny - 1 - k / nx) * nx + k % nx]).abs() <= 1e-12 * scale)
     }
 
-    /// The normal problem's products and preconditioner.
-    fn normal_products(&self) -> (&FftConvolution, Option<&FftConvolution>) {
-        (&self.normal, Some(&self.normal_inverse))
+    /// The normal problem's products and preconditioner for the gap
+    /// `gap`: those of symmetric fields where the grid and the gap are
+    /// symmetric about y = 0.
+    fn normal_products(&self, gap: &[f64]) -> NormalProducts<'_> {
+        match &self.normal_symmetric {
+            Some((conv, pre)) if self.surface.is_none() || self.symmetric(gap) => NormalProducts::Symmetric(conv, pre),
+            _ => NormalProducts::Full(&self.normal, Some(&self.normal_inverse)),
+        }
     }
 
     fn law(&self) -> Law {

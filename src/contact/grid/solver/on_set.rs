@@ -1,9 +1,12 @@
 //! Products of a step on its elements in contact: a field given on the
 //! elements in contact (interleaved x, y) scattered onto the grid (with its
 //! mirror image on a folded grid: x the same, y negated), an FFT product
-//! over the whole grid, gathered back.
+//! over the whole grid, gathered back. On a folded grid the symmetric
+//! product ([`SymmetricConvolution`]) reads the lower half alone, at about
+//! half the cost.
 
 use super::super::convolution::{FftConvolution, FftScratch, Real};
+use super::super::symmetric::{SymmetricConvolution, SymmetricScratch};
 use super::super::tangential::ContactSet;
 
 /// Whether the output comes back as an x block then a y block (`K p`, as
@@ -18,14 +21,18 @@ pub(super) enum Layout {
 pub(super) struct OnSet<'a, T: Real> {
     conv: &'a FftConvolution<T>,
     scratch: FftScratch<T>,
+    /// The same product for symmetric fields, used on a folded grid.
+    symmetric: Option<(&'a SymmetricConvolution<T>, SymmetricScratch<T>)>,
     set: &'a ContactSet,
     weight: &'a [f64],
     /// Grid columns and rows.
     shape: (usize, usize),
     layout: Layout,
     g: (Vec<f64>, Vec<f64>),
-    /// The last product on the whole grid (x, y).
-    pub u: (Vec<f64>, Vec<f64>),
+    /// The last product on the whole grid (x, y); on a folded grid, from
+    /// the symmetric product's scratch once `stale`.
+    u: (Vec<f64>, Vec<f64>),
+    stale: bool,
 }
 
 impl<'a, T: Real> OnSet<'a, T> {
@@ -40,17 +47,37 @@ impl<'a, T: Real> OnSet<'a, T> {
         OnSet {
             conv,
             scratch: FftScratch::default(),
+            symmetric: None,
             set,
             weight,
             shape,
             layout,
             g: (vec![0.0; n], vec![0.0; n]),
             u: (vec![0.0; n], vec![0.0; n]),
+            stale: false,
         }
+    }
+
+    /// Products of a folded grid's symmetric fields by `symmetric` (the
+    /// set on the lower half of the grid).
+    pub fn symmetric(mut self, symmetric: Option<&'a SymmetricConvolution<T>>) -> Self {
+        self.symmetric = symmetric.map(|conv| (conv, SymmetricScratch::default()));
+        self
     }
 
     /// `out = conv (field)` on the elements in contact.
     pub fn product(&mut self, field: &[f64], out: &mut [f64]) {
+        let nc = self.set.len();
+        let layout = self.layout;
+        let mut store = |c: usize, x: f64, y: f64| match layout {
+            Layout::Blocks => (out[c], out[nc + c]) = (x, y),
+            Layout::Interleaved => (out[2 * c], out[2 * c + 1]) = (x, y),
+        };
+        if let Some((conv, scratch)) = &mut self.symmetric {
+            conv.product_on(scratch, &self.set.element, |c| (field[2 * c], field[2 * c + 1]), store);
+            self.stale = true;
+            return;
+        }
         let (nx, ny) = self.shape;
         let mirror = |k: usize| (ny - 1 - k / nx) * nx + k % nx;
         let (gx, gy) = (&mut self.g.0, &mut self.g.1);
@@ -66,12 +93,16 @@ impl<'a, T: Real> OnSet<'a, T> {
         }
         let (ux, uy) = (&mut self.u.0, &mut self.u.1);
         self.conv.tangential(&mut self.scratch, (gx, gy), (ux, uy));
-        let nc = self.set.len();
         for (c, &k) in self.set.element.iter().enumerate() {
-            match self.layout {
-                Layout::Blocks => (out[c], out[nc + c]) = (ux[k], uy[k]),
-                Layout::Interleaved => (out[2 * c], out[2 * c + 1]) = (ux[k], uy[k]),
-            }
+            store(c, ux[k], uy[k]);
         }
+    }
+
+    /// The last product on the whole grid (x, y).
+    pub fn whole(mut self) -> (Vec<f64>, Vec<f64>) {
+        if let (Some((conv, scratch)), true) = (&self.symmetric, self.stale) {
+            conv.whole_grid(scratch, (&mut self.u.0, &mut self.u.1));
+        }
+        self.u
     }
 }

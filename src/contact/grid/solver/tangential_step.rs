@@ -101,13 +101,18 @@ impl FixedGrid {
         // Exact products on the whole grid; the last one (the verdict's) is
         // the field the next step shifts.
         let shape = (nx, ny);
-        let mut exact = OnSet::new(&self.tangential, &set, &weight, shape, Layout::Blocks);
+        // A folded grid's products by the symmetric transforms.
+        let sym = self.symmetric.as_ref().filter(|_| folded.is_some());
+        let mut exact =
+            OnSet::new(&self.tangential, &set, &weight, shape, Layout::Blocks).symmetric(sym.map(|s| &s.exact));
         let mut fresh = |p: &[f64], u: &mut [f64]| exact.product(p, u);
         // The CG solver's inner products in single precision; its
         // preconditioner, the FFT inverse on the unpadded grid.
-        let mut single = OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks);
+        let mut single =
+            OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks).symmetric(sym.map(|s| &s.single));
         let mut inner = |p: &[f64], u: &mut [f64]| single.product(p, u);
-        let mut pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
+        let mut pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved)
+            .symmetric(sym.map(|s| &s.inverse));
         let mut inverse = |r: &[f64], z: &mut [f64]| pre.product(r, z);
         let newton_krylov = self.spec.solver.resolve() == GridSolver::Cg;
         // The CG solver's law: exact Coulomb friction as the regularised
@@ -173,7 +178,7 @@ impl FixedGrid {
         };
         let (mut out, s_grid) = self.expand((input, solved_law), &set, &weight, p3, &sol);
         out.fallback = fell_back;
-        Ok(Solved { out, s_grid, u: exact.u, fell_back })
+        Ok(Solved { out, s_grid, u: exact.whole(), fell_back })
     }
 
     /// The earlier-displacement term `u~` and weight `beta` of the
