@@ -30,7 +30,7 @@
 //! paper_normal_30mm at 0.2 mm, 43.7 -> 13.8 per step.
 
 use super::convolution::{FftConvolution, FftScratch};
-use super::symmetric::{SymmetricNormal, SymmetricScratch};
+use super::symmetric::{NormalScratch, SymmetricNormal};
 
 /// The products of a normal solve.
 #[derive(Debug, Clone, Copy)]
@@ -118,13 +118,22 @@ pub fn solve(
             h.iter().map(|v| if *v <= mean { 1.0 } else { 0.0 }).collect()
         }
     };
-    let mut ops = Ops { products, full: scratch, symmetric: SymmetricScratch::default() };
-    if let NormalProducts::Symmetric(conv, _) = products {
-        conv.symmetrize(&mut p);
-    }
+    let mut ops = Ops { products, full: scratch, symmetric: NormalScratch::default() };
+    // A symmetric problem runs its loops over the lower half of the grid
+    // (`m` elements, each standing for itself and its mirror image: weight
+    // 2, the middle row of an odd grid 1), the products reading that half.
+    let weight = match products {
+        NormalProducts::Symmetric(conv, _) => {
+            conv.symmetrize(&mut p);
+            conv.lower_half_weights()
+        }
+        NormalProducts::Full(..) => vec![1.0; n],
+    };
+    let m = weight.len();
+    let w = &weight;
     let rescale = |p: &mut [f64]| {
-        let total = area * p.iter().sum::<f64>();
-        p.iter_mut().for_each(|v| *v *= force / total);
+        let total = area * (0..m).map(|k| w[k] * p[k]).sum::<f64>();
+        p[..m].iter_mut().for_each(|v| *v *= force / total);
     };
     rescale(&mut p);
     let (mut u, mut r, mut t) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
@@ -144,33 +153,37 @@ pub fn solve(
             ops.product(&p, &mut u);
             updated = 0;
         }
-        let (mut sum, mut count) = (0.0, 0usize);
-        for k in 0..n {
+        let (mut sum, mut count) = (0.0, 0.0);
+        for k in 0..m {
             g[k] = u[k] + h[k];
             if p[k] > 0.0 {
-                sum += g[k];
-                count += 1;
+                sum += w[k] * g[k];
+                count += w[k];
             }
         }
-        let g_mean = sum / count.max(1) as f64;
+        let count = f64::max(count, 1.0);
+        let g_mean = sum / count;
         // The verdict is complementarity itself: the gap uniform over the
         // contact area and open outside it, to GAP_TOLERANCE of the approach.
         let tol_gap = GAP_TOLERANCE * g_mean.abs().max(f64::MIN_POSITIVE);
         // The gap relative to its mean over the contact area (the residual),
         // its spread there and the penetration outside, in one pass.
         let (mut spread, mut penetration, mut big_g) = (0.0f64, 0.0f64, 0.0f64);
-        for k in 0..n {
+        for k in 0..m {
             let d = g[k] - g_mean;
             g[k] = d;
             if p[k] > 0.0 {
                 spread = spread.max(d.abs());
-                big_g += d * d;
+                big_g += w[k] * d * d;
             } else {
                 penetration = penetration.max(-d);
             }
         }
         if spread <= tol_gap && penetration <= tol_gap {
             if exact {
+                if let NormalProducts::Symmetric(conv, _) = products {
+                    conv.mirror_lower(&mut p);
+                }
                 return Ok(NormalSolution { pressure: p, approach: g_mean, iterations: it });
             }
             // Converged on the updated product: check on an exact one.
@@ -185,37 +198,37 @@ pub fn solve(
         // force constraint): z = Pi C^-1 Pi g.
         let big_g = match ops.preconditioned() {
             false => {
-                z.copy_from_slice(&g);
+                z[..m].copy_from_slice(&g[..m]);
                 big_g
             }
             true => {
-                for k in 0..n {
+                for k in 0..m {
                     gc[k] = if p[k] > 0.0 { g[k] } else { 0.0 };
                 }
                 ops.precondition(&gc, &mut z);
-                let z_mean = (0..n).filter(|&k| p[k] > 0.0).map(|k| z[k]).sum::<f64>() / count.max(1) as f64;
+                let z_mean = (0..m).filter(|&k| p[k] > 0.0).map(|k| w[k] * z[k]).sum::<f64>() / count;
                 let mut gz = 0.0;
-                for k in 0..n {
+                for k in 0..m {
                     z[k] = if p[k] > 0.0 { z[k] - z_mean } else { 0.0 };
-                    gz += gc[k] * z[k];
+                    gz += w[k] * gc[k] * z[k];
                 }
                 gz
             }
         };
         let beta = if conjugate { big_g / g_old } else { 0.0 };
         let mut gt = 0.0;
-        for k in 0..n {
+        for k in 0..m {
             t[k] = if p[k] > 0.0 { z[k] + beta * t[k] } else { 0.0 };
-            gt += g[k] * t[k];
+            gt += w[k] * g[k] * t[k];
         }
         g_old = big_g;
         ops.product(&t, &mut r);
-        let r_mean = (0..n).filter(|&k| p[k] > 0.0).map(|k| r[k]).sum::<f64>() / count.max(1) as f64;
-        let rt: f64 = (0..n).filter(|&k| p[k] > 0.0).map(|k| (r[k] - r_mean) * t[k]).sum();
+        let r_mean = (0..m).filter(|&k| p[k] > 0.0).map(|k| w[k] * r[k]).sum::<f64>() / count;
+        let rt: f64 = (0..m).filter(|&k| p[k] > 0.0).map(|k| w[k] * (r[k] - r_mean) * t[k]).sum();
         let tau = if rt > 0.0 { gt / rt } else { 0.0 };
-        p_old.copy_from_slice(&p);
+        p_old[..m].copy_from_slice(&p[..m]);
         let (mut readmitted, mut clipped, mut total) = (false, false, 0.0);
-        for k in 0..n {
+        for k in 0..m {
             if p[k] > 0.0 {
                 let v = p[k] - tau * t[k];
                 clipped |= v <= 0.0;
@@ -226,16 +239,16 @@ pub fn solve(
                 p[k] = -tau * g[k];
                 readmitted = true;
             }
-            total += p[k];
+            total += w[k] * p[k];
         }
         conjugate = !readmitted;
         let scale = force / (area * total);
         let linear = !(clipped || readmitted);
         let (mut moved, mut sum_p) = (0.0, 0.0);
-        for k in 0..n {
+        for k in 0..m {
             p[k] *= scale;
-            moved += (p[k] - p_old[k]).abs();
-            sum_p += p[k];
+            moved += w[k] * (p[k] - p_old[k]).abs();
+            sum_p += w[k] * p[k];
             if linear {
                 // Linear step: K_n p_new = scale (u - tau K_n t).
                 u[k] = scale * (u[k] - tau * r[k]);
@@ -251,7 +264,7 @@ pub fn solve(
 struct Ops<'a> {
     products: NormalProducts<'a>,
     full: &'a mut FftScratch,
-    symmetric: SymmetricScratch,
+    symmetric: NormalScratch,
 }
 
 impl Ops<'_> {

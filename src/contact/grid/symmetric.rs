@@ -27,6 +27,7 @@
 
 use super::convolution::{FftConvolution, Real, ToeplitzKernel, single_length, smooth_length, smooth_padding};
 use num_complex::{Complex, Complex64};
+use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
 use std::sync::Arc;
 
@@ -188,20 +189,21 @@ impl<T: Real> SymmetricConvolution<T> {
         (px, py): (&[f64], &[f64]),
         (ux, uy): (&mut [f64], &mut [f64]),
     ) {
-        let lower: Vec<usize> = (0..self.ny.div_ceil(2) * self.nx).collect();
-        self.product_on(s, &lower, |c| (px[c], py[c]), |_, _, _| ());
+        let rows = self.ny.div_ceil(2);
+        let (ix, iy): (Vec<usize>, Vec<usize>) = (0..rows * self.nx).map(|k| (k % self.nx, k / self.nx)).unzip();
+        self.product_on(s, (&ix, &iy), |c| (px[c], py[c]), |_, _, _| ());
         self.whole_grid(s, (ux, uy));
     }
 
-    /// The product of the symmetric fields given at the grid elements
-    /// `elements` of the lower half (`field(c)` = `(p_x, p_y)` of the
-    /// `c`-th; zero elsewhere), handed back at the same elements
-    /// (`out(c, u_x, u_y)`). The whole field stays in `s` for
+    /// The product of the symmetric fields given at the grid elements in
+    /// columns `ix` and rows `iy` of the lower half (`field(c)` = `(p_x,
+    /// p_y)` of the `c`-th; zero elsewhere), handed back at the same
+    /// elements (`out(c, u_x, u_y)`). The whole field stays in `s` for
     /// [`SymmetricConvolution::whole_grid`].
     pub fn product_on(
         &self,
         s: &mut SymmetricScratch<T>,
-        elements: &[usize],
+        (ix, iy): (&[usize], &[usize]),
         field: impl Fn(usize) -> (f64, f64),
         mut out: impl FnMut(usize, f64, f64),
     ) {
@@ -211,10 +213,10 @@ impl<T: Real> SymmetricConvolution<T> {
         s.cols.clear();
         s.cols.resize(nx * my, Complex::default());
         let place: Vec<(usize, usize)> = (0..self.ny.div_ceil(2)).map(|r| self.places(r)).collect();
-        for (c, &k) in elements.iter().enumerate() {
+        for (c, (&x, &r)) in ix.iter().zip(iy).enumerate() {
             let (fx, fy) = field(c);
-            let (j, m) = place[k / nx];
-            let col = &mut s.cols[(k % nx) * my..];
+            let (j, m) = place[r];
+            let col = &mut s.cols[x * my..];
             if j == m {
                 col[j] = Complex::new(t(fx), T::zero());
             } else {
@@ -223,8 +225,8 @@ impl<T: Real> SymmetricConvolution<T> {
             }
         }
         self.transform(s);
-        for (c, &k) in elements.iter().enumerate() {
-            let v = s.cols[(k % nx) * my + place[k / nx].0];
+        for (c, (&x, &r)) in ix.iter().zip(iy).enumerate() {
+            let v = s.cols[x * my + place[r].0];
             out(c, v.re.to_f64().unwrap_or(f64::NAN), v.im.to_f64().unwrap_or(f64::NAN));
         }
     }
@@ -269,10 +271,7 @@ impl<T: Real> SymmetricConvolution<T> {
         for ky in 0..hy {
             let (z, w) = (&s.z[ky * mx..(ky + 1) * mx], &mut s.w[ky * mx..(ky + 1) * mx]);
             let (sg, dl) = (&self.sigma[ky * mx..(ky + 1) * mx], &self.delta[ky * mx..(ky + 1) * mx]);
-            w[0] = z[0] * sg[0] + z[0].conj() * dl[0];
-            for kx in 1..mx {
-                w[kx] = z[kx] * sg[kx] + z[mx - kx].conj() * dl[kx];
-            }
+            spectral_row(z, (sg, dl), w);
         }
         batch(&self.inv_x, &mut s.w, &mut s.fft);
         // Back along y: U_x = phi R_u, U_y = -i phi S_u, both real
@@ -301,34 +300,43 @@ impl<T: Real> SymmetricConvolution<T> {
 /// same transforms as [`SymmetricConvolution`]: pairs of columns travel in
 /// one complex transform along y (the real and imaginary parts, split by
 /// Hermitian symmetry), each column's real cosine coefficients `R(k_y)`
-/// then pairs of rows `(R(2q), R(2q + 1))` in one along x, where the real,
-/// even symbol `K` of each row acts as `W = (K_1 + K_2)/2 Z(k_x) + (K_1 -
-/// K_2)/2 conj Z(-k_x)`. About two thirds of the transform work of
+/// then, row by row, through real-to-complex transforms along x, where the
+/// kernel's symbol is real. About two thirds of the transform work of
 /// [`FftConvolution::normal`].
 #[derive(Clone)]
-pub struct SymmetricNormal<T: Real = f64> {
+pub struct SymmetricNormal {
     nx: usize,
     ny: usize,
     mx: usize,
     my: usize,
-    fwd_x: Arc<dyn Fft<T>>,
-    inv_x: Arc<dyn Fft<T>>,
-    fwd_y: Arc<dyn Fft<T>>,
-    inv_y: Arc<dyn Fft<T>>,
-    phase: Vec<Complex<T>>,
-    /// `(K_1 + K_2)/2` and `(K_1 - K_2)/2` of the row pair `q` at `q mx +
-    /// k_x`, with the `1/(mx my)` of the inverse transforms.
-    sigma: Vec<T>,
-    delta: Vec<T>,
+    real_x: Arc<dyn RealToComplex<f64>>,
+    real_inv_x: Arc<dyn ComplexToReal<f64>>,
+    fwd_y: Arc<dyn Fft<f64>>,
+    inv_y: Arc<dyn Fft<f64>>,
+    phase: Vec<Complex64>,
+    /// The real symbol at `k_y (mx / 2 + 1) + k_x`, with the `1/(mx my)` of
+    /// the inverse transforms.
+    symbol: Vec<f64>,
 }
 
-impl<T: Real> std::fmt::Debug for SymmetricNormal<T> {
+impl std::fmt::Debug for SymmetricNormal {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "SymmetricNormal {{ {} x {} on {} x {} }}", self.nx, self.ny, self.mx, self.my)
     }
 }
 
-impl SymmetricNormal<f64> {
+/// Work buffers of one symmetric normal product.
+#[derive(Debug, Clone, Default)]
+pub struct NormalScratch {
+    /// Pairs of columns (`(nx + 1) / 2` of `my`).
+    cols: Vec<Complex64>,
+    /// Rows `k_y` of `mx` reals, and their half spectra.
+    rows: Vec<f64>,
+    half: Vec<Complex64>,
+    fft: Vec<Complex64>,
+}
+
+impl SymmetricNormal {
     /// The zero-padded normal kernel (the product of
     /// [`FftConvolution::new`] on symmetric fields).
     pub fn padded(kernel: &ToeplitzKernel) -> Self {
@@ -358,30 +366,21 @@ impl SymmetricNormal<f64> {
         raw: &[Complex64],
     ) -> Self {
         let (nx, ny) = kernel.shape();
-        let hy = my / 2 + 1;
-        let pairs = hy.div_ceil(2);
-        let (mut sigma, mut delta) = (vec![0.0; pairs * mx], vec![0.0; pairs * mx]);
-        for q in 0..pairs {
-            for kx in 0..mx {
-                let k1 = map(raw[kx * my + 2 * q].re);
-                let k2 = if 2 * q + 1 < hy { map(raw[kx * my + 2 * q + 1].re) } else { 0.0 };
-                sigma[q * mx + kx] = 0.5 * (k1 + k2);
-                delta[q * mx + kx] = 0.5 * (k1 - k2);
-            }
-        }
+        let (hx, hy) = (mx / 2 + 1, my / 2 + 1);
+        let symbol = (0..hy * hx).map(|t| map(raw[(t % hx) * my + t / hx].re)).collect();
         let mut planner = FftPlanner::new();
+        let mut real = RealFftPlanner::new();
         SymmetricNormal {
             nx,
             ny,
             mx,
             my,
-            fwd_x: planner.plan_fft_forward(mx),
-            inv_x: planner.plan_fft_inverse(mx),
+            real_x: real.plan_fft_forward(mx),
+            real_inv_x: real.plan_fft_inverse(mx),
             fwd_y: planner.plan_fft_forward(my),
             inv_y: planner.plan_fft_inverse(my),
             phase: phases(ny, my),
-            sigma,
-            delta,
+            symbol,
         }
     }
 
@@ -398,69 +397,80 @@ impl SymmetricNormal<f64> {
         }
     }
 
+    /// The weights of the lower half's elements (the first `(ny + 1) / 2`
+    /// rows) in sums over the whole grid of a symmetric field: 2 for an
+    /// element and its mirror image, 1 on the middle row of an odd grid.
+    pub fn lower_half_weights(&self) -> Vec<f64> {
+        let (nx, ny) = (self.nx, self.ny);
+        (0..ny.div_ceil(2) * nx).map(|k| if 2 * (k / nx) + 1 == ny { 1.0 } else { 2.0 }).collect()
+    }
+
+    /// Copies the lower half of `p` onto its mirror image.
+    pub fn mirror_lower(&self, p: &mut [f64]) {
+        let (nx, ny) = (self.nx, self.ny);
+        for r in 0..ny / 2 {
+            let m = ny - 1 - r;
+            let (low, high) = p.split_at_mut(m * nx);
+            high[..nx].copy_from_slice(&low[r * nx..(r + 1) * nx]);
+        }
+    }
+
     /// `u = K_n p` on the whole grid for a pressure symmetric about the
     /// centre line, read from the lower half of the rows (`r <
     /// (ny + 1) / 2`).
-    pub fn normal(&self, s: &mut SymmetricScratch<f64>, p: &[f64], u: &mut [f64]) {
+    pub fn normal(&self, s: &mut NormalScratch, p: &[f64], u: &mut [f64]) {
         let (nx, ny, mx, my) = (self.nx, self.ny, self.mx, self.my);
-        let (hy, pairs) = (my / 2 + 1, nx.div_ceil(2));
+        let (hx, hy, pairs) = (mx / 2 + 1, my / 2 + 1, nx.div_ceil(2));
+        let place: Vec<(usize, usize)> = (0..ny).map(|r| places(ny, my, r)).collect();
+        // Columns 2q and 2q + 1 as the real and imaginary parts of column q.
         s.cols.clear();
         s.cols.resize(pairs * my, Complex::default());
-        for r in 0..ny.div_ceil(2) {
-            let (j, m) = places(ny, my, r);
-            for x in 0..nx {
-                let col = &mut s.cols[(x / 2) * my..];
-                let v = p[r * nx + x];
-                for at in [j, m] {
-                    if x % 2 == 0 { col[at].re = v } else { col[at].im = v }
-                }
+        for (q, col) in s.cols.chunks_exact_mut(my).enumerate() {
+            let (x, odd) = (2 * q, 2 * q + 1 < nx);
+            for (r, &(j, m)) in place[..ny.div_ceil(2)].iter().enumerate() {
+                let v = Complex::new(p[r * nx + x], if odd { p[r * nx + x + 1] } else { 0.0 });
+                (col[j], col[m]) = (v, v);
             }
         }
         batch(&self.fwd_y, &mut s.cols, &mut s.fft);
-        // Each column's cosine coefficients R(k_y), rows paired.
-        s.z.clear();
-        s.z.resize(hy.div_ceil(2) * mx, Complex::default());
-        for q in 0..pairs {
-            let col = &s.cols[q * my..(q + 1) * my];
+        // Each column's cosine coefficients R(k_y): row k_y of `rows`.
+        s.rows.clear();
+        s.rows.resize(hy * mx, 0.0);
+        for (q, col) in s.cols.chunks_exact(my).enumerate() {
             for (ky, ph) in self.phase.iter().enumerate() {
                 let (zk, zm) = (col[ky], col[if ky == 0 { 0 } else { my - ky }].conj());
                 let (even, odd) = (zk + zm, zk - zm);
-                let ra = 0.5 * (ph.re * even.re + ph.im * even.im);
-                let rb = 0.5 * (ph.re * odd.im - ph.im * odd.re);
-                let row = &mut s.z[(ky / 2) * mx..];
-                for (x, v) in [(2 * q, ra), (2 * q + 1, rb)] {
-                    if x < nx {
-                        if ky % 2 == 0 { row[x].re = v } else { row[x].im = v }
-                    }
-                }
+                // Column 2q + 1 lies in the padding where nx is odd; its
+                // coefficients are zero.
+                s.rows[ky * mx + 2 * q] = 0.5 * (ph.re * even.re + ph.im * even.im);
+                s.rows[ky * mx + 2 * q + 1] = 0.5 * (ph.re * odd.im - ph.im * odd.re);
             }
         }
-        batch(&self.fwd_x, &mut s.z, &mut s.fft);
-        s.w.resize(s.z.len(), Complex::default());
-        for q in 0..hy.div_ceil(2) {
-            let (z, w) = (&s.z[q * mx..(q + 1) * mx], &mut s.w[q * mx..(q + 1) * mx]);
-            let (sg, dl) = (&self.sigma[q * mx..(q + 1) * mx], &self.delta[q * mx..(q + 1) * mx]);
-            w[0] = z[0] * sg[0] + z[0].conj() * dl[0];
-            for kx in 1..mx {
-                w[kx] = z[kx] * sg[kx] + z[mx - kx].conj() * dl[kx];
-            }
+        for ky in 0..hy {
+            s.rows[ky * mx + nx..(ky + 1) * mx].fill(0.0);
         }
-        batch(&self.inv_x, &mut s.w, &mut s.fft);
+        let need = self.real_x.get_scratch_len().max(self.real_inv_x.get_scratch_len());
+        if s.fft.len() < need {
+            s.fft.resize(need, Complex::default());
+        }
+        s.half.resize(hx, Complex::default());
+        for (row, symbol) in s.rows.chunks_exact_mut(mx).zip(self.symbol.chunks_exact(hx)) {
+            self.real_x.process_with_scratch(row, &mut s.half, &mut s.fft[..need]).expect("planned lengths");
+            for (h, k) in s.half.iter_mut().zip(symbol) {
+                *h *= *k;
+            }
+            // The product is real: the zero and Nyquist bins' imaginary
+            // parts are rounding.
+            s.half[0].im = 0.0;
+            if mx % 2 == 0 {
+                s.half[hx - 1].im = 0.0;
+            }
+            self.real_inv_x.process_with_scratch(&mut s.half, row, &mut s.fft[..need]).expect("planned lengths");
+        }
         // Back along y: U(k_y) = phi R_u(k_y), two columns per transform.
-        for q in 0..pairs {
-            let col = &mut s.cols[q * my..(q + 1) * my];
+        for (q, col) in s.cols.chunks_exact_mut(my).enumerate() {
             for (ky, ph) in self.phase.iter().enumerate() {
-                let row = &s.w[(ky / 2) * mx..];
-                let part = |x: usize| {
-                    if x >= nx {
-                        0.0
-                    } else if ky % 2 == 0 {
-                        row[x].re
-                    } else {
-                        row[x].im
-                    }
-                };
-                let (ra, rb) = (part(2 * q), part(2 * q + 1));
+                let (ra, rb) = (s.rows[ky * mx + 2 * q], s.rows[ky * mx + 2 * q + 1]);
                 let (a_re, a_im, b_re, b_im) = (ph.re * ra, ph.im * ra, ph.re * rb, ph.im * rb);
                 if ky == 0 || 2 * ky == my {
                     col[ky] = Complex::new(a_re, b_re);
@@ -471,13 +481,26 @@ impl SymmetricNormal<f64> {
             }
         }
         batch(&self.inv_y, &mut s.cols, &mut s.fft);
-        for r in 0..ny {
-            let (j, _) = places(ny, my, r);
-            for x in 0..nx {
-                let v = s.cols[(x / 2) * my + j];
-                u[r * nx + x] = if x % 2 == 0 { v.re } else { v.im };
+        for (q, col) in s.cols.chunks_exact(my).enumerate() {
+            let (x, odd) = (2 * q, 2 * q + 1 < nx);
+            for (r, &(j, _)) in place.iter().enumerate() {
+                u[r * nx + x] = col[j].re;
+                if odd {
+                    u[r * nx + x + 1] = col[j].im;
+                }
             }
         }
+    }
+}
+
+/// One row of the spectral product, `w(k) = sigma(k) z(k) + delta(k)
+/// conj z(-k)` with real `sigma`, `delta` (the mirror wavenumber's run
+/// reversed, so that the loop vectorises).
+fn spectral_row<T: Real>(z: &[Complex<T>], (sigma, delta): (&[T], &[T]), w: &mut [Complex<T>]) {
+    w[0] = Complex::new((sigma[0] + delta[0]) * z[0].re, (sigma[0] - delta[0]) * z[0].im);
+    let terms = w[1..].iter_mut().zip(&z[1..]).zip(z[1..].iter().rev()).zip(sigma[1..].iter().zip(&delta[1..]));
+    for (((w, a), b), (&s, &d)) in terms {
+        *w = Complex::new(s * a.re + d * b.re, s * a.im - d * b.im);
     }
 }
 
@@ -551,7 +574,7 @@ mod tests {
                 full.normal(&mut FftScratch::default(), &p, &mut u);
                 let scale = u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
                 let mut v = vec![f64::NAN; n];
-                sym.normal(&mut SymmetricScratch::default(), &p, &mut v);
+                sym.normal(&mut NormalScratch::default(), &p, &mut v);
                 let err = u.iter().zip(&v).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max) / scale;
                 assert!(err < 1e-12, "{name} {nx} x {ny}: {err:e}");
             }

@@ -74,7 +74,7 @@ impl<'a, T: Real> OnSet<'a, T> {
             Layout::Interleaved => (out[2 * c], out[2 * c + 1]) = (x, y),
         };
         if let Some((conv, scratch)) = &mut self.symmetric {
-            conv.product_on(scratch, &self.set.element, |c| (field[2 * c], field[2 * c + 1]), store);
+            conv.product_on(scratch, (&self.set.ix, &self.set.iy), |c| (field[2 * c], field[2 * c + 1]), store);
             self.stale = true;
             return;
         }
