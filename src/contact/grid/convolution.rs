@@ -142,11 +142,15 @@ pub fn smooth_padding(n: usize) -> usize {
 }
 
 /// A length at least `n` whose prime factors are 2, 3 and 5 with at least
-/// 2^2 and at most one 5: rustfft's single-precision AVX transforms have
-/// no fast butterflies for the other such lengths (90 points take 1.3
-/// times as long as 96; the symmetric tangential product at 0.2 mm, 67 x
-/// 45 elements, 48.8 us on 135 x 90 points, 36.3 us on 144 x 96).
-pub(super) fn single_length(n: usize) -> usize {
+/// 2^2 and at most one 5: the symmetric products' lengths
+/// ([`super::symmetric`]). rustfft's AVX transforms have fast butterflies
+/// for these, realfft's real-to-complex transforms want even lengths. On
+/// the 0.2 mm growth grid (109 x 74 elements) the symmetric normal product
+/// takes 89 us on 240 x 160 points against 134 us on the smooth 225 x 150,
+/// the single-precision tangential 110 against 147 us; on the default
+/// 0.2 mm grid (67 x 45) 32 against 40 and 39 against 52 us (the
+/// double-precision tangential 59 against 56, 41 against 47 at 0.4 mm).
+pub(super) fn fast_length(n: usize) -> usize {
     (n..)
         .find(|&m| {
             let (mut m, mut twos, mut fives) = (m, 0, 0);
@@ -172,7 +176,7 @@ pub(super) fn single_length(n: usize) -> usize {
 /// times in criterion at 0.2 mm, made paper_normal_30mm no faster: 2 %
 /// slower, median of 5, within this 2-vCPU machine's A/B noise of about
 /// 5 %.)
-pub(super) fn smooth_length(n: usize) -> usize {
+fn smooth_length(n: usize) -> usize {
     (n..)
         .find(|&m| {
             let mut m = m;
@@ -306,7 +310,9 @@ impl FftConvolution<f64> {
         Self::circulant_inverse(kernel).to_single()
     }
 
-    fn circulant_inverse_on(kernel: &ToeplitzKernel, (mx, my): (usize, usize)) -> Self {
+    /// [`FftConvolution::circulant_inverse`] on the periodic lengths `(mx,
+    /// my)`, at least the grid's.
+    pub(super) fn circulant_inverse_on(kernel: &ToeplitzKernel, (mx, my): (usize, usize)) -> Self {
         let (nx, ny) = kernel.shape();
         let mut conv = FftConvolution::planned((nx, ny), (mx, my));
         let raw = conv.strang_tables(kernel);
@@ -681,5 +687,9 @@ mod tests {
         assert_eq!(smooth_length(7), 8);
         assert_eq!(smooth_length(97), 100);
         assert_eq!(smooth_length(121), 125);
+        // At least 2^2, at most one 5.
+        for (n, m) in [(1, 4), (89, 96), (133, 144), (147, 160), (217, 240)] {
+            assert_eq!(fast_length(n), m, "{n}");
+        }
     }
 }

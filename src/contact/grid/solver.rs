@@ -183,8 +183,8 @@ impl FixedGrid {
             self.folded = Some(FoldedKernel::new(&self.kernel));
             self.symmetric = Some(SymmetricProducts {
                 exact: SymmetricConvolution::padded(&self.kernel),
-                single: SymmetricConvolution::padded_single(&self.kernel),
-                inverse: SymmetricConvolution::circulant_inverse_single(&self.kernel),
+                single: SymmetricConvolution::padded(&self.kernel).to_single(),
+                inverse: SymmetricConvolution::circulant_inverse(&self.kernel).to_single(),
             });
         }
         self

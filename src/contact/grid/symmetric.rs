@@ -25,7 +25,7 @@
 //! convolution theorem for symmetric sequences, S. A. Martucci, IEEE
 //! Trans. Signal Process. 42 (1994) 1038-1051).
 
-use super::convolution::{FftConvolution, Real, ToeplitzKernel, single_length, smooth_length, smooth_padding};
+use super::convolution::{FftConvolution, Real, ToeplitzKernel, fast_length};
 use num_complex::{Complex, Complex64};
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
@@ -74,14 +74,7 @@ impl SymmetricConvolution<f64> {
     /// [`FftConvolution::new`] on symmetric fields).
     pub fn padded(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();
-        Self::padded_on(kernel, (smooth_padding(nx), smooth_padding(ny)))
-    }
-
-    /// [`SymmetricConvolution::padded`] in single precision, on lengths
-    /// its transforms take fast ([`single_length`]).
-    pub fn padded_single(kernel: &ToeplitzKernel) -> SymmetricConvolution<f32> {
-        let (nx, ny) = kernel.shape();
-        Self::padded_on(kernel, (single_length(2 * nx - 1), single_length(2 * ny - 1))).to_single()
+        Self::padded_on(kernel, (fast_length(2 * nx - 1), fast_length(2 * ny - 1)))
     }
 
     /// [`SymmetricConvolution::padded`] on the transform lengths `(mx, my)`, at
@@ -98,18 +91,7 @@ impl SymmetricConvolution<f64> {
     /// positive definite takes the reciprocal of the mean diagonal.
     pub fn circulant_inverse(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();
-        Self::circulant_inverse_on(kernel, (smooth_length(nx), smooth_length(ny)))
-    }
-
-    /// [`SymmetricConvolution::circulant_inverse`] in single precision, on
-    /// lengths its transforms take fast ([`single_length`]).
-    pub fn circulant_inverse_single(kernel: &ToeplitzKernel) -> SymmetricConvolution<f32> {
-        let (nx, ny) = kernel.shape();
-        Self::circulant_inverse_on(kernel, (single_length(nx), single_length(ny))).to_single()
-    }
-
-    fn circulant_inverse_on(kernel: &ToeplitzKernel, lengths: (usize, usize)) -> Self {
-        let (nx, ny) = kernel.shape();
+        let lengths = (fast_length(nx), fast_length(ny));
         let raw = FftConvolution::planned((nx, ny), lengths).strang_tables(kernel);
         let scale = 1.0 / (lengths.0 * lengths.1) as f64;
         let mean = raw[0].iter().zip(&raw[2]).map(|(a, b)| 0.5 * (a.re + b.re)).sum::<f64>() / raw[0].len() as f64;
@@ -341,7 +323,13 @@ impl SymmetricNormal {
     /// [`FftConvolution::new`] on symmetric fields).
     pub fn padded(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();
-        let lengths = (smooth_padding(nx), smooth_padding(ny));
+        Self::padded_on(kernel, (fast_length(2 * nx - 1), fast_length(2 * ny - 1)))
+    }
+
+    /// [`SymmetricNormal::padded`] on the transform lengths `(mx, my)`, at
+    /// least `2 n - 1` each.
+    pub fn padded_on(kernel: &ToeplitzKernel, lengths: (usize, usize)) -> Self {
+        let (nx, ny) = kernel.shape();
         let raw = FftConvolution::planned((nx, ny), lengths).padded_tables(kernel);
         Self::with_symbol(kernel, lengths, |a| a, &raw[0])
     }
@@ -352,7 +340,7 @@ impl SymmetricNormal {
     /// mean.
     pub fn circulant_inverse(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();
-        let lengths = (smooth_length(nx), smooth_length(ny));
+        let lengths = (fast_length(nx), fast_length(ny));
         let raw = FftConvolution::planned((nx, ny), lengths).strang_tables(kernel);
         let scale = 1.0 / (lengths.0 * lengths.1) as f64;
         let mean = raw[0].iter().map(|v| v.re).sum::<f64>() / raw[0].len() as f64;
@@ -568,7 +556,11 @@ mod tests {
             let n = nx * ny;
             for (name, full, sym) in [
                 ("padded", FftConvolution::new(&kernel), SymmetricNormal::padded(&kernel)),
-                ("inverse", FftConvolution::circulant_inverse(&kernel), SymmetricNormal::circulant_inverse(&kernel)),
+                (
+                    "inverse",
+                    FftConvolution::circulant_inverse_on(&kernel, (fast_length(nx), fast_length(ny))),
+                    SymmetricNormal::circulant_inverse(&kernel),
+                ),
             ] {
                 let mut u = vec![0.0; n];
                 full.normal(&mut FftScratch::default(), &p, &mut u);
@@ -598,7 +590,7 @@ mod tests {
                 ("padded", FftConvolution::new(&kernel), SymmetricConvolution::padded(&kernel)),
                 (
                     "inverse",
-                    FftConvolution::circulant_inverse(&kernel),
+                    FftConvolution::circulant_inverse_on(&kernel, (fast_length(nx), fast_length(ny))),
                     SymmetricConvolution::circulant_inverse(&kernel),
                 ),
             ] {
