@@ -72,6 +72,24 @@ impl ToeplitzKernel {
         ToeplitzKernel { nx, ny, comps }
     }
 
+    /// The kernel of a block of `bx x by` elements of the same grid (the
+    /// offsets within the block).
+    pub fn block(&self, (bx, by): (usize, usize)) -> Self {
+        assert!(bx <= self.nx && by <= self.ny, "a block within the grid");
+        let (wx, wy) = (2 * bx - 1, 2 * by - 1);
+        let comps = self
+            .comps
+            .iter()
+            .enumerate()
+            .map(|(c, _)| {
+                (0..wx * wy)
+                    .map(|t| self.at(c, (t % wx) as isize - (bx as isize - 1), (t / wx) as isize - (by as isize - 1)))
+                    .collect()
+            })
+            .collect();
+        ToeplitzKernel { nx: bx, ny: by, comps }
+    }
+
     /// Grid columns and rows.
     pub fn shape(&self) -> (usize, usize) {
         (self.nx, self.ny)

@@ -272,7 +272,7 @@ impl Ops<'_> {
     fn product(&mut self, p: &[f64], u: &mut [f64]) {
         match self.products {
             NormalProducts::Full(conv, _) => conv.normal(self.full, p, u),
-            NormalProducts::Symmetric(conv, _) => conv.normal(&mut self.symmetric, p, u),
+            NormalProducts::Symmetric(conv, _) => conv.normal_lower(&mut self.symmetric, p, u),
         }
     }
 
@@ -285,7 +285,7 @@ impl Ops<'_> {
         match self.products {
             NormalProducts::Full(_, Some(pre)) => pre.normal(self.full, g, z),
             NormalProducts::Full(_, None) => z.copy_from_slice(g),
-            NormalProducts::Symmetric(_, pre) => pre.normal(&mut self.symmetric, g, z),
+            NormalProducts::Symmetric(_, pre) => pre.normal_lower(&mut self.symmetric, g, z),
         }
     }
 }

@@ -27,6 +27,7 @@ use super::normal::{self, NormalError, NormalProducts};
 use super::spec::{FixedGridSpec, GRID_TOLERANCE, GridSolver};
 use super::symmetric::{SymmetricConvolution, SymmetricNormal};
 use super::tangential::Law;
+mod block;
 mod edge;
 mod on_set;
 mod pressure;
@@ -106,6 +107,8 @@ pub struct FixedGrid {
     /// normal CG's preconditioner.
     symmetric: Option<SymmetricProducts>,
     normal_symmetric: Option<(SymmetricNormal, SymmetricNormal)>,
+    /// The contact blocks' products of a folded grid, by size.
+    blocks: block::Blocks,
     /// The rail surface in the gap (`None`: the quadratic gap alone).
     surface: Option<RailContact>,
     /// Warm start of [`FixedGrid::approach`]'s normal solves (Pa).
@@ -163,6 +166,7 @@ impl FixedGrid {
             folded: None,
             symmetric: None,
             normal_symmetric: None,
+            blocks: block::Blocks::default(),
             surface: None,
             approach_start: None,
             fallbacks: 0,

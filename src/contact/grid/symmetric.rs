@@ -407,6 +407,17 @@ impl SymmetricNormal {
     /// centre line, read from the lower half of the rows (`r <
     /// (ny + 1) / 2`).
     pub fn normal(&self, s: &mut NormalScratch, p: &[f64], u: &mut [f64]) {
+        self.product(s, p, u, self.ny);
+    }
+
+    /// [`SymmetricNormal::normal`] written on the lower half of the rows
+    /// only (the normal solve's loops run there).
+    pub fn normal_lower(&self, s: &mut NormalScratch, p: &[f64], u: &mut [f64]) {
+        self.product(s, p, u, self.ny.div_ceil(2));
+    }
+
+    /// `u = K_n p` on the first `rows` rows.
+    fn product(&self, s: &mut NormalScratch, p: &[f64], u: &mut [f64], rows: usize) {
         let (nx, ny, mx, my) = (self.nx, self.ny, self.mx, self.my);
         let (hx, hy, pairs) = (mx / 2 + 1, my / 2 + 1, nx.div_ceil(2));
         let place: Vec<(usize, usize)> = (0..ny).map(|r| places(ny, my, r)).collect();
@@ -469,12 +480,12 @@ impl SymmetricNormal {
             }
         }
         batch(&self.inv_y, &mut s.cols, &mut s.fft);
-        for (q, col) in s.cols.chunks_exact(my).enumerate() {
-            let (x, odd) = (2 * q, 2 * q + 1 < nx);
-            for (r, &(j, _)) in place.iter().enumerate() {
-                u[r * nx + x] = col[j].re;
-                if odd {
-                    u[r * nx + x + 1] = col[j].im;
+        for (r, &(j, _)) in place[..rows].iter().enumerate() {
+            let row = &mut u[r * nx..(r + 1) * nx];
+            for (pair, col) in row.chunks_mut(2).zip(s.cols.chunks_exact(my)) {
+                pair[0] = col[j].re;
+                if let Some(v) = pair.get_mut(1) {
+                    *v = col[j].im;
                 }
             }
         }

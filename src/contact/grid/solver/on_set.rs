@@ -23,6 +23,9 @@ pub(super) struct OnSet<'a, T: Real> {
     scratch: FftScratch<T>,
     /// The same product for symmetric fields, used on a folded grid.
     symmetric: Option<(&'a SymmetricConvolution<T>, SymmetricScratch<T>)>,
+    /// The set's columns and rows in the block the symmetric product runs
+    /// on (`None`: the whole grid).
+    place: Option<(Vec<usize>, Vec<usize>)>,
     set: &'a ContactSet,
     weight: &'a [f64],
     /// Grid columns and rows.
@@ -48,6 +51,7 @@ impl<'a, T: Real> OnSet<'a, T> {
             conv,
             scratch: FftScratch::default(),
             symmetric: None,
+            place: None,
             set,
             weight,
             shape,
@@ -62,6 +66,19 @@ impl<'a, T: Real> OnSet<'a, T> {
     /// set on the lower half of the grid).
     pub fn symmetric(mut self, symmetric: Option<&'a SymmetricConvolution<T>>) -> Self {
         self.symmetric = symmetric.map(|conv| (conv, SymmetricScratch::default()));
+        self.place = None;
+        self
+    }
+
+    /// Products of a folded grid's symmetric fields by `conv`, the
+    /// products of the block of the grid from column `c0` and row `r0` (a
+    /// block symmetric about the centre line that holds the set: the same
+    /// products on the set, on shorter transforms).
+    pub fn on_block(mut self, conv: &'a SymmetricConvolution<T>, (c0, r0): (usize, usize)) -> Self {
+        self.symmetric = Some((conv, SymmetricScratch::default()));
+        let ix = self.set.ix.iter().map(|&x| x - c0).collect();
+        let iy = self.set.iy.iter().map(|&r| r - r0).collect();
+        self.place = Some((ix, iy));
         self
     }
 
@@ -74,7 +91,8 @@ impl<'a, T: Real> OnSet<'a, T> {
             Layout::Interleaved => (out[2 * c], out[2 * c + 1]) = (x, y),
         };
         if let Some((conv, scratch)) = &mut self.symmetric {
-            conv.product_on(scratch, (&self.set.ix, &self.set.iy), |c| (field[2 * c], field[2 * c + 1]), store);
+            let (ix, iy) = self.place.as_ref().map_or((&self.set.ix, &self.set.iy), |(x, y)| (x, y));
+            conv.product_on(scratch, (ix, iy), |c| (field[2 * c], field[2 * c + 1]), store);
             self.stale = true;
             return;
         }
@@ -100,6 +118,7 @@ impl<'a, T: Real> OnSet<'a, T> {
 
     /// The last product on the whole grid (x, y).
     pub fn whole(mut self) -> (Vec<f64>, Vec<f64>) {
+        debug_assert!(self.place.is_none(), "a block's product is not the grid's");
         if let (Some((conv, scratch)), true) = (&self.symmetric, self.stale) {
             conv.whole_grid(scratch, (&mut self.u.0, &mut self.u.1));
         }

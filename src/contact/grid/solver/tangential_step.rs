@@ -108,11 +108,15 @@ impl FixedGrid {
         let mut fresh = |p: &[f64], u: &mut [f64]| exact.product(p, u);
         // The CG solver's inner products in single precision; its
         // preconditioner, the FFT inverse on the unpadded grid.
-        let mut single =
-            OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks).symmetric(sym.map(|s| &s.single));
+        // On the contact block where it is much smaller than the grid.
+        let block = sym.and_then(|_| self.blocks.for_set(&self.kernel, &set, shape));
+        let single = OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks);
+        let pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
+        let (mut single, mut pre) = match &block {
+            Some((origin, products)) => (single.on_block(&products.0, *origin), pre.on_block(&products.1, *origin)),
+            None => (single.symmetric(sym.map(|s| &s.single)), pre.symmetric(sym.map(|s| &s.inverse))),
+        };
         let mut inner = |p: &[f64], u: &mut [f64]| single.product(p, u);
-        let mut pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved)
-            .symmetric(sym.map(|s| &s.inverse));
         let mut inverse = |r: &[f64], z: &mut [f64]| pre.product(r, z);
         let newton_krylov = self.spec.solver.resolve() == GridSolver::Cg;
         // The CG solver's law: exact Coulomb friction as the regularised

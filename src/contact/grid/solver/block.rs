@@ -1,0 +1,129 @@
+//! The contact block: the CG solver's inner products and preconditioner
+//! of a folded step on the smallest block of the grid, symmetric about the
+//! centre line, that holds the elements in contact (the profile contact's
+//! grid is 1.5 times the largest patch both ways: on growth_discrete.toml
+//! the block is about a quarter of the grid). On the set the block's
+//! zero-padded product is the grid's (a linear convolution needs the
+//! padding of the block alone); the preconditioner is the block's
+//! circulant inverse. The products of each block size are built once and
+//! kept.
+
+use super::super::convolution::ToeplitzKernel;
+use super::super::symmetric::SymmetricConvolution;
+use super::super::tangential::ContactSet;
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
+/// A block's single-precision products: the zero-padded kernel and its
+/// circulant inverse.
+pub(super) type BlockProducts = (SymmetricConvolution<f32>, SymmetricConvolution<f32>);
+
+/// Blocks used where the block has at most this fraction of the grid's
+/// elements (its transforms are then shorter by enough to pay).
+const BLOCK_FRACTION: f64 = 0.6;
+
+/// Block widths are rounded up to multiples of this many columns (and
+/// heights to as many rows), so that a passage builds few sizes.
+const BLOCK_QUANTUM: usize = 4;
+
+/// The products of the block sizes built so far.
+#[derive(Debug, Default)]
+pub(super) struct Blocks(Mutex<HashMap<(usize, usize), Arc<BlockProducts>>>);
+
+impl Clone for Blocks {
+    fn clone(&self) -> Self {
+        Blocks(Mutex::new(self.0.lock().expect("not poisoned").clone()))
+    }
+}
+
+impl Blocks {
+    /// The block of a folded grid of `nx x ny` elements for the set (on the
+    /// lower half): its first column and row and its products, or `None`
+    /// where the whole grid is as cheap.
+    pub fn for_set(
+        &self,
+        kernel: &ToeplitzKernel,
+        set: &ContactSet,
+        (nx, ny): (usize, usize),
+    ) -> Option<((usize, usize), Arc<BlockProducts>)> {
+        let (&c_min, &c_max) = (set.ix.iter().min()?, set.ix.iter().max()?);
+        let r_min = *set.iy.iter().min()?;
+        let bx = (c_max - c_min + 1).next_multiple_of(BLOCK_QUANTUM).min(nx);
+        let c0 = c_min.min(nx - bx);
+        // Rows r0 .. ny - r0, symmetric: r0 down to an even count below.
+        let r0 = r_min - r_min % (BLOCK_QUANTUM / 2);
+        let by = ny - 2 * r0;
+        if ((bx * by) as f64) > BLOCK_FRACTION * (nx * ny) as f64 {
+            return None;
+        }
+        let mut map = self.0.lock().expect("not poisoned");
+        let products = map
+            .entry((bx, by))
+            .or_insert_with(|| {
+                let block = kernel.block((bx, by));
+                Arc::new((
+                    SymmetricConvolution::padded(&block).to_single(),
+                    SymmetricConvolution::circulant_inverse(&block).to_single(),
+                ))
+            })
+            .clone();
+        Some(((c0, r0), products))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::contact::grid::PotentialGrid;
+    use crate::contact::grid::symmetric::SymmetricScratch;
+
+    /// On the elements in contact the block's product equals the whole
+    /// grid's (single precision: within 1e-5 of the largest), and a set
+    /// that fills the grid gets no block.
+    #[test]
+    fn the_block_product_is_the_grids_on_the_set() {
+        let (nx, ny) = (58, 38);
+        let grid = PotentialGrid {
+            nx,
+            ny,
+            dx: 4e-4,
+            dy: 1e-3,
+            x_front: 0.5 * nx as f64 * 4e-4,
+            y_low: -0.5 * ny as f64 * 1e-3,
+        };
+        let kernel = ToeplitzKernel::tangential(&grid, 8.1e10, 0.28);
+        // An ellipse of 30 x 20 elements off the grid's centre along x, on
+        // the lower half.
+        let inside = |k: usize| {
+            let (x, r) = ((k % nx) as f64 - 25.0, (k / nx) as f64 - 18.5);
+            (x / 15.0).powi(2) + (r / 10.0).powi(2) < 1.0
+        };
+        let set = ContactSet::new(nx, ny.div_ceil(2) * nx, inside);
+        let blocks = Blocks::default();
+        let ((c0, r0), products) = blocks.for_set(&kernel, &set, (nx, ny)).expect("a block");
+        let field: Vec<(f64, f64)> =
+            (0..set.len()).map(|c| ((c as f64 * 0.37).sin(), (c as f64 * 0.11).cos())).collect();
+        let mut whole = vec![(0.0, 0.0); set.len()];
+        SymmetricConvolution::padded(&kernel).product_on(
+            &mut SymmetricScratch::default(),
+            (&set.ix, &set.iy),
+            |c| field[c],
+            |c, x, y| whole[c] = (x, y),
+        );
+        let ix: Vec<usize> = set.ix.iter().map(|x| x - c0).collect();
+        let iy: Vec<usize> = set.iy.iter().map(|r| r - r0).collect();
+        let mut on_block = vec![(0.0, 0.0); set.len()];
+        products.0.product_on(
+            &mut SymmetricScratch::default(),
+            (&ix, &iy),
+            |c| field[c],
+            |c, x, y| on_block[c] = (x, y),
+        );
+        let scale = whole.iter().fold(0.0f64, |m, v| m.max(v.0.abs()).max(v.1.abs()));
+        let err = whole.iter().zip(&on_block).fold(0.0f64, |m, (a, b)| m.max((a.0 - b.0).abs()).max((a.1 - b.1).abs()));
+        assert!(err < 1e-5 * scale, "{err:e} of {scale:e}");
+        assert_eq!(blocks.0.lock().unwrap().len(), 1);
+        let full = ContactSet::new(nx, ny.div_ceil(2) * nx, |_| true);
+        assert!(blocks.for_set(&kernel, &full, (nx, ny)).is_none());
+    }
+}
