@@ -35,19 +35,19 @@ impl CostEstimate {
 /// tangential solver `solver` (Cg or GaussSeidel) on the fixed grid `f`.
 fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, solver: GridSolver) -> f64 {
     // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
-    // 2026-11-26, wall on 2 cores; the next step's pressure on the second
-    // core): with the CG solver 1.57 / 3.13 / 4.75 / 10.07 ms per step with
-    // 478 / 975 / 1912 / 3902 elements in contact at the mean load, fitted
-    // by 1.59 ms (N/478)^0.86 (exact Coulomb friction as the regularised
-    // law's limit: the same, 27.4 products per step against 26.8 at 0.2
-    // mm); with Gauss-Seidel 3.83 / 9.74 / 28.8 / 94.8 ms, 3.56 ms
-    // (N/478)^1.54 (exact Coulomb friction about 20 % more sweeps); the
-    // wear deposit is in it.
+    // 2026-11-27, wall on 2 cores; the next step's pressure on the second
+    // core, the symmetric products): with the CG solver 1.26 / 1.83 / 3.13
+    // / 5.72 ms per step with 478 / 975 / 1912 / 3902 elements in contact
+    // at the mean load, fitted by 1.18 ms (N/478)^0.73 (least squares; exact
+    // Coulomb friction as the regularised law's limit costs the same within
+    // 3 %); with Gauss-Seidel 3.41 / 8.69 / 25.1 / 83.2 ms, within 8 % of
+    // 3.56 ms (N/478)^1.54, kept (exact Coulomb friction about 20 % more
+    // sweeps); the wear deposit is in it.
     // A scene that is not symmetric about the centre line (lateral
     // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
-    // (scripts/stability_map.sh); the CG solver's products cover the whole
-    // grid either way: 1.1-1.3 times on the stability map's rows with
-    // lateral creepage, taken as 1.2.
+    // (scripts/stability_map.sh); with CG, which then has no symmetric
+    // products, 1.8 times at 0.4 mm and 2.3 times at 0.2 mm
+    // (paper_normal_30mm with lateral creepage 2e-3), taken as 2.3.
     let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
     let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
     let cg = solver == GridSolver::Cg;
@@ -55,39 +55,39 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     // a grid 1.5 times the patch both ways, the gap of every step, the
     // normal solves of the steps (on the second core) and of the
     // equivalent-roughness pre-pass (two chains, one per core); measured
-    // 2026-11-26 against the per-step fits above: with CG, whose products
-    // cover the larger grid, 1.9 times (growth_exact.toml, 0.97 s per
-    // passage of 325 steps) and 2.2 times (growth_discrete.toml, 5.3 s per
-    // passage of 1526 steps), taken as 2.2; with Gauss-Seidel, which
-    // sweeps the contact area only, 1.0 and 1.3 times (1.21 and 7.55 s),
-    // taken as 1.3.
+    // 2026-11-27 against the per-step fits above: with CG, whose inner
+    // products run on the contact's block of the grid, 0.85 times
+    // (growth_exact.toml, 0.33 s per passage of 325 steps) and 0.88 times
+    // (growth_discrete.toml, 1.58 s per passage of 1526 steps), taken as
+    // 0.9; with Gauss-Seidel, which sweeps the contact area only, 1.0 and
+    // 1.3 times (2026-11-26), kept.
     // The linear profile contact (auto's passages in its range: its
-    // pressure's cell means on a window of the grid): with CG 0.94 and 1.2
-    // times (0.48 and 2.95 s per passage), taken as 1.2; with
-    // Gauss-Seidel 0.74 and 0.93 times (0.92 and 5.46 s), taken as 0.95.
+    // pressure's cell means on a window of the grid): with CG 0.60 and
+    // 0.58 times (0.23 and 1.05 s per passage), taken as 0.6; with
+    // Gauss-Seidel 0.74 and 0.93 times (2026-11-26), taken as 0.95.
     // `auto` is costed as the nonlinear contact (its grid holds it; a
     // passage in the linear range costs less).
     let profile = match s.contact.normal {
         NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => {
             if cg {
-                2.2
+                0.9
             } else {
                 1.3
             }
         }
         NormalContact::Linear { .. } if s.growth.is_some() => {
             if cg {
-                1.2
+                0.6
             } else {
                 0.95
             }
         }
         _ => 1.0,
     };
-    let per_step = if cg { 1.59e-3 * (n_c / 478.0).powf(0.86) } else { 3.56e-3 * (n_c / 478.0).powf(1.54) };
+    let per_step = if cg { 1.18e-3 * (n_c / 478.0).powf(0.73) } else { 3.56e-3 * (n_c / 478.0).powf(1.54) };
     let whole = match (symmetric, cg) {
         (true, _) => 1.0,
-        (false, true) => 1.2,
+        (false, true) => 2.3,
         (false, false) => 2.7,
     };
     per_step * whole * profile

@@ -20,7 +20,11 @@
 //!    (Kalker 1990, sec. 5.2; CONTACT's transient rolling);
 //! 3. the displacements `u = C p` everywhere on the grid, by zero-padded FFT
 //!    ([`convolution`]): on a uniform grid the influence matrix is
-//!    block-Toeplitz.
+//!    block-Toeplitz. A problem symmetric about y = 0 (no lateral creepage,
+//!    no spin, a symmetric gap) is solved on the lower half of the grid, its
+//!    products by transforms of symmetric fields ([`symmetric`]: about two
+//!    thirds of the transform work), the CG solver's inner products on the
+//!    block of the grid that holds the contact area.
 //!
 //! Element order: row by row (y increasing), each row from the leading edge
 //! (x > 0, where rail material enters) to the trailing edge, as the adapted
