@@ -35,8 +35,8 @@ impl CostEstimate {
 /// tangential solver `solver` (Cg or GaussSeidel) on the fixed grid `f`.
 fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, solver: GridSolver) -> f64 {
     // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
-    // 2026-11-27, wall on 2 cores; the next step's pressure on the second
-    // core, the symmetric products): with the CG solver 1.26 / 1.83 / 3.13
+    // 2026-11-26 with the symmetric products, wall on 2 cores; the next
+    // step's pressure on the second core): with the CG solver 1.26 / 1.83 / 3.13
     // / 5.72 ms per step with 478 / 975 / 1912 / 3902 elements in contact
     // at the mean load, fitted by 1.18 ms (N/478)^0.73 (least squares; exact
     // Coulomb friction as the regularised law's limit costs the same within
@@ -55,16 +55,18 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     // a grid 1.5 times the patch both ways, the gap of every step, the
     // normal solves of the steps (on the second core) and of the
     // equivalent-roughness pre-pass (two chains, one per core); measured
-    // 2026-11-27 against the per-step fits above: with CG, whose inner
-    // products run on the contact's block of the grid, 0.85 times
+    // 2026-11-26 with the symmetric products, against the per-step fits
+    // above: with CG, whose inner products run on the contact's block of
+    // the grid, 0.85 times
     // (growth_exact.toml, 0.33 s per passage of 325 steps) and 0.88 times
     // (growth_discrete.toml, 1.58 s per passage of 1526 steps), taken as
     // 0.9; with Gauss-Seidel, which sweeps the contact area only, 1.0 and
-    // 1.3 times (2026-11-26), kept.
+    // 1.3 times (measured before the symmetric products), kept.
     // The linear profile contact (auto's passages in its range: its
     // pressure's cell means on a window of the grid): with CG 0.60 and
     // 0.58 times (0.23 and 1.05 s per passage), taken as 0.6; with
-    // Gauss-Seidel 0.74 and 0.93 times (2026-11-26), taken as 0.95.
+    // Gauss-Seidel 0.74 and 0.93 times (before the symmetric products),
+    // taken as 0.95.
     // `auto` is costed as the nonlinear contact (its grid holds it; a
     // passage in the linear range costs less).
     let profile = match s.contact.normal {
