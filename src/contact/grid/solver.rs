@@ -29,6 +29,7 @@ use super::symmetric::{SymmetricConvolution, SymmetricNormal};
 use super::tangential::Law;
 mod block;
 mod edge;
+mod normal_block;
 mod on_set;
 mod pressure;
 mod tangential_step;
@@ -107,8 +108,12 @@ pub struct FixedGrid {
     /// normal CG's preconditioner.
     symmetric: Option<SymmetricProducts>,
     normal_symmetric: Option<(SymmetricNormal, SymmetricNormal)>,
-    /// The contact blocks' products of a folded grid, by size.
-    blocks: block::Blocks,
+    /// The contact blocks' products of a folded grid, by size: the CG
+    /// solver's, and the normal solves' (with the normal kernel they are
+    /// cut from).
+    blocks: block::Blocks<block::BlockProducts>,
+    normal_blocks: block::Blocks<(SymmetricNormal, SymmetricNormal)>,
+    normal_kernel: ToeplitzKernel,
     /// The rail surface in the gap (`None`: the quadratic gap alone).
     surface: Option<RailContact>,
     /// Warm start of [`FixedGrid::approach`]'s normal solves (Pa).
@@ -167,6 +172,8 @@ impl FixedGrid {
             symmetric: None,
             normal_symmetric: None,
             blocks: block::Blocks::default(),
+            normal_blocks: block::Blocks::default(),
+            normal_kernel: normal_kernel.clone(),
             surface: None,
             approach_start: None,
             fallbacks: 0,
@@ -254,7 +261,7 @@ impl FixedGrid {
         start: Option<&[f64]>,
     ) -> Result<normal::NormalSolution, ContactError> {
         let gap = self.gap_at(position);
-        normal::solve(self.normal_products(&gap), scratch, &gap, self.grid.area(), force, start)
+        self.solve_normal(scratch, &gap, force, start)
             .map_err(|e| ContactError::NoConvergence { force, reason: normal_reason(e) })
     }
 

@@ -20,23 +20,60 @@ pub(super) type BlockProducts = (SymmetricConvolution<f32>, SymmetricConvolution
 
 /// Blocks used where the block has at most this fraction of the grid's
 /// elements (its transforms are then shorter by enough to pay).
-const BLOCK_FRACTION: f64 = 0.6;
+pub(super) const BLOCK_FRACTION: f64 = 0.6;
 
 /// Block widths are rounded up to multiples of this many columns (and
 /// heights to as many rows), so that a passage builds few sizes.
 const BLOCK_QUANTUM: usize = 4;
 
 /// The products of the block sizes built so far.
-#[derive(Debug, Default)]
-pub(super) struct Blocks(Mutex<HashMap<(usize, usize), Arc<BlockProducts>>>);
+#[derive(Debug)]
+pub(super) struct Blocks<P>(Mutex<HashMap<(usize, usize), Arc<P>>>);
 
-impl Clone for Blocks {
+impl<P> Default for Blocks<P> {
+    fn default() -> Self {
+        Blocks(Mutex::new(HashMap::new()))
+    }
+}
+
+impl<P> Clone for Blocks<P> {
     fn clone(&self) -> Self {
         Blocks(Mutex::new(self.0.lock().expect("not poisoned").clone()))
     }
 }
 
-impl Blocks {
+impl<P> Blocks<P> {
+    /// Block sizes built so far.
+    #[cfg(test)]
+    pub fn sizes(&self) -> usize {
+        self.0.lock().expect("not poisoned").len()
+    }
+
+    /// The products of blocks of `size`, built by `build` the first time.
+    pub fn get(&self, size: (usize, usize), build: impl FnOnce() -> P) -> Arc<P> {
+        let mut map = self.0.lock().expect("not poisoned");
+        map.entry(size).or_insert_with(|| Arc::new(build())).clone()
+    }
+}
+
+/// The block of a folded grid of `nx x ny` elements, symmetric about the
+/// centre line, that holds columns `c_min ..= c_max` and rows `r_min ..
+/// ny - r_min` (widened to the quanta): its first column and row and its
+/// size, or `None` where it is not much smaller than the grid.
+pub(super) fn block_of(
+    (c_min, c_max): (usize, usize),
+    r_min: usize,
+    (nx, ny): (usize, usize),
+) -> Option<((usize, usize), (usize, usize))> {
+    let bx = (c_max - c_min + 1).next_multiple_of(BLOCK_QUANTUM).min(nx);
+    let c0 = c_min.min(nx - bx);
+    // Rows r0 .. ny - r0, symmetric: r0 down to an even count below.
+    let r0 = r_min - r_min % (BLOCK_QUANTUM / 2);
+    let by = ny - 2 * r0;
+    (((bx * by) as f64) <= BLOCK_FRACTION * (nx * ny) as f64).then_some(((c0, r0), (bx, by)))
+}
+
+impl Blocks<BlockProducts> {
     /// The block of a folded grid of `nx x ny` elements for the set (on the
     /// lower half): its first column and row and its products, or `None`
     /// where the whole grid is as cheap.
@@ -44,30 +81,19 @@ impl Blocks {
         &self,
         kernel: &ToeplitzKernel,
         set: &ContactSet,
-        (nx, ny): (usize, usize),
+        shape: (usize, usize),
     ) -> Option<((usize, usize), Arc<BlockProducts>)> {
         let (&c_min, &c_max) = (set.ix.iter().min()?, set.ix.iter().max()?);
         let r_min = *set.iy.iter().min()?;
-        let bx = (c_max - c_min + 1).next_multiple_of(BLOCK_QUANTUM).min(nx);
-        let c0 = c_min.min(nx - bx);
-        // Rows r0 .. ny - r0, symmetric: r0 down to an even count below.
-        let r0 = r_min - r_min % (BLOCK_QUANTUM / 2);
-        let by = ny - 2 * r0;
-        if ((bx * by) as f64) > BLOCK_FRACTION * (nx * ny) as f64 {
-            return None;
-        }
-        let mut map = self.0.lock().expect("not poisoned");
-        let products = map
-            .entry((bx, by))
-            .or_insert_with(|| {
-                let block = kernel.block((bx, by));
-                Arc::new((
-                    SymmetricConvolution::padded(&block).to_single(),
-                    SymmetricConvolution::circulant_inverse(&block).to_single(),
-                ))
-            })
-            .clone();
-        Some(((c0, r0), products))
+        let (origin, size) = block_of((c_min, c_max), r_min, shape)?;
+        let products = self.get(size, || {
+            let block = kernel.block(size);
+            (
+                SymmetricConvolution::padded(&block).to_single(),
+                SymmetricConvolution::circulant_inverse(&block).to_single(),
+            )
+        });
+        Some((origin, products))
     }
 }
 
@@ -99,7 +125,7 @@ mod tests {
             (x / 15.0).powi(2) + (r / 10.0).powi(2) < 1.0
         };
         let set = ContactSet::new(nx, ny.div_ceil(2) * nx, inside);
-        let blocks = Blocks::default();
+        let blocks = Blocks::<BlockProducts>::default();
         let ((c0, r0), products) = blocks.for_set(&kernel, &set, (nx, ny)).expect("a block");
         let field: Vec<(f64, f64)> =
             (0..set.len()).map(|c| ((c as f64 * 0.37).sin(), (c as f64 * 0.11).cos())).collect();

@@ -3,7 +3,6 @@
 //! solved.
 
 use super::super::convolution::FftScratch;
-use super::super::normal;
 use super::{FixedGrid, normal_reason};
 use crate::contact::{ContactError, RailContact, StepInput};
 
@@ -58,7 +57,8 @@ impl FixedGrid {
             _ => {
                 let gap = self.gap_at(input.position);
                 let n_force = input.patch.normal_force;
-                let normal = normal::solve(self.normal_products(&gap), scratch, &gap, self.grid.area(), n_force, start)
+                let normal = self
+                    .solve_normal(scratch, &gap, n_force, start)
                     .map_err(|e| ContactError::NoConvergence { force: input.force_x, reason: normal_reason(e) })?;
                 let symmetric = self.surface.is_none() || self.symmetric(&gap);
                 Ok(Pressure { p3: normal.pressure, clipped: 0, symmetric })
