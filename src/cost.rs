@@ -35,14 +35,15 @@ impl CostEstimate {
 /// tangential solver `solver` (Cg or GaussSeidel) on the fixed grid `f`.
 fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, solver: GridSolver) -> f64 {
     // The fixed grid (ADAPTED=0 scripts/solver_scaling.sh, paper_normal_30mm,
-    // 2026-11-26 with the symmetric products, wall on 2 cores; the next
-    // step's pressure on the second core): with the CG solver 1.26 / 1.83 / 3.13
-    // / 5.72 ms per step with 478 / 975 / 1912 / 3902 elements in contact
-    // at the mean load, fitted by 1.18 ms (N/478)^0.73 (least squares; exact
-    // Coulomb friction as the regularised law's limit costs the same within
-    // 3 %); with Gauss-Seidel 3.41 / 8.69 / 25.1 / 83.2 ms, within 8 % of
-    // 3.56 ms (N/478)^1.54, kept (exact Coulomb friction about 20 % more
-    // sweeps); the wear deposit is in it.
+    // 2026-11-26 with the symmetric products and the contact blocks, wall
+    // on 2 cores; the next step's pressure on the second core): with the
+    // CG solver 1.09 / 1.54 / 2.60 / 5.31 ms per step with 478 / 975 /
+    // 1912 / 3902 elements in contact at the mean load, fitted by 0.99 ms
+    // (N/478)^0.76 (least squares; exact Coulomb friction as the
+    // regularised law's limit costs the same within 3 %); with
+    // Gauss-Seidel 3.39 / 8.70 / 24.8 / 81.1 ms, within 10 % of 3.56 ms
+    // (N/478)^1.54, kept (exact Coulomb friction about 20 % more sweeps);
+    // the wear deposit is in it.
     // A scene that is not symmetric about the centre line (lateral
     // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
     // (scripts/stability_map.sh); with CG, which then has no symmetric
@@ -55,16 +56,16 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     // a grid 1.5 times the patch both ways, the gap of every step, the
     // normal solves of the steps (on the second core) and of the
     // equivalent-roughness pre-pass (two chains, one per core); measured
-    // 2026-11-26 with the symmetric products, against the per-step fits
-    // above: with CG, whose inner products run on the contact's block of
-    // the grid, 0.85 times
-    // (growth_exact.toml, 0.33 s per passage of 325 steps) and 0.88 times
-    // (growth_discrete.toml, 1.58 s per passage of 1526 steps), taken as
-    // 0.9; with Gauss-Seidel, which sweeps the contact area only, 1.0 and
-    // 1.3 times (measured before the symmetric products), kept.
+    // 2026-11-26 with the symmetric products and the contact blocks (the
+    // CG's inner products and the normal solves on the block of the grid
+    // that holds the contact), against the per-step fits above: with CG
+    // 0.76 times (growth_exact.toml, 0.245 s per passage of 325 steps) and
+    // 0.77 times (growth_discrete.toml, 1.17 s per passage of 1526 steps),
+    // taken as 0.8; with Gauss-Seidel, which sweeps the contact area only,
+    // 1.0 and 1.3 times (measured before the symmetric products), kept.
     // The linear profile contact (auto's passages in its range: its
-    // pressure's cell means on a window of the grid): with CG 0.60 and
-    // 0.58 times (0.23 and 1.05 s per passage), taken as 0.6; with
+    // pressure's cell means on a window of the grid): with CG 0.57 and
+    // 0.56 times (0.183 and 0.85 s per passage), taken as 0.6; with
     // Gauss-Seidel 0.74 and 0.93 times (before the symmetric products),
     // taken as 0.95.
     // `auto` is costed as the nonlinear contact (its grid holds it; a
@@ -72,7 +73,7 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     let profile = match s.contact.normal {
         NormalContact::Profile { .. } | NormalContact::Auto { .. } if s.growth.is_some() => {
             if cg {
-                0.9
+                0.8
             } else {
                 1.3
             }
@@ -86,7 +87,7 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
         }
         _ => 1.0,
     };
-    let per_step = if cg { 1.18e-3 * (n_c / 478.0).powf(0.73) } else { 3.56e-3 * (n_c / 478.0).powf(1.54) };
+    let per_step = if cg { 0.99e-3 * (n_c / 478.0).powf(0.76) } else { 3.56e-3 * (n_c / 478.0).powf(1.54) };
     let whole = match (symmetric, cg) {
         (true, _) => 1.0,
         (false, true) => 2.3,
@@ -97,9 +98,10 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
 
 /// What `contact.solver = "auto"` runs on the fixed grid of scene `s`: the
 /// cheaper of CG and Gauss-Seidel by this cost model, for both friction
-/// laws (CG on every grid measured since its FFT preconditioner, 1.25-7.6
-/// times faster per passage, Gauss-Seidel by these fits below about
-/// 150-300 elements in contact; exact Coulomb friction as the regularised
+/// laws (CG on every grid measured since its FFT preconditioner, 3.1-15
+/// times faster per passage at 0.4-0.14 mm with the symmetric products,
+/// Gauss-Seidel by these fits below about 50-100 elements in contact;
+/// exact Coulomb friction as the regularised
 /// law's limit, `contact::grid::cg::COULOMB_LIMIT`).
 pub fn auto_grid_solver(s: &Scene) -> GridSolver {
     let Some(f) = s.contact.model.fixed_grid() else {
