@@ -41,9 +41,9 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     // 1912 / 3902 elements in contact at the mean load, fitted by 0.99 ms
     // (N/478)^0.76 (least squares; exact Coulomb friction as the
     // regularised law's limit costs the same within 3 %); with
-    // Gauss-Seidel 3.39 / 8.70 / 24.8 / 81.1 ms, within 10 % of 3.56 ms
-    // (N/478)^1.54, kept (exact Coulomb friction about 20 % more sweeps);
-    // the wear deposit is in it.
+    // Gauss-Seidel 3.39 / 8.70 / 24.8 / 81.1 ms, 5-23 % below its earlier
+    // fit 3.56 ms (N/478)^1.54, which is kept (an upper estimate; exact
+    // Coulomb friction about 20 % more sweeps); the wear deposit is in it.
     // A scene that is not symmetric about the centre line (lateral
     // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
     // (scripts/stability_map.sh); with CG, which then has no symmetric

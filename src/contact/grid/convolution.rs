@@ -169,7 +169,7 @@ pub fn smooth_padding(n: usize) -> usize {
 /// 0.2 mm grid (67 x 45) 32 against 40 and 39 against 52 us (the
 /// double-precision tangential 59 against 56, 41 against 47 at 0.4 mm).
 pub(super) fn fast_length(n: usize) -> usize {
-    (n..)
+    (n.max(1)..)
         .find(|&m| {
             let (mut m, mut twos, mut fives) = (m, 0, 0);
             while m % 2 == 0 {

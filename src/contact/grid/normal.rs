@@ -324,6 +324,23 @@ mod tests {
                 assert!(gap > -1e-8 * scale, "penetration {gap} at {k}");
             }
         }
+        // The same problem on the lower half with the symmetric products,
+        // on grids with an even and an odd number of rows: the same
+        // pressure (1e-8 of its largest) and approach (1e-9).
+        for cell in [(5e-4, 1e-3), (5e-4, 0.95e-3)] {
+            let grid = PotentialGrid::covering(hz.a, hz.b, cell, 2, Default::default(), Default::default());
+            let kernel = ToeplitzKernel::normal(&grid, el.shear_modulus(), el.poisson_ratio);
+            let (xs, ys) = grid.centres();
+            let h: Vec<f64> = xs.iter().zip(&ys).map(|(x, y)| curv.a * x * x + curv.b * y * y).collect();
+            let (conv, pre) = (FftConvolution::new(&kernel), FftConvolution::circulant_inverse(&kernel));
+            let full = solve(NormalProducts::Full(&conv, Some(&pre)), &mut s, &h, grid.area(), 1e5, None).unwrap();
+            let (sym, sym_pre) = (SymmetricNormal::padded(&kernel), SymmetricNormal::circulant_inverse(&kernel));
+            let half = solve(NormalProducts::Symmetric(&sym, &sym_pre), &mut s, &h, grid.area(), 1e5, None).unwrap();
+            let p_max = full.pressure.iter().fold(0.0f64, |m, v| m.max(*v));
+            let dp = full.pressure.iter().zip(&half.pressure).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+            assert!(dp < 1e-8 * p_max, "{} rows: {dp:e} of {p_max:e}", grid.ny);
+            assert!((full.approach - half.approach).abs() < 1e-9 * full.approach.abs(), "{} rows", grid.ny);
+        }
         // Warm start from the solution: converged at once.
         let again =
             solve(NormalProducts::Full(&conv, None), &mut s, &h, grid.area(), 1e5, Some(&sol.pressure)).unwrap();

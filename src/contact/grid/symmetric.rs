@@ -81,13 +81,14 @@ impl SymmetricConvolution<f64> {
     /// least `2 n - 1` each.
     pub fn padded_on(kernel: &ToeplitzKernel, lengths: (usize, usize)) -> Self {
         let (nx, ny) = kernel.shape();
+        assert!(lengths.0 > 2 * nx - 2 && lengths.1 > 2 * ny - 2, "zero padding of at least 2 n - 1");
         let raw = FftConvolution::planned((nx, ny), lengths).padded_tables(kernel);
         Self::with_symbols(kernel, lengths, |a, b, c| (a, b, c), raw)
     }
 
-    /// The inverse of the kernel's circulant (the product of
-    /// [`FftConvolution::circulant_inverse`] on symmetric fields): the 2 x
-    /// 2 symbol `[[a, c], [c, b]]` inverted at every wavenumber; one not
+    /// The inverse of the kernel's circulant on the periods
+    /// `fast_length(n)` (the product of [`FftConvolution::circulant_inverse`]
+    /// on those periods, for symmetric fields): the 2 x 2 symbol `[[a, c], [c, b]]` inverted at every wavenumber; one not
     /// positive definite takes the reciprocal of the mean diagonal.
     pub fn circulant_inverse(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();
@@ -330,13 +331,15 @@ impl SymmetricNormal {
     /// least `2 n - 1` each.
     pub fn padded_on(kernel: &ToeplitzKernel, lengths: (usize, usize)) -> Self {
         let (nx, ny) = kernel.shape();
+        assert!(lengths.0 > 2 * nx - 2 && lengths.1 > 2 * ny - 2, "zero padding of at least 2 n - 1");
         let raw = FftConvolution::planned((nx, ny), lengths).padded_tables(kernel);
         Self::with_symbol(kernel, lengths, |a| a, &raw[0])
     }
 
-    /// The inverse of the kernel's circulant (the preconditioner of
-    /// [`FftConvolution::circulant_inverse`] on symmetric fields); a
-    /// wavenumber whose symbol is not positive takes the reciprocal of the
+    /// The inverse of the kernel's circulant on the periods
+    /// `fast_length(n)` (the preconditioner of
+    /// [`FftConvolution::circulant_inverse`] on those periods, for
+    /// symmetric fields); a wavenumber whose symbol is not positive takes the reciprocal of the
     /// mean.
     pub fn circulant_inverse(kernel: &ToeplitzKernel) -> Self {
         let (nx, ny) = kernel.shape();

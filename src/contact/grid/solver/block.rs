@@ -45,12 +45,6 @@ impl<P> Clone for Blocks<P> {
 }
 
 impl<P> Blocks<P> {
-    /// Block sizes built so far.
-    #[cfg(test)]
-    pub fn sizes(&self) -> usize {
-        self.0.lock().expect("not poisoned").len()
-    }
-
     /// The products of blocks of `size`, built by `build` the first time.
     pub fn get(&self, size: (usize, usize), build: impl FnOnce() -> P) -> Arc<P> {
         let mut map = self.0.lock().expect("not poisoned");

@@ -108,8 +108,10 @@ impl FixedGrid {
         let mut fresh = |p: &[f64], u: &mut [f64]| exact.product(p, u);
         // The CG solver's inner products in single precision; its
         // preconditioner, the FFT inverse on the unpadded grid.
-        // On the contact block where it is much smaller than the grid.
-        let block = sym.and_then(|_| self.blocks.for_set(&self.kernel, &set, shape));
+        // On the contact block where it is much smaller than the grid (the
+        // CG solver's products only).
+        let newton_krylov = self.spec.solver.resolve() == GridSolver::Cg;
+        let block = sym.filter(|_| newton_krylov).and_then(|_| self.blocks.for_set(&self.kernel, &set, shape));
         let single = OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks);
         let pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
         let (mut single, mut pre) = match &block {
@@ -118,7 +120,6 @@ impl FixedGrid {
         };
         let mut inner = |p: &[f64], u: &mut [f64]| single.product(p, u);
         let mut inverse = |r: &[f64], z: &mut [f64]| pre.product(r, z);
-        let newton_krylov = self.spec.solver.resolve() == GridSolver::Cg;
         // The CG solver's law: exact Coulomb friction as the regularised
         // law's limit.
         let cg_step = match law {
