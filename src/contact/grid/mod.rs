@@ -33,6 +33,7 @@
 pub mod cg;
 pub mod convolution;
 pub mod coupling;
+pub mod kernel;
 pub mod normal;
 pub mod solver;
 pub mod spec;

@@ -80,10 +80,7 @@ impl SymmetricConvolution<f64> {
     /// [`SymmetricConvolution::padded`] on the transform lengths `(mx, my)`, at
     /// least `2 n - 1` each.
     pub fn padded_on(kernel: &ToeplitzKernel, lengths: (usize, usize)) -> Self {
-        let (nx, ny) = kernel.shape();
-        assert!(lengths.0 > 2 * nx - 2 && lengths.1 > 2 * ny - 2, "zero padding of at least 2 n - 1");
-        let raw = FftConvolution::planned((nx, ny), lengths).padded_tables(kernel);
-        Self::with_symbols(kernel, lengths, |a, b, c| (a, b, c), raw)
+        Self::with_symbols(kernel, lengths, |a, b, c| (a, b, c), padded_spectra(kernel, lengths))
     }
 
     /// The inverse of the kernel's circulant on the periods
@@ -91,10 +88,7 @@ impl SymmetricConvolution<f64> {
     /// on those periods, for symmetric fields): the 2 x 2 symbol `[[a, c], [c, b]]` inverted at every wavenumber; one not
     /// positive definite takes the reciprocal of the mean diagonal.
     pub fn circulant_inverse(kernel: &ToeplitzKernel) -> Self {
-        let (nx, ny) = kernel.shape();
-        let lengths = (fast_length(nx), fast_length(ny));
-        let raw = FftConvolution::planned((nx, ny), lengths).strang_tables(kernel);
-        let scale = 1.0 / (lengths.0 * lengths.1) as f64;
+        let (lengths, raw, scale) = strang_spectra(kernel);
         let mean = raw[0].iter().zip(&raw[2]).map(|(a, b)| 0.5 * (a.re + b.re)).sum::<f64>() / raw[0].len() as f64;
         let invert = |a: f64, b: f64, c: f64| {
             let (s, d) = (0.5 * (a + b), (0.25 * (a - b) * (a - b) + c * c).sqrt());
@@ -330,10 +324,7 @@ impl SymmetricNormal {
     /// [`SymmetricNormal::padded`] on the transform lengths `(mx, my)`, at
     /// least `2 n - 1` each.
     pub fn padded_on(kernel: &ToeplitzKernel, lengths: (usize, usize)) -> Self {
-        let (nx, ny) = kernel.shape();
-        assert!(lengths.0 > 2 * nx - 2 && lengths.1 > 2 * ny - 2, "zero padding of at least 2 n - 1");
-        let raw = FftConvolution::planned((nx, ny), lengths).padded_tables(kernel);
-        Self::with_symbol(kernel, lengths, |a| a, &raw[0])
+        Self::with_symbol(kernel, lengths, |a| a, &padded_spectra(kernel, lengths)[0])
     }
 
     /// The inverse of the kernel's circulant on the periods
@@ -342,10 +333,7 @@ impl SymmetricNormal {
     /// symmetric fields); a wavenumber whose symbol is not positive takes the reciprocal of the
     /// mean.
     pub fn circulant_inverse(kernel: &ToeplitzKernel) -> Self {
-        let (nx, ny) = kernel.shape();
-        let lengths = (fast_length(nx), fast_length(ny));
-        let raw = FftConvolution::planned((nx, ny), lengths).strang_tables(kernel);
-        let scale = 1.0 / (lengths.0 * lengths.1) as f64;
+        let (lengths, raw, scale) = strang_spectra(kernel);
         let mean = raw[0].iter().map(|v| v.re).sum::<f64>() / raw[0].len() as f64;
         Self::with_symbol(kernel, lengths, |a| scale / if a > 1e-12 * mean { a } else { mean }, &raw[0])
     }
@@ -504,6 +492,24 @@ fn spectral_row<T: Real>(z: &[Complex<T>], (sigma, delta): (&[T], &[T]), w: &mut
     for (((w, a), b), (&s, &d)) in terms {
         *w = Complex::new(s * a.re + d * b.re, s * a.im - d * b.im);
     }
+}
+
+/// The kernel's spectra zero-padded on the transform lengths `(mx, my)`,
+/// at least `2 n - 1` each (transposed layout `k_x my + k_y`).
+fn padded_spectra(kernel: &ToeplitzKernel, lengths: (usize, usize)) -> Vec<Vec<Complex64>> {
+    let (nx, ny) = kernel.shape();
+    assert!(lengths.0 > 2 * nx - 2 && lengths.1 > 2 * ny - 2, "zero padding of at least 2 n - 1");
+    FftConvolution::planned((nx, ny), lengths).padded_tables(kernel)
+}
+
+/// The spectra of the kernel's Strang circulant on the periods
+/// `fast_length(n)`, those periods and the inverse transforms' `1/(mx
+/// my)`.
+fn strang_spectra(kernel: &ToeplitzKernel) -> ((usize, usize), Vec<Vec<Complex64>>, f64) {
+    let (nx, ny) = kernel.shape();
+    let lengths = (fast_length(nx), fast_length(ny));
+    let raw = FftConvolution::planned((nx, ny), lengths).strang_tables(kernel);
+    (lengths, raw, 1.0 / (lengths.0 * lengths.1) as f64)
 }
 
 /// `phi(k) = exp(i pi k delta / my)`, `k = 0 ..= my / 2`: the half-sample

@@ -23,11 +23,16 @@ use std::sync::atomic::{AtomicI32, Ordering};
 
 use hdf5::file::FileCloseDegree;
 use hdf5::plist::file_create::{AttrCreationOrder, LinkCreationOrder};
-use hdf5::types::{VarLenAscii, VarLenUnicode};
+use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Extent, Extents, File, Group, H5Type, Location, SimpleExtents};
 use ndarray::{ArrayD, ArrayView1, ArrayViewD};
 
 use super::h5ds;
+use chunks::{chunk_shape, write_compressed};
+pub use read::{Attrs, open_file, read_attr_str, read_f64, read_i8, read_i64};
+
+mod chunks;
+mod read;
 
 /// Errors of the netCDF writer and readers. Messages name the file and the object involved.
 #[derive(Debug, thiserror::Error)]
@@ -111,10 +116,6 @@ impl NcScalar for VarLenUnicode {
     const NAME: &'static str = "string";
     const COMPRESS: bool = false;
 }
-
-/// Target size of one chunk of a chunked (compressed or extendable) dataset. Kept at the size
-/// of HDF5's default chunk cache so that partial reads (xarray's lazy slices) stay cheap.
-const CHUNK_TARGET_BYTES: usize = 1 << 20;
 
 /// Compression level of data variables (zlib); low levels are several times faster than the
 /// default 6 at nearly the same ratio on simulation output.
@@ -468,86 +469,6 @@ impl NcGroup {
     }
 }
 
-/// Writes `data` into the new dataset `ds` (chunks of shape `chunk`,
-/// shuffled and deflated at [`DEFLATE_LEVEL`]) chunk by chunk, the chunks
-/// filtered here on all cores: HDF5 runs its filters on one thread (the
-/// fields of paper_normal_30mm on the fixed grid, 92 MB, took 0.6 s of a
-/// 2 s run). Each chunk (padded to the full chunk at the dataset's end, as
-/// HDF5 stores it) goes through HDF5's shuffle filter's byte transposition
-/// (byte `i` of element `j` to `i n + j`) and a zlib stream (flate2), then
-/// `H5Dwrite_chunk` stores it as filtered by the dataset's own pipeline:
-/// readers decode it as any chunk HDF5 wrote (tests/netcdf_writer.rs reads
-/// it back with HDF5, postprocess's tests with h5py).
-fn write_compressed<T: NcScalar>(ds: &Dataset, data: ArrayViewD<'_, T>, chunk: &[usize]) -> hdf5::Result<()> {
-    use rayon::prelude::*;
-    use std::io::Write;
-    let shape = data.shape();
-    let counts: Vec<usize> = shape.iter().zip(chunk).map(|(&n, &c)| n.div_ceil(c)).collect();
-    let total: usize = counts.iter().product();
-    let pad = data.first().cloned().ok_or_else(|| hdf5::Error::Internal("empty data".into()))?;
-    let chunks: Vec<(Vec<u64>, Vec<u8>)> = (0..total)
-        .into_par_iter()
-        .map(|index| {
-            // The chunk's first element along each axis (C order of chunks).
-            let mut rest = index;
-            let mut start = vec![0usize; shape.len()];
-            for axis in (0..shape.len()).rev() {
-                start[axis] = (rest % counts[axis]) * chunk[axis];
-                rest /= counts[axis];
-            }
-            let mut block = ArrayD::from_elem(chunk.to_vec(), pad.clone());
-            let within = |axis: usize| start[axis]..(start[axis] + chunk[axis]).min(shape[axis]);
-            block
-                .slice_each_axis_mut(|ax| {
-                    let r = within(ax.axis.index());
-                    ndarray::Slice::from(0..r.end - r.start)
-                })
-                .assign(&data.slice_each_axis(|ax| ndarray::Slice::from(within(ax.axis.index()))));
-            let bytes = T::bytes(block.as_slice().expect("standard layout")).expect("a number type");
-            let (size, n) = (size_of::<T>(), block.len());
-            let mut shuffled = vec![0u8; bytes.len()];
-            for (j, element) in bytes.chunks_exact(size).enumerate() {
-                for (i, &b) in element.iter().enumerate() {
-                    shuffled[i * n + j] = b;
-                }
-            }
-            let mut z = flate2::write::ZlibEncoder::new(Vec::new(), flate2::Compression::new(DEFLATE_LEVEL.into()));
-            z.write_all(&shuffled).and_then(|_| z.finish()).map(|out| (start.iter().map(|&v| v as u64).collect(), out))
-        })
-        .collect::<std::io::Result<_>>()
-        .map_err(|e| hdf5::Error::Internal(format!("compressing a chunk: {e}")))?;
-    for (start, bytes) in chunks {
-        // SAFETY: `start` has one offset per dimension of `ds`, `bytes` is
-        // a live buffer of the length passed.
-        let status = hdf5::sync::sync(|| unsafe {
-            hdf5_sys::h5d::H5Dwrite_chunk(
-                ds.id(),
-                hdf5_sys::h5p::H5P_DEFAULT,
-                0,
-                start.as_ptr(),
-                bytes.len(),
-                bytes.as_ptr().cast(),
-            )
-        });
-        if status < 0 {
-            return Err(hdf5::Error::Internal(format!("H5Dwrite_chunk failed at chunk {start:?}")));
-        }
-    }
-    Ok(())
-}
-
-/// Chunk shape of about [`CHUNK_TARGET_BYTES`]: the full shape, with leading axes halved first
-/// (so that chunks hold whole trailing rows, e.g. all elements of a few steps).
-fn chunk_shape(shape: &[usize], elem_size: usize) -> Vec<usize> {
-    let mut chunk: Vec<usize> = shape.iter().map(|&n| n.max(1)).collect();
-    for axis in 0..chunk.len() {
-        while chunk[axis] > 1 && chunk.iter().product::<usize>() * elem_size > CHUNK_TARGET_BYTES {
-            chunk[axis] = chunk[axis].div_ceil(2);
-        }
-    }
-    chunk
-}
-
 fn write_attr<T: H5Type>(loc: &Location, name: &str, value: &T) -> hdf5::Result<()> {
     loc.new_attr::<T>().create(name)?.write_scalar(value)
 }
@@ -618,106 +539,4 @@ where
     #[cfg(unix)]
     std::fs::File::open(&dir).and_then(|d| d.sync_all()).map_err(|e| io_err(&dir, "fsync of the directory", e))?;
     Ok(())
-}
-
-/// Opens the file at `path` for reading, as every reader of this module
-/// does (HDF5 refuses to open a file a second time in one process with
-/// other locking settings: open it with this while this module reads it).
-pub fn open_file(path: &Path) -> Result<File, NcError> {
-    File::with_options().with_fapl(|p| p.file_locking(false)).open(path).map_err(|source| NcError::Read {
-        path: path.to_owned(),
-        what: "file".into(),
-        source,
-    })
-}
-
-/// Open `group` (`""` or `"/"` = root) of the file at `path` for reading.
-///
-/// HDF5's own file locks are off for every file this module opens or
-/// writes: a file is written whole under a temporary name and renamed, so a
-/// reader never sees it half-written, and a lock would outlive the writer in
-/// any child process started while the file was open (it inherits the
-/// descriptor and, with it, the lock: a later reader of the renamed file was
-/// refused with "unable to lock file, errno 11"). Sweep members have their
-/// own lock files.
-fn open_group(path: &Path, group: &str) -> Result<Group, NcError> {
-    let read_err = |what: String, source| NcError::Read { path: path.to_owned(), what, source };
-    let file = open_file(path)?;
-    let gname = if group.is_empty() { "/" } else { group };
-    file.group(gname).map_err(|e| read_err(format!("group {group:?}"), e))
-}
-
-fn read_var<T: NcScalar>(path: &Path, group: &str, var: &str) -> Result<ArrayD<T>, NcError> {
-    let what = || format!("variable {var:?} in group {group:?}");
-    let read_err = |source| NcError::Read { path: path.to_owned(), what: what(), source };
-    let ds = open_group(path, group)?.dataset(var).map_err(read_err)?;
-    let stored = ds.dtype().and_then(|t| t.to_descriptor()).map_err(read_err)?;
-    if stored != T::type_descriptor() {
-        let msg = format!("stored type is {stored}, not {}", T::NAME);
-        return Err(NcError::Invalid { path: path.to_owned(), what: what(), msg });
-    }
-    ds.read_dyn::<T>().map_err(read_err)
-}
-
-/// Read the whole variable `var` of `group` (`""` or `"/"` = root) as `f64`. The stored
-/// type must be `f64` (no silent conversion).
-pub fn read_f64(path: &Path, group: &str, var: &str) -> Result<ArrayD<f64>, NcError> {
-    read_var(path, group, var)
-}
-
-/// Read the whole variable `var` of `group` as `i64` (stored type must be `i64`).
-pub fn read_i64(path: &Path, group: &str, var: &str) -> Result<ArrayD<i64>, NcError> {
-    read_var(path, group, var)
-}
-
-/// Read the whole variable `var` of `group` as `i8` (stored type must be `i8`).
-pub fn read_i8(path: &Path, group: &str, var: &str) -> Result<ArrayD<i8>, NcError> {
-    read_var(path, group, var)
-}
-
-/// The attributes of one group of a file, opened once for several reads.
-pub struct Attrs {
-    path: PathBuf,
-    group_name: String,
-    group: Group,
-}
-
-impl Attrs {
-    /// Opens `group` (`""` or `"/"` = root) of the file at `path`.
-    pub fn open(path: &Path, group: &str) -> Result<Attrs, NcError> {
-        Ok(Attrs { path: path.to_owned(), group_name: group.to_owned(), group: open_group(path, group)? })
-    }
-
-    fn read_err(&self, name: &str) -> impl Fn(hdf5::Error) -> NcError {
-        let (path, what) = (self.path.clone(), format!("attribute {name:?} of group {:?}", self.group_name));
-        move |source| NcError::Read { path: path.clone(), what: what.clone(), source }
-    }
-
-    /// The string attribute `name`: variable-length UTF-8 or ASCII (as
-    /// written by [`NcGroup::attr_str`]).
-    pub fn str(&self, name: &str) -> Result<String, NcError> {
-        use hdf5::types::TypeDescriptor as TD;
-        let read_err = self.read_err(name);
-        let attr = self.group.attr(name).map_err(&read_err)?;
-        match attr.dtype().and_then(|t| t.to_descriptor()).map_err(&read_err)? {
-            TD::VarLenUnicode => Ok(attr.read_scalar::<VarLenUnicode>().map_err(&read_err)?.as_str().to_owned()),
-            TD::VarLenAscii => Ok(attr.read_scalar::<VarLenAscii>().map_err(&read_err)?.as_str().to_owned()),
-            other => Err(NcError::Invalid {
-                path: self.path.clone(),
-                what: format!("attribute {name:?} of group {:?}", self.group_name),
-                msg: format!("stored type is {other}, not a variable-length string"),
-            }),
-        }
-    }
-
-    /// The scalar `i64` attribute `name` (as written by [`NcGroup::attr_i64`]).
-    pub fn i64(&self, name: &str) -> Result<i64, NcError> {
-        self.group.attr(name).and_then(|a| a.read_scalar::<i64>()).map_err(self.read_err(name))
-    }
-}
-
-/// Read the string attribute `name` of `group` (`""` or `"/"` = root). Accepts
-/// variable-length UTF-8 or ASCII strings (as written by [`NcGroup::attr_str`]).
-pub fn read_attr_str(path: &Path, group: &str, name: &str) -> Result<String, NcError> {
-    Attrs::open(path, group)?.str(name)
 }
