@@ -25,7 +25,7 @@ use super::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use super::coupling::FoldedKernel;
 use super::normal::{self, NormalError, NormalProducts};
 use super::spec::{FixedGridSpec, GRID_TOLERANCE, GridSolver};
-use super::symmetric::{SymmetricConvolution, SymmetricNormal};
+use super::symmetric::{self, SymmetricConvolution, SymmetricNormal};
 use super::tangential::Law;
 mod block;
 mod edge;
@@ -331,7 +331,7 @@ impl FixedGrid {
                 ),
             });
         }
-        let (nx, ny, n) = (self.grid.nx, self.grid.ny, self.grid.len());
+        let (nx, ny) = (self.grid.nx, self.grid.ny);
         let Pressure { mut p3, clipped, symmetric: symmetric_load } = match self.ahead.take() {
             Some(ahead) if ahead.key == Ahead::key(input) => ahead.result?,
             _ => {
@@ -347,15 +347,8 @@ impl FixedGrid {
         // so.
         let symmetric = input.creepage_y == 0.0 && input.spin == 0.0 && symmetric_load;
         let folded = self.folded.as_ref().filter(|_| symmetric);
-        let mirror = |k: usize| (ny - 1 - k / nx) * nx + k % nx;
         if folded.is_some() {
-            for k in 0..n {
-                let m = mirror(k);
-                if m > k {
-                    let v = 0.5 * (p3[k] + p3[m]);
-                    (p3[k], p3[m]) = (v, v);
-                }
-            }
+            symmetric::symmetrize(&mut p3, (nx, ny));
         }
         let mut ahead_scratch = std::mem::take(&mut self.ahead_scratch);
         let this = &*self;

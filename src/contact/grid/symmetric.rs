@@ -366,14 +366,7 @@ impl SymmetricNormal {
     /// Makes `p` on the whole grid symmetric about the centre line (each
     /// element and its mirror image take their mean).
     pub fn symmetrize(&self, p: &mut [f64]) {
-        let (nx, ny) = (self.nx, self.ny);
-        for r in 0..ny / 2 {
-            let m = ny - 1 - r;
-            for x in 0..nx {
-                let v = 0.5 * (p[r * nx + x] + p[m * nx + x]);
-                (p[r * nx + x], p[m * nx + x]) = (v, v);
-            }
-        }
+        symmetrize(p, (self.nx, self.ny));
     }
 
     /// The weights of the lower half's elements (the first `(ny + 1) / 2`
@@ -510,6 +503,18 @@ fn strang_spectra(kernel: &ToeplitzKernel) -> ((usize, usize), Vec<Vec<Complex64
     let lengths = (fast_length(nx), fast_length(ny));
     let raw = FftConvolution::planned((nx, ny), lengths).strang_tables(kernel);
     (lengths, raw, 1.0 / (lengths.0 * lengths.1) as f64)
+}
+
+/// Makes `p` on a grid of `nx x ny` elements symmetric about the centre
+/// line: each element and its mirror image take their mean.
+pub fn symmetrize(p: &mut [f64], (nx, ny): (usize, usize)) {
+    for r in 0..ny / 2 {
+        let m = ny - 1 - r;
+        for x in 0..nx {
+            let v = 0.5 * (p[r * nx + x] + p[m * nx + x]);
+            (p[r * nx + x], p[m * nx + x]) = (v, v);
+        }
+    }
 }
 
 /// `phi(k) = exp(i pi k delta / my)`, `k = 0 ..= my / 2`: the half-sample

@@ -66,7 +66,6 @@ impl<'a, T: Real> OnSet<'a, T> {
     /// set on the lower half of the grid).
     pub fn symmetric(mut self, symmetric: Option<&'a SymmetricConvolution<T>>) -> Self {
         self.symmetric = symmetric.map(|conv| (conv, SymmetricScratch::default()));
-        self.place = None;
         self
     }
 
