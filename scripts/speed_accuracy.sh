@@ -8,7 +8,7 @@
 # the fixed grid at 0.14 mm, within 0.1-1 % of the grid limit
 # (scripts/grid_convergence.sh).
 # Writes out/speed_accuracy/{speed_accuracy.csv,speed_accuracy.png}.
-#   bash scripts/speed_accuracy.sh           # 4 scenes (~30 min)
+#   bash scripts/speed_accuracy.sh           # 4 scenes (~3 min)
 #   bash scripts/speed_accuracy.sh --quick   # one scene, coarse meshes, reference fixed 0.2 mm (~1 min)
 set -euo pipefail
 cd "$(dirname "$0")/.."
