@@ -5,8 +5,10 @@
 # growth-rate accuracy of a growth study, the stability map of both
 # exact-model solvers and both fixed-grid friction laws, the convergence of
 # both discretisations of the exact model, and the cost of the exact model
-# against N (one run per point). About two and a half hours on 2 cores, most
-# of it the fixed grid's finest runs; the output folders are those of the
+# against N (one run per point). Two and a half hours on 2 cores when the
+# fixed grid ran Gauss-Seidel; since its CG solver the fixed grid's runs take
+# minutes and the adapted mesh's finest runs and the growth study most of
+# the rest; the output folders are those of the
 # six scripts (out/accuracy_map, out/speed_accuracy, out/growth_accuracy,
 # out/stability_map, out/grid_convergence, out/solver_scaling).
 set -euo pipefail

@@ -15,8 +15,8 @@
 # Each run's outcome (converged, or the program's error), iterations (Newton or sweeps)
 # per step, CPU time, and the centre-line wear difference against the
 # variant's baseline go to out/stability_map/<variant>/stability.{csv,md}.
-# About 35 minutes on 2 cores, nearly all of it the adapted mesh's variants (the
-# fixed grid's three, about a minute).
+# The fixed grid's three variants take about a minute on 2 cores; the adapted
+# mesh's two (Newton, Gauss-Seidel) take the rest.
 #   VARIANTS="fixed-regularised fixed-third-order" bash scripts/stability_map.sh   # some variants
 # A fixed-grid step the CG solver does not converge goes to Gauss-Seidel with a
 # warning in the run's log (out/stability_map/<variant>/runs/*.log).
