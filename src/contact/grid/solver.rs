@@ -231,10 +231,10 @@ impl FixedGrid {
         let Some(RailContact::Profile(surface)) = &self.surface else {
             return Cow::Borrowed(&self.gap);
         };
-        let (nx, g) = (self.grid.nx, &self.grid);
-        Cow::Owned(
-            self.gap.iter().enumerate().map(|(k, h)| h - surface.height(position + g.x(k % nx), g.y(k / nx))).collect(),
-        )
+        let g = &self.grid;
+        let xs: Vec<f64> = (0..g.nx).map(|i| position + g.x(i)).collect();
+        let ys: Vec<f64> = (0..g.ny).map(|j| g.y(j)).collect();
+        Cow::Owned(self.gap.iter().zip(surface.heights_on(&xs, &ys)).map(|(h, r)| h - r).collect())
     }
 
     /// The normal problem alone with the patch centre at `position` (m) and

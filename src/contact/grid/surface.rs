@@ -92,20 +92,45 @@ impl RailSurface {
 
     /// Height (m) at rail coordinates `(x, y)`, bilinear.
     pub fn height(&self, x: f64, y: f64) -> f64 {
-        let (ny, nx) = self.heights.dim();
-        let (i0, i1, wx) = self.along(x, nx);
+        let nx = self.heights.ncols();
+        self.blend(self.along(x, nx), self.across(y))
+    }
+
+    /// The heights (m) at every `(xs[i], ys[j])`, `j` outer: the values of
+    /// [`RailSurface::height`] (the same operations), each column's and
+    /// row's nodes and weights found once (the fixed grid's gap at every
+    /// step).
+    pub fn heights_on(&self, xs: &[f64], ys: &[f64]) -> Vec<f64> {
+        let nx = self.heights.ncols();
+        let columns: Vec<_> = xs.iter().map(|&x| self.along(x, nx)).collect();
+        ys.iter()
+            .flat_map(|&y| {
+                let row = self.across(y);
+                columns.iter().map(move |&column| self.blend(column, row))
+            })
+            .collect()
+    }
+
+    /// The bilinear blend of the nodes `(i0, i1, wx)` along and `(j0, j1,
+    /// wy)` across the rail.
+    fn blend(&self, (i0, i1, wx): (usize, usize, f64), (j0, j1, wy): (usize, usize, f64)) -> f64 {
+        let h = &self.heights;
+        let row = |j: usize| (1.0 - wx) * h[[j, i0]] + wx * h[[j, i1]];
+        (1.0 - wy) * row(j0) + wy * row(j1)
+    }
+
+    /// Nodes and weight of `y` across the rail (held at the edge rows).
+    fn across(&self, y: f64) -> (usize, usize, f64) {
+        let ny = self.heights.nrows();
         let v = (y - self.y0) / self.dy;
-        let (j0, j1, wy) = if ny == 1 || v <= 0.0 {
+        if ny == 1 || v <= 0.0 {
             (0, 0, 0.0)
         } else if v >= (ny - 1) as f64 {
             (ny - 1, ny - 1, 0.0)
         } else {
             let j = (v.floor() as usize).min(ny - 2);
             (j, j + 1, v - j as f64)
-        };
-        let h = &self.heights;
-        let row = |j: usize| (1.0 - wx) * h[[j, i0]] + wx * h[[j, i1]];
-        (1.0 - wy) * row(j0) + wy * row(j1)
+        }
     }
 
     /// Nodes and weight of `x` along the rail.
@@ -186,6 +211,14 @@ mod tests {
         for i in 0..n {
             let x = i as f64 / n as f64 * 2.0 * std::f64::consts::PI;
             assert!((cut.heights[[0, i]] - x.cos()).abs() < 1e-12);
+        }
+        // The lattice of heights: each value the point's, bit for bit.
+        let (xs, ys) = ([-0.3, 0.0, 0.7, 2.2, 9.1], [-1.5, -0.2, 0.5, 3.0]);
+        let on = r.heights_on(&xs, &ys);
+        for (j, y) in ys.iter().enumerate() {
+            for (i, x) in xs.iter().enumerate() {
+                assert_eq!(on[j * xs.len() + i].to_bits(), r.height(*x, *y).to_bits(), "({x}, {y})");
+            }
         }
         // A trough of curvature 2 (r = x^2 near it).
         let t = RailSurface::line(0.0, 0.1, &[0.01, 0.0, 0.01, 0.04], false);
