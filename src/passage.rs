@@ -10,7 +10,7 @@
 
 use crate::contact::{ContactError, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
 use crate::dynamics::torsion::TorsionFeedback;
-use crate::hertz::{HertzError, HertzShape};
+use crate::hertz::{HertzError, HertzPatch, HertzShape};
 use crate::loads::ImposedLoads;
 use crate::rail_grid::RailGrid;
 use crate::wear::{PatchWear, WearKernel, archard_rates};
@@ -322,6 +322,11 @@ struct PreviousPatch {
 }
 
 /// Runs one passage; `progress(done, total)` is called after every step.
+///
+/// Each step's contact problem is solved beside the recording of the step
+/// before (its wear deposit and history, `rayon::join`): the same
+/// operations in the same order as one after the other, on the core the
+/// solver leaves idle.
 pub fn run_passage(
     spec: &PassageSpec,
     shape: &HertzShape,
@@ -334,12 +339,20 @@ pub fn run_passage(
     let steps = spec.n_steps();
     let dt = spec.dt();
     let elements = solver.elements();
-    let n_el = elements.len();
-    let mut wear = Array2::zeros((grid.ny, grid.nx));
-    let mut h = PatchHistory { fields: record_fields.then(|| PatchFields::new(steps, n_el)), ..Default::default() };
-    // The previous step's patch (x_c, a, b) and wear rates.
-    let mut previous: Option<PreviousPatch> = None;
-    let (mut clipped_steps, mut fallback_steps) = (0, 0);
+    let mut rec = Recorder {
+        spec,
+        deposit,
+        grid,
+        elements: &elements,
+        wear: Array2::zeros((grid.ny, grid.nx)),
+        h: PatchHistory {
+            fields: record_fields.then(|| PatchFields::new(steps, elements.len())),
+            ..Default::default()
+        },
+        previous: None,
+        clipped_steps: 0,
+        fallback_steps: 0,
+    };
     solver.reset();
     solver.set_surface(spec.surface.clone()).map_err(PassageError::Surface)?;
     let normal_force_at =
@@ -358,45 +371,104 @@ pub fn run_passage(
             position: x,
         }
     };
+    // The solved step not yet recorded.
+    let mut pending: Option<SolvedStep> = None;
     for n in 0..steps {
         let x = spec.position(n);
         let normal_force = normal_force_at(x);
-        let force_x = spec.loads.longitudinal_force_at(x);
         if normal_force <= 0.0 {
             // Contact loss: no patch, no traction, no wear; the contact
             // history restarts when contact returns (a virgin Cattaneo step).
+            rec.flush(&mut pending)?;
             solver.reset();
-            previous = None;
-            h.push_no_contact(n as f64 * dt, x, normal_force);
+            rec.previous = None;
+            rec.h.push_no_contact(n as f64 * dt, x, normal_force);
             progress(n + 1, steps);
             continue;
         }
-        let patch =
-            shape.patch(normal_force).map_err(|source| PassageError::Normal { step: n, x, normal_force, source })?;
+        let patch = match shape.patch(normal_force) {
+            Ok(patch) => patch,
+            Err(source) => {
+                rec.flush(&mut pending)?;
+                return Err(PassageError::Normal { step: n, x, normal_force, source });
+            }
+        };
         let input = step_input(n, patch);
         // The next step's input, where it has a patch: a solver may prepare
         // it meanwhile.
         let next = (n + 1 < steps).then(|| normal_force_at(spec.position(n + 1))).and_then(|force| {
             (force > 0.0).then(|| shape.patch(force).ok()).flatten().map(|patch| step_input(n + 1, patch))
         });
-        let sol = solver.step_ahead(&input, next.as_ref()).map_err(|source| PassageError::Tangential {
-            step: n,
-            x,
-            normal_force,
-            force_x,
-            source,
-        })?;
+        let last = pending.take();
+        let recorded = last.is_some();
+        let (sol, done) =
+            rayon::join(|| solver.step_ahead(&input, next.as_ref()), || last.map_or(Ok(()), |s| rec.record(s)));
+        done?;
+        if recorded {
+            progress(n, steps);
+        }
+        let force_x = input.force_x;
+        let sol = sol.map_err(|source| PassageError::Tangential { step: n, x, normal_force, force_x, source })?;
+        pending = Some(SolvedStep { n, x, normal_force, patch, sol });
+    }
+    if rec.flush(&mut pending)? {
+        progress(steps, steps);
+    }
+    let Recorder { wear, h, clipped_steps, fallback_steps, .. } = rec;
+    Ok(PassageResult { wear, history: h, clipped_steps, fallback_steps })
+}
+
+/// A step's contact solution, with what its recording needs.
+struct SolvedStep {
+    n: usize,
+    /// The wheel's position (m).
+    x: f64,
+    /// Normal force (N).
+    normal_force: f64,
+    /// The Hertz patch of the normal force.
+    patch: HertzPatch,
+    sol: PatchSolution,
+}
+
+/// What a passage gathers step by step: the rail's wear, the per-step
+/// history and fields, the previous patch (for the wear of the interval to
+/// the next), the counts of clipped and handed-over steps.
+struct Recorder<'a> {
+    spec: &'a PassageSpec,
+    deposit: &'a dyn WearKernel,
+    grid: &'a RailGrid,
+    elements: &'a Elements,
+    /// Wear depth on the rail grid (m).
+    wear: Array2<f64>,
+    h: PatchHistory,
+    previous: Option<PreviousPatch>,
+    clipped_steps: usize,
+    fallback_steps: usize,
+}
+
+impl Recorder<'_> {
+    /// Records the pending step, if any (whether there was one).
+    fn flush(&mut self, pending: &mut Option<SolvedStep>) -> Result<bool, PassageError> {
+        pending.take().map_or(Ok(false), |s| self.record(s).map(|()| true))
+    }
+
+    /// Checks a solved step (finite, on the rail), deposits the wear of the
+    /// interval from the previous step and appends its history.
+    fn record(&mut self, step: SolvedStep) -> Result<(), PassageError> {
+        let SolvedStep { n, x, normal_force, patch, sol } = step;
+        let (spec, grid, h) = (self.spec, self.grid, &mut self.h);
+        let dt = spec.dt();
         check_finite(&sol, n, x)?;
-        clipped_steps += usize::from(sol.clipped > 0);
-        fallback_steps += usize::from(sol.fallback);
+        self.clipped_steps += usize::from(sol.clipped > 0);
+        self.fallback_steps += usize::from(sol.fallback);
         // The patch the solver used (moved with the contact point by the
         // linear profile contact on the adapted mesh).
         let (patch_a, patch_b) = sol.semi_axes.unwrap_or((patch.a, patch.b));
         // How far across the contact area reaches: the fixed grid's
         // elements in contact; the adapted mesh's patch where the linear
         // contact widened it (the Hertz patch is checked by the config).
-        let reach = match &elements {
-            Elements::Grid(g) => (0..n_el)
+        let reach = match self.elements {
+            Elements::Grid(g) => (0..g.len())
                 .filter(|&k| sol.pressure[k] > 0.0)
                 .map(|k| (g.y(k / g.nx) - 0.5 * g.dy).abs().max((g.y(k / g.nx) + 0.5 * g.dy).abs()))
                 .fold(0.0f64, f64::max),
@@ -414,10 +486,10 @@ pub fn run_passage(
         // midpoint does: [w0, w1) then holds exactly (w1 - w0) / step of them
         // whatever the steps' offset (a periodic stretch receives one whole
         // passage).
-        if let Some(p) = previous.as_ref().filter(|p| (w0..w1).contains(&(0.5 * (p.wheel + x)))) {
+        if let Some(p) = self.previous.as_ref().filter(|p| (w0..w1).contains(&(0.5 * (p.wheel + x)))) {
             let from = PatchWear { x_c: p.x_c, a: p.a, b: p.b, rates: &p.rates };
             let to = PatchWear { x_c: x + sol.offset, a: patch_a, b: patch_b, rates: &rates };
-            deposit.accumulate(grid, &mut wear, &from, &to, dt, spec.substeps);
+            self.deposit.accumulate(grid, &mut self.wear, &from, &to, dt, spec.substeps);
         }
         h.in_contact.push(1.0);
         h.time.push(n as f64 * dt);
@@ -432,7 +504,7 @@ pub fn run_passage(
         h.spin.push(sol.creepage.spin);
         h.semi_axis_a.push(patch_a);
         h.semi_axis_b.push(patch_b);
-        let (max_pressure, contact_area) = match &elements {
+        let (max_pressure, contact_area) = match self.elements {
             Elements::Grid(g) => (
                 sol.pressure.iter().fold(0.0f64, |m, p| m.max(*p)),
                 sol.pressure.iter().filter(|p| **p > 0.0).count() as f64 * g.area(),
@@ -450,14 +522,13 @@ pub fn run_passage(
         h.contact_area.push(contact_area);
         h.stick_fraction.push(sol.stick_fraction());
         h.newton_iterations.push(sol.iterations as f64);
-        h.wear_volume_rate.push(deposit.integral(&rates, patch_a, patch_b));
+        h.wear_volume_rate.push(self.deposit.integral(&rates, patch_a, patch_b));
         if let Some(f) = h.fields.as_mut() {
             f.set(n, &sol, &rates);
         }
-        previous = Some(PreviousPatch { wheel: x, x_c: x + sol.offset, a: patch_a, b: patch_b, rates });
-        progress(n + 1, steps);
+        self.previous = Some(PreviousPatch { wheel: x, x_c: x + sol.offset, a: patch_a, b: patch_b, rates });
+        Ok(())
     }
-    Ok(PassageResult { wear, history: h, clipped_steps, fallback_steps })
 }
 
 fn check_finite(sol: &PatchSolution, step: usize, x: f64) -> Result<(), PassageError> {

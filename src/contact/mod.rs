@@ -227,7 +227,7 @@ impl RailContact {
 /// Steady models ignore `dt` and the history; transient models keep the
 /// previous step's state and must be [`reset`](TangentialSolver::reset) when
 /// the contact history restarts (new passage, contact loss).
-pub trait TangentialSolver {
+pub trait TangentialSolver: Send {
     /// Solves the tangential problem of one step with the force prescribed.
     fn step(&mut self, input: &StepInput) -> Result<PatchSolution, ContactError>;
     /// Solves the step as [`step`](TangentialSolver::step) does, told the
