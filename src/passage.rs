@@ -321,12 +321,14 @@ struct PreviousPatch {
     rates: Vec<f64>,
 }
 
-/// Runs one passage; `progress(done, total)` is called after every step.
+/// Runs one passage; `progress(done, total)` is called as each step is
+/// recorded (a step later than it is solved; `total` at the end).
 ///
 /// Each step's contact problem is solved beside the recording of the step
 /// before (its wear deposit and history, `rayon::join`): the same
 /// operations in the same order as one after the other, on the core the
-/// solver leaves idle.
+/// solver leaves idle. An error of the step before is reported before one
+/// of the step (whose solve is then wasted work, nothing else).
 pub fn run_passage(
     spec: &PassageSpec,
     shape: &HertzShape,
@@ -379,7 +381,9 @@ pub fn run_passage(
         if normal_force <= 0.0 {
             // Contact loss: no patch, no traction, no wear; the contact
             // history restarts when contact returns (a virgin Cattaneo step).
-            rec.flush(&mut pending)?;
+            if rec.flush(&mut pending)? {
+                progress(n, steps);
+            }
             solver.reset();
             rec.previous = None;
             rec.h.push_no_contact(n as f64 * dt, x, normal_force);
@@ -389,7 +393,9 @@ pub fn run_passage(
         let patch = match shape.patch(normal_force) {
             Ok(patch) => patch,
             Err(source) => {
-                rec.flush(&mut pending)?;
+                if rec.flush(&mut pending)? {
+                    progress(n, steps);
+                }
                 return Err(PassageError::Normal { step: n, x, normal_force, source });
             }
         };

@@ -234,6 +234,7 @@ impl FixedGrid {
         let g = &self.grid;
         let xs: Vec<f64> = (0..g.nx).map(|i| position + g.x(i)).collect();
         let ys: Vec<f64> = (0..g.ny).map(|j| g.y(j)).collect();
+        debug_assert_eq!(self.gap.len(), xs.len() * ys.len(), "the gap covers the grid");
         Cow::Owned(self.gap.iter().zip(surface.heights_on(&xs, &ys)).map(|(h, r)| h - r).collect())
     }
 

@@ -214,10 +214,13 @@ mod tests {
         }
         // The lattice of heights: each value the point's, bit for bit.
         let (xs, ys) = ([-0.3, 0.0, 0.7, 2.2, 9.1], [-1.5, -0.2, 0.5, 3.0]);
-        let on = r.heights_on(&xs, &ys);
-        for (j, y) in ys.iter().enumerate() {
-            for (i, x) in xs.iter().enumerate() {
-                assert_eq!(on[j * xs.len() + i].to_bits(), r.height(*x, *y).to_bits(), "({x}, {y})");
+        for surface in [r.clone(), RailSurface { periodic: false, ..r.clone() }] {
+            let on = surface.heights_on(&xs, &ys);
+            for (j, y) in ys.iter().enumerate() {
+                for (i, x) in xs.iter().enumerate() {
+                    let point = surface.height(*x, *y);
+                    assert_eq!(on[j * xs.len() + i].to_bits(), point.to_bits(), "({x}, {y})");
+                }
             }
         }
         // A trough of curvature 2 (r = x^2 near it).
