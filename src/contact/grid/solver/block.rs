@@ -45,10 +45,16 @@ impl<P> Clone for Blocks<P> {
 }
 
 impl<P> Blocks<P> {
-    /// The products of blocks of `size`, built by `build` the first time.
+    /// The products of blocks of `size`, built by `build` the first time,
+    /// outside the lock (a build that used the thread pool could otherwise
+    /// wait on a thread waiting for the lock). Two threads that build the
+    /// same size at once build the same products; the first kept is used.
     pub fn get(&self, size: (usize, usize), build: impl FnOnce() -> P) -> Arc<P> {
-        let mut map = self.0.lock().expect("not poisoned");
-        map.entry(size).or_insert_with(|| Arc::new(build())).clone()
+        if let Some(products) = self.0.lock().expect("not poisoned").get(&size) {
+            return products.clone();
+        }
+        let built = Arc::new(build());
+        self.0.lock().expect("not poisoned").entry(size).or_insert(built).clone()
     }
 }
 
