@@ -8,7 +8,7 @@ use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::convolution::{FftConvolution, FftScratch, ToeplitzKernel};
 use corrugation::contact::grid::spec::FixedGridSpec;
 use corrugation::contact::grid::symmetric::{SymmetricConvolution, SymmetricScratch};
-use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
+use corrugation::contact::grid::{FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::transient::elastic::ExactElastic;
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, TangentialSolver};
@@ -164,20 +164,13 @@ fn fixed_grid(c: &mut Criterion) {
     let mut g = c.benchmark_group("fixed_grid");
     g.sample_size(20);
     for dx in [4e-4, 2e-4, 1e-4] {
-        let spec = FixedGridSpec {
-            curvatures,
-            elastic: el,
-            dx,
-            dy: 2.5 * dx,
-            a_max: patch.a,
-            b_max: patch.b,
-            align_x: Alignment::default(),
-            align_y: Alignment::default(),
-            law: FrictionLaw::Regularised,
-            eps: 1e-5,
-            scheme: GridScheme::SecondOrder,
-            solver: GridSolver::Auto,
-        };
+        let spec = FixedGridSpec::unaligned(
+            (curvatures, el),
+            (dx, 2.5 * dx),
+            (patch.a, patch.b),
+            (FrictionLaw::Regularised, GridScheme::SecondOrder, 1e-5),
+            GridSolver::Auto,
+        );
         let mut solver = FixedGrid::new(spec);
         let grid = solver.grid().clone();
         let kernel = ToeplitzKernel::tangential(&grid, el.shear_modulus(), el.poisson_ratio);

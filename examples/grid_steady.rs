@@ -10,7 +10,7 @@
 
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::spec::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
+use corrugation::contact::grid::{FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::{StepInput, TangentialSolver};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use std::time::Instant;
@@ -34,24 +34,13 @@ fn main() {
     let curvatures = Curvatures::wheel_on_rail(0.5, -0.409, 0.3);
     let shape = HertzShape::new(curvatures, elastic).unwrap();
     let patch = shape.patch(n).unwrap();
-    let spec = FixedGridSpec {
-        curvatures,
-        elastic,
-        dx,
-        dy,
-        a_max: patch.a,
-        b_max: patch.b,
-        align_x: Alignment::default(),
-        align_y: Alignment::default(),
-        law,
-        eps: 1e-5,
-        scheme,
-        solver: match args.get(8).map(String::as_str) {
-            Some("cg") => GridSolver::Cg,
-            Some("gauss-seidel") => GridSolver::GaussSeidel,
-            _ => GridSolver::Auto,
-        },
+    let solver = match args.get(8).map(String::as_str) {
+        Some("cg") => GridSolver::Cg,
+        Some("gauss-seidel") => GridSolver::GaussSeidel,
+        _ => GridSolver::Auto,
     };
+    let spec =
+        FixedGridSpec::unaligned((curvatures, elastic), (dx, dy), (patch.a, patch.b), (law, scheme, 1e-5), solver);
     let tolerance = num(7, corrugation::contact::grid::spec::GRID_TOLERANCE);
     let mut solver = FixedGrid::new(spec).with_tolerance(tolerance);
     let speed = 27.778;

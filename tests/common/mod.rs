@@ -3,7 +3,7 @@
 
 use corrugation::contact::friction::FrictionLaw;
 use corrugation::contact::grid::spec::FixedGridSpec;
-use corrugation::contact::grid::{Alignment, FixedGrid, GridScheme, GridSolver};
+use corrugation::contact::grid::{FixedGrid, GridScheme, GridSolver};
 use corrugation::creep_coefficients::{CreepCoefficients, creep_coefficients};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 
@@ -63,20 +63,13 @@ pub const DISCRETE_BAY: [&str; 8] = [
 /// friction, eps = 1e-5 m/s, second-order difference, the solver `auto`).
 pub fn paper_fixed_grid(dx: f64, dy: f64, length: f64, n_max: f64) -> FixedGrid {
     let patch = paper_shape(true).patch(n_max).unwrap();
-    FixedGrid::new(FixedGridSpec {
-        curvatures: Curvatures::wheel_on_rail(0.5, -0.409, 0.3),
-        elastic: STEEL,
-        dx,
-        dy,
-        a_max: length * patch.a,
-        b_max: length * patch.b,
-        align_x: Alignment::default(),
-        align_y: Alignment::default(),
-        law: FrictionLaw::Regularised,
-        eps: 1e-5,
-        scheme: GridScheme::SecondOrder,
-        solver: GridSolver::Auto,
-    })
+    FixedGrid::new(FixedGridSpec::unaligned(
+        (Curvatures::wheel_on_rail(0.5, -0.409, 0.3), STEEL),
+        (dx, dy),
+        (length * patch.a, length * patch.b),
+        (FrictionLaw::Regularised, GridScheme::SecondOrder, 1e-5),
+        GridSolver::Auto,
+    ))
 }
 
 /// A fixed grid of `cell` elements for `curvatures` and `elastic`, sized
@@ -91,18 +84,11 @@ pub fn fixed_grid(
     solver: GridSolver,
 ) -> FixedGrid {
     let patch = shape.patch(n_max).unwrap();
-    FixedGrid::new(FixedGridSpec {
-        curvatures,
-        elastic,
-        dx: cell.0,
-        dy: cell.1,
-        a_max: patch.a,
-        b_max: patch.b,
-        align_x: Alignment::default(),
-        align_y: Alignment::default(),
-        law,
-        eps,
-        scheme,
+    FixedGrid::new(FixedGridSpec::unaligned(
+        (curvatures, elastic),
+        cell,
+        (patch.a, patch.b),
+        (law, scheme, eps),
         solver,
-    })
+    ))
 }

@@ -99,7 +99,7 @@ impl ToeplitzKernel {
     /// Normal product by direct summation: `u_I = sum_J K(I - J) p_J` at
     /// every element (m), `p` on the grid (Pa).
     pub fn normal_direct(&self, p: &[f64], u: &mut [f64]) {
-        let (nx, ny) = (self.nx as isize, self.ny as isize);
+        let nx = self.nx as isize;
         for (k, uk) in u.iter_mut().enumerate() {
             let (ix, iy) = (k as isize % nx, k as isize / nx);
             let mut sum = 0.0;
@@ -110,7 +110,6 @@ impl ToeplitzKernel {
             }
             *uk = sum;
         }
-        let _ = ny;
     }
 
     /// Tangential product by direct summation (`p`, `u` with x and y

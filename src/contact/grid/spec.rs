@@ -100,6 +100,21 @@ pub struct FixedGridSpec {
 }
 
 impl FixedGridSpec {
+    /// A grid of `cell = (dx, dy)` elements (m) for patches up to the
+    /// semi-axes `(a_max, b_max)` (m), its element edges where they fall
+    /// (no rail cells to align with), with the friction law, difference
+    /// scheme and eps (m/s) given and `solver`.
+    pub fn unaligned(
+        (curvatures, elastic): (Curvatures, Elastic),
+        (dx, dy): (f64, f64),
+        (a_max, b_max): (f64, f64),
+        (law, scheme, eps): (FrictionLaw, GridScheme, f64),
+        solver: GridSolver,
+    ) -> Self {
+        let (align_x, align_y) = (Alignment::default(), Alignment::default());
+        FixedGridSpec { curvatures, elastic, dx, dy, a_max, b_max, align_x, align_y, law, eps, scheme, solver }
+    }
+
     /// Steps of history the difference uses: the leading columns kept out
     /// of contact (at least two).
     pub fn lead_columns(&self) -> usize {

@@ -46,6 +46,8 @@ pub struct SymmetricConvolution<T: Real = f64> {
     inv_y: Arc<dyn Fft<T>>,
     /// `phi(k)`, `k = 0 ..= my / 2`.
     phase: Vec<Complex<T>>,
+    /// Periodic index of each row and of its mirror image ([`places`]).
+    place: Vec<(usize, usize)>,
     /// `(a + b)/2 - c` and `(a - b)/2` at `k_y mx + k_x`, with the
     /// `1/(mx my)` of the inverse transforms.
     sigma: Vec<T>,
@@ -146,14 +148,10 @@ impl<T: Real> SymmetricConvolution<T> {
             fwd_y: planner.plan_fft_forward(my),
             inv_y: planner.plan_fft_inverse(my),
             phase,
+            place: (0..ny).map(|r| places(ny, my, r)).collect(),
             sigma,
             delta,
         }
-    }
-
-    /// Periodic index of row `r` and of its mirror image.
-    fn places(&self, r: usize) -> (usize, usize) {
-        places(self.ny, self.my, r)
     }
 
     /// `(u_x, u_y) = K (p_x, p_y)` on the whole grid for the fields
@@ -189,10 +187,9 @@ impl<T: Real> SymmetricConvolution<T> {
         // The columns, each field with its mirror image.
         s.cols.clear();
         s.cols.resize(nx * my, Complex::default());
-        let place: Vec<(usize, usize)> = (0..self.ny.div_ceil(2)).map(|r| self.places(r)).collect();
         for (c, (&x, &r)) in ix.iter().zip(iy).enumerate() {
             let (fx, fy) = field(c);
-            let (j, m) = place[r];
+            let (j, m) = self.place[r];
             let col = &mut s.cols[x * my..];
             if j == m {
                 col[j] = Complex::new(t(fx), T::zero());
@@ -203,7 +200,7 @@ impl<T: Real> SymmetricConvolution<T> {
         }
         self.transform(s);
         for (c, (&x, &r)) in ix.iter().zip(iy).enumerate() {
-            let v = s.cols[x * my + place[r].0];
+            let v = s.cols[x * my + self.place[r].0];
             out(c, v.re.to_f64().unwrap_or(f64::NAN), v.im.to_f64().unwrap_or(f64::NAN));
         }
     }
@@ -212,8 +209,7 @@ impl<T: Real> SymmetricConvolution<T> {
     /// whole grid.
     pub fn whole_grid(&self, s: &SymmetricScratch<T>, (ux, uy): (&mut [f64], &mut [f64])) {
         let (nx, my) = (self.nx, self.my);
-        for r in 0..self.ny {
-            let (j, _) = self.places(r);
+        for (r, &(j, _)) in self.place.iter().enumerate() {
             for x in 0..nx {
                 let v = s.cols[x * my + j];
                 ux[r * nx + x] = v.re.to_f64().unwrap_or(f64::NAN);
@@ -291,6 +287,8 @@ pub struct SymmetricNormal {
     fwd_y: Arc<dyn Fft<f64>>,
     inv_y: Arc<dyn Fft<f64>>,
     phase: Vec<Complex64>,
+    /// Periodic index of each row and of its mirror image ([`places`]).
+    place: Vec<(usize, usize)>,
     /// The real symbol at `k_y (mx / 2 + 1) + k_x`, with the `1/(mx my)` of
     /// the inverse transforms.
     symbol: Vec<f64>,
@@ -359,6 +357,7 @@ impl SymmetricNormal {
             fwd_y: planner.plan_fft_forward(my),
             inv_y: planner.plan_fft_inverse(my),
             phase: phases(ny, my),
+            place: (0..ny).map(|r| places(ny, my, r)).collect(),
             symbol,
         }
     }
@@ -404,7 +403,7 @@ impl SymmetricNormal {
     fn product(&self, s: &mut NormalScratch, p: &[f64], u: &mut [f64], rows: usize) {
         let (nx, ny, mx, my) = (self.nx, self.ny, self.mx, self.my);
         let (hx, hy, pairs) = (mx / 2 + 1, my / 2 + 1, nx.div_ceil(2));
-        let place: Vec<(usize, usize)> = (0..ny).map(|r| places(ny, my, r)).collect();
+        let place = &self.place;
         // Columns 2q and 2q + 1 as the real and imaginary parts of column q.
         s.cols.clear();
         s.cols.resize(pairs * my, Complex::default());

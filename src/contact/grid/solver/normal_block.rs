@@ -113,7 +113,7 @@ mod tests {
     use super::*;
     use crate::contact::friction::FrictionLaw;
     use crate::contact::grid::spec::FixedGridSpec;
-    use crate::contact::grid::{Alignment, GridScheme, GridSolver};
+    use crate::contact::grid::{GridScheme, GridSolver};
     use crate::hertz::{Curvatures, Elastic, HertzShape};
 
     /// On the block and, where the contact grows out of it, with the
@@ -124,20 +124,13 @@ mod tests {
         let (curvatures, elastic) =
             (Curvatures::wheel_on_rail(0.5, -0.409, 0.3), Elastic { young_modulus: 2.1e11, poisson_ratio: 0.3 });
         let patch = HertzShape::new(curvatures, elastic).unwrap().patch(1.45e5).unwrap();
-        let grid = FixedGrid::new(FixedGridSpec {
-            curvatures,
-            elastic,
-            dx: 4e-4,
-            dy: 1e-3,
-            a_max: 1.5 * patch.a,
-            b_max: 1.5 * patch.b,
-            align_x: Alignment::default(),
-            align_y: Alignment::default(),
-            law: FrictionLaw::Regularised,
-            eps: 1e-5,
-            scheme: GridScheme::SecondOrder,
-            solver: GridSolver::Auto,
-        });
+        let grid = FixedGrid::new(FixedGridSpec::unaligned(
+            (curvatures, elastic),
+            (4e-4, 1e-3),
+            (1.5 * patch.a, 1.5 * patch.b),
+            (FrictionLaw::Regularised, GridScheme::SecondOrder, 1e-5),
+            GridSolver::Auto,
+        ));
         let gap = grid.gap(0.0);
         let mut scratch = FftScratch::default();
         let whole = |force: f64, start: &[f64], scratch: &mut FftScratch| {

@@ -31,9 +31,12 @@ pub(super) struct OnSet<'a, T: Real> {
     /// Grid columns and rows.
     shape: (usize, usize),
     layout: Layout,
+    /// The field on the whole grid (x, y), allocated by the first full
+    /// product (the symmetric products need none).
     g: (Vec<f64>, Vec<f64>),
     /// The last product on the whole grid (x, y); on a folded grid, from
-    /// the symmetric product's scratch once `stale`.
+    /// the symmetric product's scratch once `stale` (allocated where first
+    /// needed).
     u: (Vec<f64>, Vec<f64>),
     stale: bool,
 }
@@ -46,7 +49,6 @@ impl<'a, T: Real> OnSet<'a, T> {
         shape: (usize, usize),
         layout: Layout,
     ) -> Self {
-        let n = shape.0 * shape.1;
         OnSet {
             conv,
             scratch: FftScratch::default(),
@@ -56,8 +58,8 @@ impl<'a, T: Real> OnSet<'a, T> {
             weight,
             shape,
             layout,
-            g: (vec![0.0; n], vec![0.0; n]),
-            u: (vec![0.0; n], vec![0.0; n]),
+            g: Default::default(),
+            u: Default::default(),
             stale: false,
         }
     }
@@ -98,6 +100,9 @@ impl<'a, T: Real> OnSet<'a, T> {
         let (nx, ny) = self.shape;
         let mirror = |k: usize| (ny - 1 - k / nx) * nx + k % nx;
         let (gx, gy) = (&mut self.g.0, &mut self.g.1);
+        for v in [&mut *gx, &mut *gy, &mut self.u.0, &mut self.u.1] {
+            v.resize(nx * ny, 0.0);
+        }
         gx.fill(0.0);
         gy.fill(0.0);
         for (c, &k) in self.set.element.iter().enumerate() {
@@ -118,6 +123,9 @@ impl<'a, T: Real> OnSet<'a, T> {
     /// The last product on the whole grid (x, y).
     pub fn whole(mut self) -> (Vec<f64>, Vec<f64>) {
         debug_assert!(self.place.is_none(), "a block's product is not the grid's");
+        let n = self.shape.0 * self.shape.1;
+        self.u.0.resize(n, 0.0);
+        self.u.1.resize(n, 0.0);
         if let (Some((conv, scratch)), true) = (&self.symmetric, self.stale) {
             conv.whole_grid(scratch, (&mut self.u.0, &mut self.u.1));
         }
