@@ -95,6 +95,8 @@ pub fn derive(scene: &Scene) -> Derived {
             None => torsion_feedback(scene, &shape, loads.normal_force).into_iter().collect(),
         },
         dynamic_creepage_x: None,
+        dynamic_creepage_y: None,
+        dynamic_spin: None,
         surface: None,
     };
     Derived {

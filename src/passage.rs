@@ -58,6 +58,10 @@ pub struct PassageSpec {
     pub torsion: Vec<TorsionFeedback>,
     /// Variation of the prescribed creepage added to `creepage_x` (1).
     pub dynamic_creepage_x: Option<PeriodicSignal>,
+    /// Variation of the lateral creepage added to `creepage_y` (1).
+    pub dynamic_creepage_y: Option<PeriodicSignal>,
+    /// Variation of the spin added to `spin` (1/m).
+    pub dynamic_spin: Option<PeriodicSignal>,
     /// The rail surface in the normal problem (`contact.normal =
     /// "linear"` or `"profile"`); `None`: the Hertz contact of the
     /// curvatures.
@@ -368,8 +372,8 @@ pub fn run_passage(
             friction: spec.friction,
             force_x: spec.loads.longitudinal_force_at(x),
             creepage_x: spec.creepage_x.map(|c| c + spec.dynamic_creepage_x.as_ref().map_or(0.0, |d| d.at(x))),
-            creepage_y: spec.creepage_y,
-            spin: spec.spin,
+            creepage_y: spec.dynamic_creepage_y.as_ref().map_or(spec.creepage_y, |d| spec.creepage_y + d.at(x)),
+            spin: spec.dynamic_spin.as_ref().map_or(spec.spin, |d| spec.spin + d.at(x)),
             position: x,
         }
     };

@@ -28,6 +28,8 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
         dynamic_normal_force: None,
         torsion: vec![],
         dynamic_creepage_x: None,
+        dynamic_creepage_y: None,
+        dynamic_spin: None,
         surface: None,
     };
     let dx = 1e-4;
