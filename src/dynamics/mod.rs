@@ -19,6 +19,7 @@
 //! track model (discrete sleepers, Timoshenko rail, moving load) can replace
 //! the [`receptance`] model without touching the loop.
 
+pub mod creep_response;
 pub mod discrete;
 pub mod discrete_dynamics;
 pub mod rail;

@@ -1,0 +1,113 @@
+//! The creep response of a scene's contact: its solver (the model and grid
+//! its passages use, [`crate::build::build_solver`]), its mean state per
+//! wheel, and the excitation whose accuracy and cost
+//! `docs/src/theory/creep-response.md` measures.
+
+use super::{CreepResponse, CreepResponseError, Excitation, Longitudinal, MeanState, measure};
+use crate::build::build_solver;
+use crate::contact::TangentialSolver;
+use crate::hertz::HertzShape;
+use crate::params::Scene;
+
+/// Length of the measured period in mean patch lengths `2 a0`: harmonics
+/// every `pi / PERIOD_PATCHES` in reduced frequency `w a0 / V` (0.39 at
+/// 8), where the cubic interpolation of the table is within 0.5 % of a
+/// table twice as dense (measured on the paper's scene).
+pub const PERIOD_PATCHES: f64 = 8.0;
+
+/// Run-in at the mean state, in patch lengths `2 a0`, where the mean
+/// longitudinal force is prescribed: the creepage then settles in about
+/// one patch length.
+pub const RUN_IN_PATCHES: f64 = 2.0;
+
+/// Excitation before the measured period, in patch lengths `2 a0`: the
+/// response to the switched-on excitation lasts as long as the material
+/// that saw its start stays in the patch (one patch length), and a second
+/// one leaves what the partial slip's slower settling adds below 1e-3.
+pub const LEAD_PATCHES: f64 = 2.0;
+
+/// Amplitude of each harmonic relative to the input's scale
+/// ([`super::measure::input_scale`]): the response changes by less than
+/// 2e-3 when it is halved (linearity) and the solvers' convergence
+/// tolerance stays 1e-3 below it.
+pub const LEVEL: f64 = 1e-3;
+
+/// Largest reduced frequency of the table by default: wavelengths down to
+/// `2 pi a0 / 6`, about 1.05 a0 (6.3 mm on the paper's patch), below the
+/// shortest wavelength a growth study resolves on the contact (the patch
+/// filters shorter ones) and above 10 steps per wavelength on the shipped
+/// grids.
+pub const MAX_REDUCED: f64 = 6.0;
+
+/// The mean state of a wheel of the scene with mean normal force `normal_force`
+/// (N) and, unless the scene prescribes the creepage, mean longitudinal
+/// force `longitudinal_force` (N).
+pub fn mean_state(scene: &Scene, normal_force: f64, longitudinal_force: f64) -> MeanState {
+    MeanState {
+        normal_force,
+        longitudinal: match scene.creepage_x {
+            Some(xi) => Longitudinal::Creepage(xi),
+            None => Longitudinal::Force(longitudinal_force),
+        },
+        creepage_y: scene.creepage_y,
+        spin: scene.spin,
+        speed: scene.speed,
+        friction: scene.material.friction,
+    }
+}
+
+/// The default excitation for `mean` on `scene` (all four inputs): the
+/// constants above in patch lengths of the mean patch; a run-in of
+/// [`crate::build::CREEPAGE_RUN_IN`] patch lengths where the creepage is
+/// prescribed (the exact theory's force settles slowly at a prescribed
+/// creepage from the virgin start); the step of the scene's passage (the
+/// fixed grid's element on the fixed grid); the largest reduced frequency
+/// [`MAX_REDUCED`] or ten steps per wavelength, the smaller.
+pub fn default_excitation(
+    scene: &Scene,
+    shape: &HertzShape,
+    mean: &MeanState,
+) -> Result<Excitation, CreepResponseError> {
+    let a0 = shape.patch(mean.normal_force).map_err(|e| CreepResponseError::Input(e.to_string()))?.a;
+    let step = scene.contact.model.fixed_grid().map_or(scene.step_length, |f| f.dx);
+    let run_in = match mean.longitudinal {
+        Longitudinal::Force(_) => RUN_IN_PATCHES,
+        Longitudinal::Creepage(_) => crate::build::CREEPAGE_RUN_IN,
+    };
+    Ok(Excitation {
+        step,
+        period: PERIOD_PATCHES * 2.0 * a0,
+        max_reduced: MAX_REDUCED.min(2.0 * std::f64::consts::PI * a0 / (10.0 * step)),
+        run_in: run_in * 2.0 * a0,
+        lead: LEAD_PATCHES * 2.0 * a0,
+        level: LEVEL,
+        inputs: [true; 4],
+    })
+}
+
+/// The scene's Hertz shape.
+pub fn shape(scene: &Scene) -> HertzShape {
+    HertzShape::new(scene.geometry.curvatures(), scene.material.elastic).expect("validated geometry")
+}
+
+/// The response of `scene`'s contact about `mean`, measured with its own
+/// solver (one built per run) as `excitation` says.
+pub fn response(scene: &Scene, mean: &MeanState, excitation: &Excitation) -> Result<CreepResponse, CreepResponseError> {
+    let shape = shape(scene);
+    let make = || -> Box<dyn TangentialSolver> { build_solver(scene, &shape) };
+    measure(&make, &shape, mean, excitation)
+}
+
+/// The response of `scene`'s contact for a wheel of mean normal force
+/// `normal_force` and mean longitudinal force `longitudinal_force` (N), with
+/// the default excitation: what replaces the steady slopes of
+/// [`crate::dynamics::torsion::TorsionFeedback`].
+pub fn default_response(
+    scene: &Scene,
+    normal_force: f64,
+    longitudinal_force: f64,
+) -> Result<CreepResponse, CreepResponseError> {
+    let mean = mean_state(scene, normal_force, longitudinal_force);
+    let excitation = default_excitation(scene, &shape(scene), &mean)?;
+    response(scene, &mean, &excitation)
+}
