@@ -5,7 +5,7 @@
 //! `cargo run --release --example creep_response -- CONFIG OUT.csv [KEY=VALUE ...]`
 //!
 //! Keys: `set=SECTION.KEY=VALUE` (a config override, repeatable),
-//! `level`, `period` (patch lengths 2 a0), `run_in`, `lead` (patch
+//! `level` (the creepages' and spin's), `level_n` (the normal force's), `period` (patch lengths 2 a0), `run_in`, `lead` (patch
 //! lengths), `max_reduced`, `step` (m, adapted mesh only), `inputs` (any of
 //! `x`, `y`, `s`, `n`: the creepages, spin, normal force), `normal_force`,
 //! `longitudinal_force` (N, the mean state; default the scene's). The
@@ -40,7 +40,10 @@ fn main() -> anyhow::Result<()> {
     let mut ex = scene::default_excitation(&sc, &shape, &mean)?;
     let two_a = 2.0 * shape.patch(n0)?.a;
     if let Some(v) = num("level")? {
-        ex.level = v;
+        ex.level = [v, v, v, ex.level[3]];
+    }
+    if let Some(v) = num("level_n")? {
+        ex.level[3] = v;
     }
     if let Some(v) = num("period")? {
         ex.period = v * two_a;

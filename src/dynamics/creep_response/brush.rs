@@ -74,6 +74,20 @@ fn integral(w: f64, kernel: impl Fn(f64, f64) -> f64) -> Complex64 {
     total * 0.5 * PI
 }
 
+/// The factor by which a scheme that accumulates a point's slip over whole
+/// steps `dt` (the backward difference of the transient solvers) changes a
+/// harmonic response: `dt sum_{k<m} exp(-i w k dt)` against `int_0^{m dt}
+/// exp(-i w s) ds`, `D = i theta / (1 - exp(-i theta))`, `theta = w dt = W h
+/// / a` (`h` the step, `W` the reduced frequency); `D = 1 + i theta / 2 +
+/// O(theta^2)`, a phase lead of half a step.
+pub fn backward_difference_factor(theta: f64) -> Complex64 {
+    if theta.abs() < 1e-8 {
+        return Complex64::new(1.0, 0.5 * theta);
+    }
+    let i_theta = Complex64::new(0.0, theta);
+    i_theta / (1.0 - (-i_theta).exp())
+}
+
 /// `R_xi(W)` of eq. 2: the creepage response over its steady value at the
 /// reduced frequency `W = w a / V` (1).
 pub fn creepage_ratio(w: f64) -> Complex64 {
