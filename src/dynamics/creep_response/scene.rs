@@ -10,11 +10,12 @@ use crate::hertz::HertzShape;
 use crate::params::Scene;
 
 /// Length of the measured period in mean patch lengths `2 a0`: harmonics
-/// every `pi / PERIOD_PATCHES` in reduced frequency `w a0 / V` (0.39 at
-/// 8), where the interpolation of the table is within 6e-4 of |H(0)| of a
-/// table twice as dense for the creepages and the spin (the paper's
-/// scene; at 4, 1.5e-1 between 0 and the first harmonic).
-pub const PERIOD_PATCHES: f64 = 8.0;
+/// every `pi / PERIOD_PATCHES` in reduced frequency `w a0 / V` (0.79 at
+/// 4), where the interpolation of the table (through `1 / H`) is within
+/// 1.3e-3 of |H(0)| of a table four times as dense for the creepages,
+/// 6.4e-3 for the spin (the paper's scene; 6e-4 and 7e-4 at 8, for 30 %
+/// more cost).
+pub const PERIOD_PATCHES: f64 = 4.0;
 
 /// Run-in at the mean state, in patch lengths `2 a0`, where the mean
 /// longitudinal force is prescribed: the creepage it ends with is within
