@@ -318,6 +318,22 @@ fn halving_the_amplitude_changes_the_response_by_less_than_its_tolerance() {
 }
 
 #[test]
+fn the_response_is_the_same_bit_for_bit_on_any_number_of_threads() {
+    // The runs go in parallel, each on its own solver: one thread or two,
+    // the same table.
+    let shape = paper_shape(true);
+    let m = mean(Longitudinal::Force(2e4));
+    let a = shape.patch(m.normal_force).unwrap().a;
+    let make = || -> Box<dyn TangentialSolver> { Box::new(winkler(10)) };
+    let ex = excitation(a, a / 10.0, [true, true, false, true]);
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| measure(&make, &shape, &m, &ex).unwrap())
+    };
+    assert_eq!(on(1), on(2));
+}
+
+#[test]
 fn bad_input_is_refused_with_the_quantity_named() {
     let shape = paper_shape(true);
     let m = mean(Longitudinal::Force(2e4));
@@ -358,7 +374,7 @@ fn fastsim_is_flat_and_its_slopes_are_the_torsional_loops() {
         .map(String::from)
         .into();
     let scene = corrugation::config::load_str(&format!("{text}\n[wheelset]\n"), "g", &set).unwrap().scene;
-    let r = corrugation::dynamics::creep_response::scene::default_response(&scene, 1e5, 0.0).unwrap();
+    let r = corrugation::dynamics::creep_response::scene::default_response(&scene, 1e5, 0.0, [true; 4]).unwrap();
     let today = corrugation::build::derive(&scene).passage.torsion[0];
     let h0 = r.table[0];
     if print() {

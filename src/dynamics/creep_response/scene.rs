@@ -42,12 +42,12 @@ pub const LEAD_PATCHES: f64 = 4.0;
 /// halving or doubling it moves the table by 4-6 % of |H(0)|.
 pub const LEVEL: [f64; 4] = [3e-3, 3e-3, 3e-3, 5e-2];
 
-/// Largest reduced frequency of the table by default: wavelengths down to
-/// `2 pi a0 / 6`, about 1.05 a0 (6.3 mm on the paper's patch), below the
-/// shortest wavelength a growth study resolves on the contact (the patch
-/// filters shorter ones) and above 10 steps per wavelength on the shipped
-/// grids.
-pub const MAX_REDUCED: f64 = 6.0;
+/// Largest reduced frequency of the table by default: with the default
+/// period, eight harmonics, to about `2 pi` (wavelengths down to the
+/// semi-axis `a0`, 6 mm on the paper's patch: below the shortest a growth
+/// study's roughness holds, 10 mm, and at 15 steps per wavelength on the
+/// shipped 0.4 mm grid).
+pub const MAX_REDUCED: f64 = 6.5;
 
 /// The mean state of a wheel of the scene with mean normal force `normal_force`
 /// (N) and, unless the scene prescribes the creepage, mean longitudinal
@@ -109,15 +109,20 @@ pub fn response(scene: &Scene, mean: &MeanState, excitation: &Excitation) -> Res
 }
 
 /// The response of `scene`'s contact for a wheel of mean normal force
-/// `normal_force` and mean longitudinal force `longitudinal_force` (N), with
-/// the default excitation: what replaces the steady slopes of
+/// `normal_force` and mean longitudinal force `longitudinal_force` (N;
+/// unused where the scene prescribes the creepage), with the default
+/// excitation, for the `inputs` asked (per [`super::Input`]; the
+/// torsional loop needs the longitudinal creepage and the normal force,
+/// `[true, false, false, true]`, about a third of the cost of all four):
+/// what replaces the steady slopes of
 /// [`crate::dynamics::torsion::TorsionFeedback`].
 pub fn default_response(
     scene: &Scene,
     normal_force: f64,
     longitudinal_force: f64,
+    inputs: [bool; 4],
 ) -> Result<CreepResponse, CreepResponseError> {
     let mean = mean_state(scene, normal_force, longitudinal_force);
-    let excitation = default_excitation(scene, &shape(scene), &mean)?;
+    let excitation = Excitation { inputs, ..default_excitation(scene, &shape(scene), &mean)? };
     response(scene, &mean, &excitation)
 }
