@@ -87,7 +87,7 @@ fn steady_slope(
     let force = |solver: &mut dyn TangentialSolver, s: f64| {
         let mut offset = [0.0; 4];
         offset[input.index()] = s * delta;
-        steady_forces(solver, shape, m, (ex.step, ex.run_in, 8.0 * ex.lead), offset).unwrap()[row]
+        steady_forces(solver, shape, m, (ex.step, ex.run_in, 4.0 * ex.lead), offset).unwrap()[row]
     };
     (force(solver, 1.0) - force(solver, -1.0)) / (2.0 * delta)
 }
@@ -96,7 +96,7 @@ fn steady_slope(
 fn zero_frequency_limit_is_the_steady_slope_on_the_fixed_grid() {
     // The growth studies' exact model (0.4 x 1 mm grid) at the paper's
     // mean state (N = 100 kN, F_x = 20 kN): H(0) of every creepage input
-    // against central differences of steady solutions (the forces 32 patch
+    // against central differences of steady solutions (the forces 16 patch
     // lengths after the offset) at the excitation's own offset, 1 %.
     let shape = paper_shape(true);
     let m = mean(Longitudinal::Force(2e4));

@@ -39,17 +39,18 @@
 //! The scene's own tangential solver rolls over a stretch: a run-in at the
 //! mean state (under force control where the mean longitudinal force is
 //! prescribed, so that the history settles in about one patch length; at
-//! the prescribed creepage otherwise), then one period `L` of a multi-sine
-//! on one input, all harmonics `k_n = 2 pi n / L` up to the largest
-//! reduced frequency asked at once, with Schroeder's phases (a crest factor
-//! of about 1.7, against 3-4 for random phases, at the same amplitude per
-//! harmonic) and a constant offset of the same amplitude (the steady
-//! slope). One run per input channel, and one reference run with the mean
-//! state alone whose forces are subtracted step by step: what the
-//! start-up leaves in the measured period cancels to first order. `H` is
-//! the ratio of the force's and the input's discrete Fourier coefficients
-//! over the measured period. Details, amplitudes and their measured
-//! convergence: `docs/src/theory/creep-response.md`.
+//! the prescribed creepage otherwise), then one input's multi-sine, all
+//! harmonics `k_n = 2 pi n / L` of the measured period `L` up to the
+//! largest reduced frequency asked at once, with Schroeder's phases (a
+//! crest factor of about 1.7, against 3-4 for random phases at the same
+//! power) and a constant offset (the steady slope), for a lead and the
+//! measured period. Two runs of opposite sign per input: half their
+//! difference holds the odd part of the response, so that the mean, what
+//! the start-up leaves and the even orders of the nonlinearity cancel. `H`
+//! is the ratio of the force's and the input's discrete Fourier
+//! coefficients over the measured period. The runs go in parallel, each on
+//! its own solver. Defaults, their measured convergence and the cost:
+//! [`scene`] and `docs/src/theory/creep-response.md`.
 //!
 //! The closed form of the simplified (Winkler) theory in full adhesion,
 //! which tests the simplified-transient solver, is [`brush`].
