@@ -3,6 +3,7 @@
 //! solver, the wear deposit and the track dynamics. Used by the run, the
 //! growth loop, `check` and the cost model alike; knows nothing of files.
 
+use crate::contact::Creepage;
 use crate::contact::fastsim::Fastsim;
 use crate::contact::grid::{Alignment, FixedGrid, spec::FixedGridSpec};
 use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
@@ -10,16 +11,21 @@ use crate::contact::transient::{ElasticModel, Transient};
 use crate::contact::{Elements, EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::TrackDynamics;
+use crate::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3};
+use crate::dynamics::contact_point::ContactLaw;
+use crate::dynamics::continuous3::Continuous3;
 use crate::dynamics::discrete::DiscreteTrack;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
+use crate::dynamics::discrete3::Discrete3;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
-use crate::dynamics::torsion::{TorsionFeedback, WheelsetTorsion};
+use crate::dynamics::torsion::{TorsionFeedback, WHEEL_POLAR_INERTIA, WheelsetTorsion};
 use crate::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
 use crate::hertz::{HertzPatch, HertzShape};
-use crate::params::{ContactGrid, ContactModel, DynamicsKind, NormalContact, Scene};
+use crate::params::{ContactGrid, ContactModel, Directions, DynamicsKind, NormalContact, Scene};
 use crate::passage::PassageSpec;
 use crate::rail_grid::RailGrid;
 use crate::wear::{CellDeposit, WearDeposit, WearKernel};
+use num_complex::Complex64;
 
 /// Quantities derived from a scene (what `corrugation check` prints).
 #[derive(Debug, Clone)]
@@ -95,6 +101,7 @@ pub fn derive(scene: &Scene) -> Derived {
             None => torsion_feedback(scene, &shape, loads.normal_force).into_iter().collect(),
         },
         dynamic_creepage_x: None,
+        dynamic_longitudinal_force: None,
         dynamic_creepage_y: None,
         dynamic_spin: None,
         surface: None,
@@ -315,6 +322,84 @@ pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<To
     Some(TorsionFeedback { torsion, force_per_normal, force_per_creepage })
 }
 
+/// The contact at the mean state of a wheel of mean normal force `n0`
+/// (N), for the dynamics in every direction: the Hertz stiffness and the
+/// steady creep curve's slopes `d(F_x, F_y) / dN` and `d(F_x, F_y) /
+/// d(xi_x, xi_y)` by central differences (1e-3 relative steps) of FASTSIM's
+/// steady solution on a 40 x 40 mesh with the Hertz pressure (as
+/// [`torsion_feedback`]), at the mean creepage: the prescribed one, or
+/// under force control the one FASTSIM finds for the mean force.
+pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64) -> ContactLaw {
+    let elastic = scene.material.elastic;
+    let coefficients = creep_coefficients(shape.aspect(), elastic.poisson_ratio).expect("validated aspect");
+    let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, elastic.shear_modulus());
+    let patch0 = shape.patch(n0).expect("validated loads keep N > 0");
+    let input = StepInput {
+        patch: patch0,
+        speed: scene.speed,
+        dt: 0.0,
+        friction: scene.material.friction,
+        force_x: fx0,
+        creepage_x: scene.creepage_x,
+        creepage_y: scene.creepage_y,
+        spin: scene.spin,
+        position: 0.0,
+    };
+    let xi0 = match scene.creepage_x {
+        Some(xi) => xi,
+        None => fastsim.solve_force(&input).map(|s| s.creepage.x).unwrap_or(0.0),
+    };
+    let forces = |n: f64, x: f64, y: f64| {
+        let patch = shape.patch(n).expect("validated loads keep N > 0");
+        let s =
+            fastsim.solve_creepage(&patch, Creepage { x, y, spin: scene.spin }, scene.material.friction, scene.speed);
+        [s.force_x, s.force_y]
+    };
+    let y0 = scene.creepage_y;
+    let (dn, dx, dy) = (1e-3 * n0, 1e-3 * xi0.abs().max(1e-5), 1e-3 * y0.abs().max(1e-5));
+    let diff = |a: [f64; 2], b: [f64; 2], h: f64| [0, 1].map(|i| Complex64::new((a[i] - b[i]) / (2.0 * h), 0.0));
+    let per_normal = diff(forces(n0 + dn, xi0, y0), forces(n0 - dn, xi0, y0), dn);
+    let per_x = diff(forces(n0, xi0 + dx, y0), forces(n0, xi0 - dx, y0), dx);
+    let per_y = diff(forces(n0, xi0, y0 + dy), forces(n0, xi0, y0 - dy), dy);
+    ContactLaw {
+        stiffness: hertz_stiffness(patch0.normal_force, patch0.approach),
+        force_per_normal: per_normal,
+        force_per_creepage: [[per_x[0], per_y[0]], [per_x[1], per_y[1]]],
+    }
+}
+
+/// The dynamics in every direction of a growth study's wheel
+/// ([`ContactDynamics`]): the track of `dynamics.model`, the rigid wheel of
+/// unsprung mass `mass` (kg) with the wheelset's torsion where configured,
+/// and the steady contact law at the wheel's mean loads.
+fn contact_dynamics(scene: &Scene, d: &Derived, mass: f64, contact_offset: f64) -> Box<dyn TrackDynamics> {
+    let loads = scene.vehicle.wheel_loads(0, &scene.loads);
+    let law = steady_contact_law(scene, &d.shape, loads.normal_force, loads.longitudinal_force);
+    let grid = periodic_grid(scene);
+    let rail = match scene.growth.as_ref().map(|g| g.dynamics) {
+        Some(DynamicsKind::Discrete { .. }) => Rail3::Discrete {
+            model: Discrete3::new(&scene.track, contact_offset),
+            vertical: DiscreteTrack::new(&scene.track),
+            sleeper_x0: grid.x_min,
+        },
+        _ => Rail3::Continuous(Continuous3::new(&scene.track, contact_offset)),
+    };
+    let wheel = Wheel3 {
+        mass,
+        radius: scene.geometry.wheel_radius,
+        polar_inertia: scene.wheelset.map_or(WHEEL_POLAR_INERTIA, |w| w.inertia),
+        torsion: scene.wheelset.map(|w| WheelsetTorsion {
+            stiffness: w.stiffness,
+            loss_factor: w.loss_factor,
+            inertia: w.inertia,
+            radius: scene.geometry.wheel_radius,
+        }),
+    };
+    let model = ContactDynamics::new(rail, wheel, law, loads.normal_force, grid.nx, grid.dx, scene.speed)
+        .unwrap_or_else(|e| panic!("the track's receptances in three directions could not be computed: {e}"));
+    Box::new(model)
+}
+
 /// The track model of a growth study, if it has one. The discrete model
 /// tabulates its receptances for the study's speed and periodic stretch
 /// (the first rail node is above a sleeper). Several wheels
@@ -337,7 +422,15 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamic
             })
             .collect()
     };
-    match scene.growth.as_ref()?.dynamics {
+    let growth = scene.growth.as_ref()?;
+    // Several wheels: the vertical models (the config refuses them in
+    // every direction).
+    if let (Directions::All { contact_offset }, Some(mass)) = (growth.directions, growth.dynamics.unsprung_mass())
+        && v.wheels.len() == 1
+    {
+        return Some(contact_dynamics(scene, d, v.wheel_mass(0, mass), contact_offset));
+    }
+    match growth.dynamics {
         DynamicsKind::Imposed => None,
         DynamicsKind::Receptance { unsprung_mass } => {
             let wheels = coupled(unsprung_mass);

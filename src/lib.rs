@@ -23,6 +23,7 @@ pub mod numerics;
 pub mod output;
 pub mod params;
 pub mod passage;
+pub mod quadrature;
 pub mod rail_grid;
 pub mod run;
 pub mod sweep;

@@ -73,10 +73,18 @@ fn scene(set: &[&str]) -> Result<corrugation::config::Resolved, corrugation::con
         .filter(|l| !l.starts_with("longitudinal_force"))
         .collect::<Vec<_>>()
         .join("\n");
-    let mut all: Vec<String> = ["load.control=creepage", "rolling.creepage_x=-1.3e-3", "growth.contact_history=[0]"]
-        .iter()
-        .map(|s| s.to_string())
-        .collect();
+    // The torsional feedback of the vertical dynamics (eq. 3 of
+    // dynamics::torsion); the dynamics in every direction has its own
+    // tests (tests/contact_dynamics.rs).
+    let mut all: Vec<String> = [
+        "load.control=creepage",
+        "rolling.creepage_x=-1.3e-3",
+        "growth.contact_history=[0]",
+        "dynamics.directions=vertical",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
     all.extend(set.iter().map(|s| s.to_string()));
     load_str(&format!("{text}\n[wheelset]\n"), "g", &all)
 }

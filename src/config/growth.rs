@@ -7,7 +7,7 @@ use super::reader::{Range, Section};
 use super::traffic::BaseClass;
 use crate::growth::roughness::band_harmonics;
 use crate::growth::traffic::DEFAULT_MAX_UPDATE_RATIO;
-use crate::params::{DynamicsKind, GrowthParams, StopRule};
+use crate::params::{Directions, DynamicsKind, GrowthParams, StopRule};
 use crate::params::{LevelBand, ProfileHarmonic, Roughness, TrafficScaling};
 use toml::{Table, Value};
 
@@ -111,6 +111,13 @@ pub fn read(
     let model = s.choice("model", Some("imposed"), &["imposed", "receptance", "discrete"]);
     // Read for every model so that --set can switch models.
     let mass = s.f64("unsprung_mass", Some(600.0), Range::OpenClosed(0.0, 1e4));
+    let directions = s.choice("directions", Some("all"), &["all", "vertical"]);
+    let offset = s.f64("contact_offset", Some(0.0), Range::Closed(-0.04, 0.04));
+    let directions = match (directions.as_deref(), offset) {
+        (Some("vertical"), Some(_)) => Some(Directions::Vertical),
+        (Some(_), Some(contact_offset)) => Some(Directions::All { contact_offset }),
+        _ => None,
+    };
     let dynamics = match (model.as_deref(), mass) {
         (Some("receptance"), Some(m)) => Some(DynamicsKind::Receptance { unsprung_mass: m }),
         (Some("discrete"), Some(m)) => Some(DynamicsKind::Discrete { unsprung_mass: m }),
@@ -120,7 +127,7 @@ pub fn read(
     resolved.insert("dynamics".into(), Value::Table(s.finish()));
     let classes = super::traffic::read(root, resolved, BaseClass { unsprung_mass: mass, ..base }, errors);
 
-    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics, stop, classes) {
+    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics, stop, classes, directions) {
         (
             Some(passes),
             Some(traffic),
@@ -131,6 +138,7 @@ pub fn read(
             Some(dynamics),
             Some(stop),
             Some(classes),
+            Some(directions),
         ) => Ok(Some(GrowthParams {
             passes,
             traffic,
@@ -139,6 +147,7 @@ pub fn read(
             contact_history,
             roughness,
             dynamics,
+            directions,
             stop,
             classes,
         })),

@@ -40,6 +40,16 @@ impl std::fmt::Display for DynamicsKind {
 }
 
 impl DynamicsKind {
+    /// The unsprung mass of a track model (kg); None for imposed loads.
+    pub fn unsprung_mass(&self) -> Option<f64> {
+        match self {
+            DynamicsKind::Imposed => None,
+            DynamicsKind::Receptance { unsprung_mass } | DynamicsKind::Discrete { unsprung_mass } => {
+                Some(*unsprung_mass)
+            }
+        }
+    }
+
     /// The same model with another unsprung mass (kg).
     pub fn with_unsprung_mass(self, mass: f64) -> Self {
         match self {
@@ -67,11 +77,30 @@ pub struct GrowthParams {
     pub roughness: Roughness,
     /// Dynamics model.
     pub dynamics: DynamicsKind,
+    /// The directions its track model moves in (`dynamics.directions`).
+    pub directions: Directions,
     /// When the study stops before `passes`.
     pub stop: StopRule,
     /// The traffic classes (`[[traffic.mix]]`, shares summing to 1; one
     /// class of the base config without `[traffic]`).
     pub classes: Vec<TrafficClass>,
+}
+
+/// The directions of a growth study's track dynamics (`dynamics.directions`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Directions {
+    /// Vertical: the normal force alone (with `[wheelset]`, the torsional
+    /// feedback on the creepage): the models before the dynamics in every
+    /// direction, bit for bit.
+    Vertical,
+    /// Every direction: the rail head's and the wheel's receptances in three
+    /// directions closed with the creep forces
+    /// ([`crate::dynamics::contact_dynamics`]).
+    All {
+        /// The contact's lateral offset from the rail's centre line, to the
+        /// right looking along the rail (m).
+        contact_offset: f64,
+    },
 }
 
 /// When a growth study stops before its planned passages (`growth.stop`).

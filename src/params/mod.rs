@@ -13,7 +13,8 @@ mod growth;
 
 pub use choice::{AutoChoice, Candidate};
 pub use growth::{
-    DynamicsKind, GrowthParams, LevelBand, ProfileHarmonic, Roughness, StopRule, TrafficClass, TrafficScaling,
+    Directions, DynamicsKind, GrowthParams, LevelBand, ProfileHarmonic, Roughness, StopRule, TrafficClass,
+    TrafficScaling,
 };
 
 /// Tangential contact model.
