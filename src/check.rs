@@ -4,16 +4,16 @@
 
 use corrugation::build::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics};
 use corrugation::config::Resolved;
+use corrugation::config::quantity::engineering;
+use corrugation::config::units::key_units;
 use corrugation::contact::grid::GRID_MARGIN;
 use corrugation::contact::grid::convolution::smooth_padding;
+use corrugation::growth::record::MeasuredRoughness;
 use corrugation::model_choice::{AccuracyMap, SAFETY, departures};
+use corrugation::params::Roughness;
 use corrugation::params::TrafficScaling;
 use corrugation::params::{AutoChoice, Candidate};
 use corrugation::params::{DynamicsKind, NormalContact};
-use corrugation::config::quantity::engineering;
-use corrugation::config::units::key_units;
-use corrugation::growth::record::MeasuredRoughness;
-use corrugation::params::Roughness;
 use std::f64::consts::PI;
 
 /// What contact.model = "auto" chose and why.
@@ -345,12 +345,8 @@ pub fn record_lines(m: &MeasuredRoughness) -> Vec<String> {
     match p.spike_threshold {
         Some(k) if r.spikes.is_empty() => out.push(format!("spikes: none beyond {k} robust standard deviations")),
         Some(k) => {
-            let list: Vec<String> = r
-                .spikes
-                .iter()
-                .take(10)
-                .map(|(x, h, w)| format!("{x:.4} m ({}, {w} sample(s))", um(*h)))
-                .collect();
+            let list: Vec<String> =
+                r.spikes.iter().take(10).map(|(x, h, w)| format!("{x:.4} m ({}, {w} sample(s))", um(*h))).collect();
             let more = if r.spikes.len() > 10 { format!(", and {} more", r.spikes.len() - 10) } else { String::new() };
             out.push(format!(
                 "spikes removed: {} beyond {k} robust standard deviations, at {}{more}",
@@ -375,7 +371,11 @@ pub fn record_lines(m: &MeasuredRoughness) -> Vec<String> {
         "periodic seam: the last sample joins the first with a step of {} (rms step between neighbours {}{})",
         um(seam),
         um(steps),
-        if seam.abs() > 3.0 * steps { "; a step this large adds a 1/n tail to the spectrum: roughness.detrend or another window helps" } else { "" }
+        if seam.abs() > 3.0 * steps {
+            "; a step this large adds a 1/n tail to the spectrum: roughness.detrend or another window helps"
+        } else {
+            ""
+        }
     ));
     out.push(format!(
         "profile: {} harmonics, wavelengths {:.2} .. {:.1} mm; rms {} of the window, {} kept",
@@ -398,7 +398,8 @@ fn print_inputs(toml: &str) {
     for (key, v, unit) in rows {
         let eng = engineering(v, unit).map(|e| format!("  = {e}")).unwrap_or_default();
         let unit = if unit == "1" { "" } else { unit };
-        println!("  {key:<38} {v:>12} {unit}{eng}");
+        let si = if v != 0.0 && !(1e-3..1e5).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") };
+        println!("  {key:<38} {si:>18} {unit}{eng}");
     }
 }
 

@@ -61,8 +61,8 @@ proptest! {
 
 #[test]
 fn values_with_units_in_set_and_file_give_the_si_scene() {
-    let plain = load_str(STEADY, "s", &["rolling.speed=19.444444444444443".into(), "load.normal_force=70e3".into()])
-        .unwrap();
+    let plain =
+        load_str(STEADY, "s", &["rolling.speed=19.444444444444443".into(), "load.normal_force=70e3".into()]).unwrap();
     let united = load_str(STEADY, "s", &["rolling.speed=70km/h".into(), "load.normal_force=70kN".into()]).unwrap();
     assert_eq!(plain.toml, united.toml);
     let quoted = load_str(STEADY, "s", &["rolling.speed=\"70 km/h\"".into()]).unwrap();
@@ -72,8 +72,9 @@ fn values_with_units_in_set_and_file_give_the_si_scene() {
     assert!(file.contains("\"100km/h\""));
     assert_eq!(load_str(&file, "s", &[]).unwrap().scene.speed, 100.0 / 3.6);
     // The track's keys.
-    let r = load_str(FASTSIM, "f", &["track.pad_stiffness=20MN/m".into(), "track.rail_bending_stiffness=6.4MN m2".into()])
-        .unwrap();
+    let r =
+        load_str(FASTSIM, "f", &["track.pad_stiffness=20MN/m".into(), "track.rail_bending_stiffness=6.4MN m2".into()])
+            .unwrap();
     let t: toml::Table = r.toml.parse().unwrap();
     assert_eq!(t["track"]["pad_stiffness"].as_float(), Some(20e6));
     assert_eq!(t["track"]["rail_bending_stiffness"].as_float(), Some(6.4e6));
@@ -103,7 +104,12 @@ fn a_number_far_outside_its_usual_range_is_noted_with_the_likely_unit() {
         assert!(load_str(c, "c", &[]).unwrap().warnings.is_empty());
     }
     // The binary prints it and runs.
-    let o = corrugation(&["check", &format!("{}/configs/paper_steady.toml", env!("CARGO_MANIFEST_DIR")), "--set", "rolling.speed=70"]);
+    let o = corrugation(&[
+        "check",
+        &format!("{}/configs/paper_steady.toml", env!("CARGO_MANIFEST_DIR")),
+        "--set",
+        "rolling.speed=70",
+    ]);
     assert!(o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("warning: rolling.speed = 70 m/s (252 km/h)"));
 }

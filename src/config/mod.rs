@@ -177,11 +177,9 @@ pub fn load_str_with(
     plausibility(&root, "", &mut warnings);
     let (scene, resolved) = read_scene(root, records, &mut errors);
     match scene {
-        Some(scene) if errors.is_empty() => Ok(Resolved {
-            scene,
-            toml: toml::to_string(&resolved).expect("resolved config serialises"),
-            warnings,
-        }),
+        Some(scene) if errors.is_empty() => {
+            Ok(Resolved { scene, toml: toml::to_string(&resolved).expect("resolved config serialises"), warnings })
+        }
         _ => Err(fail(errors)),
     }
 }
@@ -211,8 +209,22 @@ fn plausibility(table: &Table, prefix: &str, out: &mut Vec<String>) {
 
 /// The sections of a config, in the order they are documented.
 pub const SECTIONS: [&str; 16] = [
-    "material", "geometry", "rolling", "load", "contact", "wear", "passage", "rail", "output", "growth", "roughness",
-    "dynamics", "traffic", "vehicle", "wheelset", "track",
+    "material",
+    "geometry",
+    "rolling",
+    "load",
+    "contact",
+    "wear",
+    "passage",
+    "rail",
+    "output",
+    "growth",
+    "roughness",
+    "dynamics",
+    "traffic",
+    "vehicle",
+    "wheelset",
+    "track",
 ];
 
 /// On the fixed grid the step is the element: `--set contact.dx` or

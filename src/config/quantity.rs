@@ -32,7 +32,7 @@ pub fn parse_quantity(text: &str, si_unit: &str) -> Result<f64, String> {
     let text = text.trim();
     let (number, unit) = split_number(text);
     if number.is_empty() {
-        return Err(format!("`{text}` does not start with a number; expected e.g. {}", example(si_unit)));
+        return Err(format!("`{text}` is not a number with a unit (such as {})", example(si_unit)));
     }
     if unit.is_empty() {
         return number.parse::<f64>().map_err(|_| format!("`{text}` is not a number"));
@@ -51,7 +51,12 @@ pub fn parse_quantity(text: &str, si_unit: &str) -> Result<f64, String> {
         (_, false) => {
             let kind = eval_quantity(&value_expr).unwrap_or_else(|| "another kind of quantity".into());
             let want = eval_quantity(&format!("1 {}", ascii_powers(si_unit))).unwrap_or_else(|| si_unit.to_string());
-            Err(format!("`{text}` is {} {kind}, but the key is {} {want} in {si_unit} (e.g. {})", article(&kind), article(&want), example(si_unit)))
+            Err(format!(
+                "`{text}` is {} {kind}, but the key is {} {want} in {si_unit} (e.g. {})",
+                article(&kind),
+                article(&want),
+                example(si_unit)
+            ))
         }
     }
 }
@@ -153,7 +158,8 @@ fn eval_quantity(expr: &str) -> Option<String> {
 fn with_context<T>(f: impl FnOnce(&mut rink_core::Context) -> T) -> T {
     CONTEXT.with(|c| {
         let mut c = c.borrow_mut();
-        let ctx = c.get_or_insert_with(|| rink_core::simple_context().expect("rink-core's bundled unit database loads"));
+        let ctx =
+            c.get_or_insert_with(|| rink_core::simple_context().expect("rink-core's bundled unit database loads"));
         f(ctx)
     })
 }
@@ -167,10 +173,10 @@ pub fn engineering(value: f64, si_unit: &str) -> Option<String> {
     let a = value.abs();
     let scaled = |f: f64, u: &str| Some(format!("{} {u}", sig(value / f)));
     match si_unit {
-        "m/s" => scaled(1.0 / 3.6, "km/h"),
+        "m/s" if a >= 1.0 => scaled(1.0 / 3.6, "km/h"),
         "rad" => scaled(std::f64::consts::PI / 180.0, "deg"),
         "m" if a == 0.0 => None,
-        "m" if a < 1e-3 => scaled(1e-6, "um"),
+        "m" if a < 1e-4 => scaled(1e-6, "um"),
         "m" if a < 1.0 => scaled(1e-3, "mm"),
         "kg" if a >= 1e3 => scaled(1e3, "t"),
         "Pa" | "N" | "N/m" | "N s/m" | "N m2" => {
@@ -240,10 +246,7 @@ pub fn plausibility(key: &str, value: f64) -> Option<String> {
     let side = if a < *lo { "below" } else { "above" };
     let meant = units.iter().find(|(_, f)| (*lo..=*hi).contains(&(a * f)));
     let hint = match meant {
-        Some((u, _)) => format!(
-            "; if it is in {u}, write it with its unit: \"{}{u}\"",
-            sig(value)
-        ),
+        Some((u, _)) => format!("; if it is in {u}, write it with its unit: \"{}{u}\"", sig(value)),
         None => String::new(),
     };
     Some(format!(
@@ -280,7 +283,7 @@ mod tests {
         let e = parse_quantity("20MN/m", "N").unwrap_err();
         assert!(e.contains("N") && e.contains("70kN"), "{e}");
         assert!(parse_quantity("3 mm", "1").unwrap_err().contains("plain number"));
-        assert!(parse_quantity("70 kmh", "m/s").unwrap_err().contains("unit"));
+        assert!(parse_quantity("70 blorps", "m/s").unwrap_err().contains("unit"));
         assert!(parse_quantity("fast", "m/s").unwrap_err().contains("number"));
     }
 
@@ -289,7 +292,9 @@ mod tests {
         assert_eq!(engineering(27.78, "m/s").unwrap(), "100 km/h");
         assert_eq!(engineering(2.1e11, "Pa").unwrap(), "210 GPa");
         assert_eq!(engineering(100e3, "N").unwrap(), "100 kN");
-        assert_eq!(engineering(2e-4, "m").unwrap(), "200 um");
+        assert_eq!(engineering(2e-4, "m").unwrap(), "0.2 mm");
+        assert_eq!(engineering(1.5e-6, "m").unwrap(), "1.5 um");
+        assert_eq!(engineering(1e-5, "m/s"), None);
         assert_eq!(engineering(0.5, "m").unwrap(), "500 mm");
         assert_eq!(engineering(0.3, "1"), None);
     }

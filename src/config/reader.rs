@@ -167,7 +167,9 @@ impl<'a> Section<'a> {
             }
         }
         let expect = match unit {
-            Some(u) if u != "1" => format!("{} in {u} (or a string with its unit, e.g. {})", range.describe(), example(u)),
+            Some(u) if u != "1" => {
+                format!("{} in {u} (or a string with its unit, e.g. {})", range.describe(), example(u))
+            }
             _ => range.describe(),
         };
         let v = self.take(key, default, &expect, |v| match v {

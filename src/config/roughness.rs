@@ -133,7 +133,8 @@ fn read_measured(s: &mut Section, ctx: &Context, lo: Option<f64>, hi: Option<f64
     let curvature = s.bool("curvature_processing", false);
     let radius = s.f64("curvature_radius", ctx.wheel_radius, Range::Positive);
     let detrend = s.bool("detrend", false);
-    let window_start = if s.has("window_start") { s.f64("window_start", None, Range::Finite).map(Some) } else { Some(None) };
+    let window_start =
+        if s.has("window_start") { s.f64("window_start", None, Range::Finite).map(Some) } else { Some(None) };
     let sha = match s.raw("sha256") {
         None => Some(None),
         Some(Value::String(h)) if h.len() == 64 && h.chars().all(|c| c.is_ascii_hexdigit()) => Some(Some(h)),

@@ -61,9 +61,7 @@ pub enum ResumeError {
         source: NcError,
     },
     /// The file is not an HDF5 file (a TOML config, say).
-    #[error(
-        "cannot resume from {path}: it is not a run file (HDF5){hint}"
-    )]
+    #[error("cannot resume from {path}: it is not a run file (HDF5){hint}")]
     NotRunFile {
         /// The file.
         path: PathBuf,

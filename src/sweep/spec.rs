@@ -158,8 +158,7 @@ impl SweepSpec {
         // A scene config given where a sweep spec belongs: say so, not the
         // spec keys it lacks.
         if !root.contains_key("base") && !root.contains_key("axis") {
-            let scene: Vec<&str> =
-                crate::config::SECTIONS.iter().copied().filter(|k| root.contains_key(*k)).collect();
+            let scene: Vec<&str> = crate::config::SECTIONS.iter().copied().filter(|k| root.contains_key(*k)).collect();
             if !scene.is_empty() {
                 return Err(fail(vec![err(
                     "file",
