@@ -208,7 +208,8 @@ fn sig(v: f64) -> String {
 /// Where a number written without its unit is likely meant in another unit:
 /// (key without indices, plausible range in SI, the units it may have been
 /// meant in with their factor to SI).
-const PLAUSIBLE: &[(&str, f64, f64, &[(&str, f64)])] = &[
+type Plausible = (&'static str, f64, f64, &'static [(&'static str, f64)]);
+const PLAUSIBLE: &[Plausible] = &[
     ("rolling.speed", 1.0, 50.0, &[("km/h", 1.0 / 3.6)]),
     ("traffic.mix.speed", 1.0, 50.0, &[("km/h", 1.0 / 3.6)]),
     ("load.normal_force", 5e3, 5e5, &[("kN", 1e3)]),
