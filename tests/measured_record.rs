@@ -154,3 +154,31 @@ fn the_run_file_keeps_the_record_and_a_resume_needs_no_file() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("roughness.sha256") && stderr(&o).contains("the record changed"), "{}", stderr(&o));
 }
+
+#[test]
+fn the_shipped_example_finds_the_spikes_it_was_made_with() {
+    // configs/records/synthetic_trolley.txt (scripts/make_measured_record.py)
+    // holds +25 um at 0.212 m and -18 um at 0.433 m on 0.6 m at 1 mm.
+    let cfg = format!("{}/configs/measured_rail.toml", env!("CARGO_MANIFEST_DIR"));
+    let r = corrugation::config::load_file(Path::new(&cfg), &[]).unwrap();
+    assert!(r.warnings.is_empty(), "{:?}", r.warnings);
+    let Some(Roughness::Measured(m)) = r.scene.growth.as_ref().map(|g| &g.roughness) else { panic!("measured") };
+    assert_eq!(m.samples.positions.len(), 600);
+    assert_eq!(m.report.windows, 5);
+    let spikes: Vec<(f64, f64)> = m.report.spikes.iter().map(|(x, h, _)| (*x, *h)).collect();
+    assert_eq!(spikes.len(), 2, "{spikes:?}");
+    assert!((spikes[0].0 - 0.212).abs() < 1e-12 && (spikes[0].1 - 25e-6).abs() < 1.5e-6, "{spikes:?}");
+    assert!((spikes[1].0 - 0.433).abs() < 1e-12 && (spikes[1].1 + 18e-6).abs() < 1.5e-6, "{spikes:?}");
+    // Its three harmonics, periodic on the 120 mm stretch, come through
+    // (the window's noise adds a few hundredths of a um).
+    for (wavelength, amplitude) in [(0.040, 1.5e-6), (0.030, 1.0e-6), (0.015, 0.6e-6)] {
+        let h = m.harmonics.iter().find(|h| (h.wavelength - wavelength).abs() < 1e-12).unwrap();
+        assert!((h.amplitude - amplitude).abs() < 0.2 * amplitude, "{wavelength}: {}", h.amplitude);
+    }
+    // `check` reports the record and prints the inputs in engineering units.
+    let o = corrugation(&["check", &cfg]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(text.contains("record             spikes removed: 2 beyond 5"), "{text}");
+    assert!(text.contains("= 100 km/h") && text.contains("= 210 GPa"), "{text}");
+}
