@@ -126,6 +126,13 @@ fn main() -> ExitCode {
             if let Err(code) = new_output(&out, overwrite, true).and_then(|_| writable(&out)) {
                 return code;
             }
+            if let Some(corrugation::params::Roughness::Measured(m)) =
+                resolved.scene.growth.as_ref().map(|g| &g.roughness)
+            {
+                for line in check::record_lines(m) {
+                    say!("record: {line}");
+                }
+            }
             run(&resolved, &out)
         }
         Command::Resume { file, passes, output, overwrite } => {
@@ -224,10 +231,14 @@ fn reset_sigpipe() {
 }
 
 fn load(path: &Path, set: &[String]) -> Result<Resolved, ExitCode> {
-    config::load_file(path, set).map_err(|e| {
+    let r = config::load_file(path, set).map_err(|e| {
         say_raw!("error: {e}");
         ExitCode::from(2)
-    })
+    })?;
+    for w in &r.warnings {
+        say!("warning: {w}");
+    }
+    Ok(r)
 }
 
 /// Before computing anything: an existing `out` is replaced only with

@@ -8,15 +8,12 @@ use super::traffic::BaseClass;
 use crate::growth::roughness::band_harmonics;
 use crate::growth::traffic::DEFAULT_MAX_UPDATE_RATIO;
 use crate::params::{Directions, DynamicsKind, GrowthParams, StopRule};
-use crate::params::{LevelBand, ProfileHarmonic, Roughness, TrafficScaling};
+use crate::params::{LevelBand, TrafficScaling};
 use toml::{Table, Value};
 
 /// Default `growth.saturation_rate` (dB per 1e5 real passages): a tenth of
 /// a decibel, about 1 % of rms, per 1e5 passages.
 pub const DEFAULT_SATURATION_RATE: f64 = 0.1;
-
-/// Keys of `roughness.kind = "random"` (besides the seed).
-const RANDOM_KEYS: [&str; 3] = ["rms", "wavelength_min", "wavelength_max"];
 
 /// Reads the growth sections; `Ok(None)` for a single-passage scene, `Err`
 /// when a key is invalid (the errors are recorded).
@@ -24,6 +21,7 @@ pub fn read(
     root: &mut Table,
     resolved: &mut Table,
     base: BaseClass,
+    roughness: &super::roughness::Context,
     errors: &mut Vec<ConfigError>,
 ) -> Result<Option<GrowthParams>, ()> {
     if !root.contains_key("growth") {
@@ -65,47 +63,7 @@ pub fn read(
     };
     resolved.insert("growth".into(), Value::Table(s.finish()));
 
-    let mut s = Section::new(root, "", "roughness", errors);
-    let kind = s.choice("kind", Some("none"), &["none", "harmonics", "random", "levels"]);
-    let is = |k: &str| kind.as_deref() == Some(k);
-    // The keys of the other kinds may stay (validated, unused), so that
-    // --set roughness.kind=... can switch kinds.
-    let harmonics = (is("harmonics") || s.has("harmonics")).then(|| s.array_of_tables("harmonics", read_harmonic));
-    let seed = (is("random") || is("levels") || s.has("seed")).then(|| s.usize("seed", None, 0, usize::MAX >> 1));
-    let random = (is("random") || RANDOM_KEYS.iter().any(|k| s.has(k))).then(|| {
-        let rms = s.f64("rms", None, Range::NonNegative);
-        let lo = s.f64("wavelength_min", None, Range::Positive);
-        let hi = s.f64("wavelength_max", None, Range::Positive);
-        match (seed.flatten(), rms, lo, hi) {
-            (Some(seed), Some(rms), Some(lo), Some(hi)) if lo <= hi => {
-                Some(Roughness::Random { seed: seed as u64, rms, wavelength_min: lo, wavelength_max: hi })
-            }
-            (Some(_), Some(_), Some(lo), Some(hi)) => {
-                s.error("wavelength_max", format!("= {hi} must be >= roughness.wavelength_min = {lo}"));
-                None
-            }
-            _ => None,
-        }
-    });
-    let levels = (is("levels") || s.has("bands")).then(|| {
-        let bands = s.array_of_tables("bands", read_band);
-        match (seed.flatten(), bands) {
-            (Some(seed), Some(bands)) if !bands.is_empty() => Some(Roughness::Levels { seed: seed as u64, bands }),
-            (Some(_), Some(_)) => {
-                s.error("bands", "must list at least one band".into());
-                None
-            }
-            _ => None,
-        }
-    });
-    let roughness = match kind.as_deref() {
-        Some("harmonics") => harmonics.flatten().map(Roughness::Harmonics),
-        Some("random") => random.flatten(),
-        Some("levels") => levels.flatten(),
-        Some(_) => Some(Roughness::None),
-        None => None,
-    };
-    resolved.insert("roughness".into(), Value::Table(s.finish()));
+    let roughness = super::roughness::read(root, resolved, roughness, errors);
 
     let mut s = Section::new(root, "", "dynamics", errors);
     let model = s.choice("model", Some("imposed"), &["imposed", "receptance", "discrete"]);
@@ -153,19 +111,6 @@ pub fn read(
         })),
         _ => Err(()),
     }
-}
-
-fn read_band(s: &mut Section) -> Option<LevelBand> {
-    let wavelength = s.f64("wavelength", None, Range::Positive);
-    let level = s.f64("level", None, Range::Closed(-100.0, 60.0));
-    Some(LevelBand { wavelength: wavelength?, level: level? })
-}
-
-fn read_harmonic(s: &mut Section) -> Option<ProfileHarmonic> {
-    let amplitude = s.f64("amplitude", None, Range::NonNegative);
-    let wavelength = s.f64("wavelength", None, Range::Positive);
-    let phase = s.f64("phase", Some(0.0), Range::Finite);
-    Some(ProfileHarmonic { amplitude: amplitude?, wavelength: wavelength?, phase: phase? })
 }
 
 /// Checks that every band of a level spectrum is resolved on the rail grid

@@ -1,5 +1,7 @@
 //! The unit of every numeric config key (as the README's Configuration
-//! table gives it), for outputs that name keys, such as a sweep's axes.
+//! table gives it), for outputs that name keys, such as a sweep's axes, for
+//! values written with their unit ([`super::quantity`]) and for `check`'s
+//! engineering units.
 
 /// (key with array indices removed, unit).
 const UNITS: &[(&str, &str)] = &[
@@ -50,6 +52,11 @@ const UNITS: &[(&str, &str)] = &[
     ("roughness.harmonics.phase", "rad"),
     ("roughness.bands.wavelength", "m"),
     ("roughness.bands.level", "dB"),
+    ("roughness.window_start", "m"),
+    ("roughness.spike_threshold", "1"),
+    ("roughness.curvature_radius", "m"),
+    ("roughness.position_column", "1"),
+    ("roughness.height_column", "1"),
     ("dynamics.unsprung_mass", "kg"),
     ("track.rail_bending_stiffness", "N m2"),
     ("track.rail_mass", "kg/m"),
@@ -84,11 +91,30 @@ const UNITS: &[(&str, &str)] = &[
     ("traffic.mix.longitudinal_force", "N"),
     ("traffic.mix.unsprung_mass", "kg"),
     ("traffic.mix.share", "1"),
+    ("vehicle.wheels", "m"),
+    ("vehicle.unsprung_mass", "kg"),
+    ("vehicle.normal_force", "N"),
+    ("vehicle.longitudinal_force", "N"),
+    ("wheelset.torsional_stiffness", "N m/rad"),
+    ("wheelset.polar_inertia", "kg m2"),
+    ("wheelset.torsional_loss_factor", "1"),
+    ("rolling.creepage_x", "1"),
 ];
 
 /// The unit of config key `key` (`load.harmonics[0].amplitude` counts as
 /// `load.harmonics.amplitude`); None for keys without a number.
 pub fn key_units(key: &str) -> Option<&'static str> {
+    let plain = strip_indices(key);
+    UNITS.iter().find(|(k, _)| *k == plain).map(|(_, u)| *u)
+}
+
+/// The numeric keys (array indices removed) with their SI units.
+pub fn all_keys() -> impl Iterator<Item = (&'static str, &'static str)> {
+    UNITS.iter().copied()
+}
+
+/// `load.harmonics[0].amplitude` -> `load.harmonics.amplitude`.
+pub fn strip_indices(key: &str) -> String {
     let mut plain = String::with_capacity(key.len());
     let mut depth = 0;
     for c in key.chars() {
@@ -99,7 +125,7 @@ pub fn key_units(key: &str) -> Option<&'static str> {
             _ => {}
         }
     }
-    UNITS.iter().find(|(k, _)| *k == plain).map(|(_, u)| *u)
+    plain
 }
 
 #[cfg(test)]

@@ -14,6 +14,7 @@
 
 mod hertz_check;
 pub mod mix;
+pub mod record;
 pub mod roughness;
 pub mod spectrum;
 pub mod state;

@@ -9,10 +9,15 @@
 //!   `profile(pass, y, x)`, `wear(pass, y, x)`, and `state(y, x)`, the
 //!   profile after the last passage done (what a resumed run starts from);
 //! * group `passes`: one row per simulated passage;
-//! * group `contact/pass_NNNNN`: the patch history of a stored passage.
+//! * group `contact/pass_NNNNN`: the patch history of a stored passage;
+//! * group `record` (a measured initial roughness): coordinate `position`
+//!   (m), `height(position)` (m), the record as read, before processing;
+//!   attributes `file`, `sha256`, `position_unit`, `height_unit` (the
+//!   file's). A resumed run rebuilds the initial profile from it.
 
 use super::netcdf::{NcError, NcGroup, write_atomically};
 use crate::contact::Elements;
+use crate::growth::record::RecordSamples;
 use crate::growth::state::{PassRow, RailSnapshot, RunState};
 use crate::params::TrafficClass;
 use crate::passage::{PatchFields, PatchHistory};
@@ -46,6 +51,8 @@ pub struct RunRecord<'a> {
     pub stop_reason: Option<&'a str>,
     /// The traffic classes of a growth study (empty for one passage).
     pub classes: &'a [TrafficClass],
+    /// The measured record of the initial roughness, if any.
+    pub record: Option<&'a RecordSamples>,
 }
 
 /// Writes `record` to `path` atomically.
@@ -66,6 +73,9 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         write_passes(&root.group("passes")?, &record.state.rows, record.wavelengths, record.classes)?;
         if !record.classes.is_empty() {
             write_classes(&root.group("traffic")?, record.classes)?;
+        }
+        if let Some(r) = record.record {
+            write_record(&root.group("record")?, r)?;
         }
         let contact = root.group("contact")?;
         for (index, history) in &record.state.histories {
@@ -121,6 +131,38 @@ fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
         "rail surface height change after the last passage done (the state a resumed run starts from)",
     )?;
     Ok(())
+}
+
+/// Group `record`: the measured record as read.
+fn write_record(g: &NcGroup, r: &RecordSamples) -> Result<(), NcError> {
+    g.attr_str("file", &r.file.display().to_string())?;
+    g.attr_str("sha256", &r.sha256())?;
+    g.attr_str("position_unit", &r.position_unit)?;
+    g.attr_str("height_unit", &r.height_unit)?;
+    g.coord_f64("position", &r.positions, "m", "position along the measured record", false)?;
+    g.var_f64(
+        "height",
+        &["position"],
+        ArrayView1::from(&r.heights).into_dyn(),
+        "m",
+        "measured rail height, as read (before spike removal, curvature processing and detrending)",
+    )
+}
+
+/// Reads group `record` of the run file at `path`, if it has one.
+pub fn read_record(path: &Path) -> Result<Option<RecordSamples>, NcError> {
+    use super::netcdf::Attrs;
+    let Ok(attrs) = Attrs::open(path, "record") else { return Ok(None) };
+    let positions = super::netcdf::read_f64(path, "record", "position")?.iter().copied().collect();
+    let heights = super::netcdf::read_f64(path, "record", "height")?.iter().copied().collect();
+    Ok(Some(RecordSamples {
+        file: attrs.str("file")?.into(),
+        positions,
+        heights,
+        lines: Vec::new(),
+        position_unit: attrs.str("position_unit")?,
+        height_unit: attrs.str("height_unit")?,
+    }))
 }
 
 /// Group `traffic`: one row per class on dimension `class`; the names in

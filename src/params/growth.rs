@@ -208,6 +208,8 @@ pub enum Roughness {
         /// The bands.
         bands: Vec<LevelBand>,
     },
+    /// A measured record, processed and resampled onto the stretch.
+    Measured(Box<crate::growth::record::MeasuredRoughness>),
 }
 
 /// One one-third-octave band of a roughness level spectrum.
