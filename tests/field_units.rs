@@ -80,7 +80,8 @@ fn levels_limit_and_traffic_in_operator_units() {
     let floor = corrugation::levels::LEVEL_FLOOR;
     for k in 0..nominal.len() {
         for (p, before) in [(0, initial[k]), (2, level[[1, k]])] {
-            let want = if before > floor && level[[p, k]] > floor { (level[[p, k]] - before) * 1e5 / scale[p] } else { 0.0 };
+            let want =
+                if before > floor && level[[p, k]] > floor { (level[[p, k]] - before) * 1e5 / scale[p] } else { 0.0 };
             assert!((rate[[p, k]] - want).abs() < 1e-9, "band {k}, passage {p}");
         }
     }
@@ -186,7 +187,10 @@ fn the_config_keys_and_their_refusals() {
     // [traffic] without a mix: the base class, with the operator's units.
     let ok = load_str(GROWTH, "g", &["traffic.axle_load=22.5e3".into(), "traffic.axles_per_day=4000".into()]).unwrap();
     let g = ok.scene.growth.unwrap();
-    assert_eq!((g.classes.len(), g.operation.axle_loads, g.operation.axles_per_day), (1, Some(vec![22.5e3]), Some(4000.0)));
+    assert_eq!(
+        (g.classes.len(), g.operation.axle_loads, g.operation.axles_per_day),
+        (1, Some(vec![22.5e3]), Some(4000.0))
+    );
     let e = errors(GROWTH, &["traffic.axles_per_day=4000", "traffic.trains_per_day=100", "traffic.axles_per_train=4"]);
     assert!(e.contains("traffic.axles_per_day: is given with traffic.trains_per_day"), "{e}");
     let e = errors(GROWTH, &["traffic.trains_per_day=100"]);
@@ -243,4 +247,42 @@ fn a_limit_curve_file_is_read_relative_to_the_config_and_kept_in_the_run() {
     std::fs::write(dir.path().join("curves/limit.csv"), "wavelength_mm,level_dB\n25,1.5\n10;x\n").unwrap();
     let e = load_file(&dir.path().join("g.toml"), &[]).map(|_| ()).unwrap_err().to_string();
     assert!(e.contains("levels.limit_file") && e.contains("limit.csv, line 3"), "{e}");
+}
+
+#[test]
+fn the_field_units_change_no_physics() {
+    // The same study with and without the operator's traffic, another band
+    // set and limit, and the limit stop (not reached): every variable the
+    // plain run writes is the same, bit for bit (the CPU time aside).
+    let dir = tempfile::tempdir().unwrap();
+    let plain = run(dir.path(), "plain.h5", &["growth.passes=3", "growth.store_every=2"]);
+    let keyed = run(
+        dir.path(),
+        "keyed.h5",
+        &[
+            "growth.passes=3",
+            "growth.store_every=2",
+            "traffic.axle_load=25e3",
+            "traffic.trains_per_day=80",
+            "traffic.axles_per_train=24",
+            "levels.bands=en13231-3",
+            "levels.limit=none",
+            "growth.stop=limit",
+        ],
+    );
+    let file = corrugation::output::netcdf::open_file(&plain).unwrap();
+    for group in ["passes", "rail"] {
+        for name in file.group(group).unwrap().member_names().unwrap() {
+            if name == "cpu_seconds" || name == "band" || name.contains("level") || name.contains("limit") {
+                continue;
+            }
+            let (a, b) = (read_f64(&plain, group, &name), read_f64(&keyed, group, &name));
+            let (Ok(a), Ok(b)) = (a, b) else { continue };
+            assert!(a.iter().zip(b.iter()).all(|(x, y)| x.to_bits() == y.to_bits()), "{group}/{name} differs");
+        }
+    }
+    // EN 13231-3's bands on a 120 mm stretch: 10-30 mm only (17.3 mm, <= 30 mm).
+    assert_eq!(column(&keyed, "band").len(), 1);
+    assert!(column(&keyed, "limit_level")[0].is_infinite());
+    assert!(column(&keyed, "traffic_days").iter().zip(column(&keyed, "traffic")).all(|(d, t)| *d == t / 1920.0));
 }

@@ -43,7 +43,12 @@ def _traffic_note(rail, pass_index: int) -> str:
     if "traffic" not in rail:
         return ""
     seen = float(rail["traffic"].sel({"pass": pass_index}).values)
-    return f" alone (one wheel passage; the rail has seen {seen:.3g} in all)"
+    return f" (the rail has seen {seen:.3g} wheel passages in all)"
+
+
+def _wear_title(run: Run, pass_index: int, note: str) -> str:
+    return (f"Wear depth of passage {pass_index + 1} alone: one wheel passage, unscaled{note}\n"
+            f"contact model: {run.contact_model}")
 
 
 def wear_map(run: Run, pass_index: int, out_dir: Path) -> Path:
@@ -58,7 +63,7 @@ def wear_map(run: Run, pass_index: int, out_dir: Path) -> Path:
     mesh = ax.pcolormesh(x, y, values_in(wear, unit), shading="auto", cmap="viridis")
     fig.colorbar(mesh, ax=ax, label=f"wear depth ({label})")
     ax.set(xlabel="x along rail (mm)", ylabel="y lateral (mm)",
-           title=_title(run, "Wear depth of", pass_index, note))
+           title=_wear_title(run, pass_index, note))
     return _save(fig, out_dir, "wear_map.png")
 
 
@@ -76,7 +81,7 @@ def wear_centreline(run: Run, pass_index: int, out_dir: Path) -> Path:
     ax.plot(x, values_in(row, unit), label=f"centre line (y = {y0:.2f} mm)")
     ax.plot(x, values_in(wear.max("y"), unit), "--", label="maximum over y")
     ax.set(xlabel="x along rail (mm)", ylabel=f"wear depth ({label})",
-           title=_title(run, "Wear depth of", pass_index, note))
+           title=_wear_title(run, pass_index, note))
     ax.grid(alpha=0.3)
     ax.legend()
     return _save(fig, out_dir, "wear_centreline.png")
@@ -258,7 +263,7 @@ def spectrum(run: Run, pass_index: int, out_dir: Path) -> Path | None:
         ax.set_xlabel(f"{wl.name} ({wl.attrs.get('units', '?')})")
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3, which="both")
-    ax.set_title(_title(run, "Centre-line corrugation spectrum after", pass_index))
+    ax.set_title(_title(run, "Centre-line corrugation amplitude spectrum", pass_index))
     return _save(fig, out_dir, "spectrum.png")
 
 

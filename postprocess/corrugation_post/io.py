@@ -63,8 +63,14 @@ def check_run_file(path: str | Path) -> Path:
     try:
         with h5py.File(path, "r") as f:
             has_rail = isinstance(f.get(RAIL), h5py.Group)
+            kind = ("a `corrugation track` file (receptances): `corrugation-post track` draws it"
+                    if isinstance(f.get("track"), h5py.Group)
+                    else "a collected sweep: `corrugation-post sweep` maps it" if "sweep_spec" in f.attrs
+                    else None)
     except OSError as err:  # truncated file, still being written, ...
         raise RunFileError(f"{path}: cannot be opened: {err}") from err
+    if kind is not None:
+        raise RunFileError(f"{path}: {kind}; not a run file")
     if not has_rail:
         raise RunFileError(
             f"{path}: no '{RAIL}' group; not a corrugation run file, "

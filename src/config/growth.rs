@@ -125,7 +125,18 @@ pub fn read(
         None => (None, None),
     };
 
-    match (passes, traffic_scaling, store_every, checkpoint_every, history, roughness, dynamics, stop, classes, operation) {
+    match (
+        passes,
+        traffic_scaling,
+        store_every,
+        checkpoint_every,
+        history,
+        roughness,
+        dynamics,
+        stop,
+        classes,
+        operation,
+    ) {
         (
             Some(passes),
             Some(traffic),

@@ -61,7 +61,13 @@ pub fn read(root: &mut Table, resolved: &mut Table, dir: &Path, errors: &mut Vec
     };
     for (key, needs) in [("limit_file", "file"), ("limit_table", "table")] {
         if s.has(key) && kind.as_deref().is_some_and(|k| k != needs) {
-            s.error(key, format!("is only read with levels.limit = \"{needs}\" (levels.limit = \"{}\")", kind.as_deref().unwrap_or("")));
+            s.error(
+                key,
+                format!(
+                    "is only read with levels.limit = \"{needs}\" (levels.limit = \"{}\")",
+                    kind.as_deref().unwrap_or("")
+                ),
+            );
         }
     }
     let curve = curve.map(|c| LimitCurve { name: name.clone().unwrap_or(c.name), ..c });
@@ -115,11 +121,17 @@ fn read_table(s: &mut Section, set: BandSet) -> Option<LimitCurve> {
     let mut points: Vec<(f64, f64)> = Vec::new();
     for (i, (w, l)) in entries.into_iter().enumerate() {
         let Some(band) = band_of(set, w) else {
-            s.error(&format!("limit_table[{i}].wavelength"), format!("= {w} m is in none of the bands ({})", set_name(set)));
+            s.error(
+                &format!("limit_table[{i}].wavelength"),
+                format!("= {w} m is in none of the bands ({})", set_name(set)),
+            );
             return None;
         };
         if let Some(j) = points.iter().position(|(p, _)| band.contains(*p)) {
-            s.error(&format!("limit_table[{i}].wavelength"), format!("= {w} m: the {} band again (entry {j})", band.label()));
+            s.error(
+                &format!("limit_table[{i}].wavelength"),
+                format!("= {w} m: the {} band again (entry {j})", band.label()),
+            );
             return None;
         }
         points.push((w, l));

@@ -216,8 +216,11 @@ fn read_class(s: &mut Section, index: usize, base: BaseClass) -> Option<(Traffic
     let share = s.f64("share", None, Range::OpenClosed(0.0, 1e9));
     // A class may be a vehicle of its own.
     let wheels = if s.has("wheels") { super::vehicle::positions(s).map(Some) } else { Some(None) };
-    let axle_load =
-        if s.has("axle_load") { s.f64("axle_load", None, Range::OpenClosed(0.0, MAX_AXLE_LOAD)).map(Some) } else { Some(None) };
+    let axle_load = if s.has("axle_load") {
+        s.f64("axle_load", None, Range::OpenClosed(0.0, MAX_AXLE_LOAD)).map(Some)
+    } else {
+        Some(None)
+    };
     let class = TrafficClass {
         name: name.filter(|n| valid(n))?,
         speed: speed?,

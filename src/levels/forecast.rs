@@ -51,7 +51,8 @@ impl Units {
     /// The units of `operation` with the traffic classes' `shares` (1,
     /// summing to 1; the mean axle load weighs the classes by them).
     pub fn new(operation: &Operation, shares: &[f64]) -> Self {
-        let tonnes = operation.axle_loads.as_ref().map(|a| a.iter().zip(shares).map(|(m, s)| m * s).sum::<f64>() * 1e-3);
+        let tonnes =
+            operation.axle_loads.as_ref().map(|a| a.iter().zip(shares).map(|(m, s)| m * s).sum::<f64>() * 1e-3);
         Units { tonnes_per_passage: tonnes, axles_per_day: operation.axles_per_day }
     }
 
@@ -136,7 +137,9 @@ pub fn outlook(s: &Standing) -> Vec<String> {
         return lines;
     };
     if s.bands.is_empty() {
-        return vec!["no one-third-octave band is resolved on this stretch (a band needs a quarter of its length)".into()];
+        return vec![
+            "no one-third-octave band is resolved on this stretch (a band needs a quarter of its length)".into(),
+        ];
     }
     let name = s.limit_name;
     let finite = s.limit.iter().any(|l| l.is_finite());
@@ -164,15 +167,25 @@ pub fn outlook(s: &Standing) -> Vec<String> {
         .filter(|&k| to_limit[k] > 0.0 && to_limit[k].is_finite())
         .min_by(|&a, &b| to_limit[a].total_cmp(&to_limit[b]));
     match next {
-        Some(k) => lines.push(format!(
-            "the {} band reaches the {name} limit ({:.1} dB re 1 um) after {} from the start, at passage {pass}'s \
-             rate ({:+.2} dB per 1e5 wheel passages from {:.1} dB)",
-            s.bands[k].label(),
-            s.limit[k],
-            s.units.describe(so_far + to_limit[k]),
-            rates[k],
-            last[k],
-        )),
+        Some(k) => {
+            let column: Vec<f64> = s.levels.iter().map(|l| l[k]).collect();
+            let slower = power_law(&column, s.traffic, rates[k]).map_or_else(String::new, |p| {
+                format!(
+                    "; but its amplitude has grown as traffic^{p:.2} (not exponentially): at that pace it reaches the \
+                     limit after {}",
+                    s.units.describe(so_far * 10f64.powf((s.limit[k] - last[k]) / (20.0 * p)))
+                )
+            });
+            lines.push(format!(
+                "the {} band reaches the {name} limit ({:.1} dB re 1 um) after {} from the start, at passage \
+                 {pass}'s rate ({:+.2} dB per 1e5 wheel passages from {:.1} dB){slower}",
+                s.bands[k].label(),
+                s.limit[k],
+                s.units.describe(so_far + to_limit[k]),
+                rates[k],
+                last[k],
+            ))
+        }
         None => lines.push(format!("at passage {pass}'s rates no band below the {name} limit grows towards it")),
     }
     let above: Vec<usize> = (0..s.bands.len()).filter(|&k| to_limit[k] == 0.0).collect();
@@ -182,11 +195,30 @@ pub fn outlook(s: &Standing) -> Vec<String> {
         lines.push(format!("above the {name} limit after passage {pass}: {}", list.join(", ")));
     }
     if s.units.tonnes_per_passage.is_none() || s.units.axles_per_day.is_none() {
-        lines.push(
-            "(traffic.axle_load and traffic.axles_per_day give these in million gross tonnes and days)".into(),
-        );
+        lines.push("(traffic.axle_load and traffic.axles_per_day give these in million gross tonnes and days)".into());
     }
     lines
+}
+
+/// The exponent `p` of a band whose amplitude has grown as a power of the
+/// traffic, `A ~ T^p` (its level as `20 p lg T`: wear that adds to the
+/// profile without feeding back, `p = 1`, rather than the exponential
+/// growth of the linear regime), if it has: over the second half of the
+/// run in traffic (from the last passage at most half the final traffic)
+/// the level rose by `20 p lg(T_n / T_h)` with `p` in [0.5, 2], and the last
+/// rate agrees, `rate = 20 p / (ln 10 T_n) 1e5`, within 20 %. An
+/// exponential growth fails the test: its rate is `x ln x / (x - 1)`
+/// (1.39 at `x = T_n/T_h = 2`) times the power law's.
+pub fn power_law(levels: &[f64], traffic: &[f64], rate: f64) -> Option<f64> {
+    let (&t_n, &l_n) = (traffic.last()?, levels.last()?);
+    let h = traffic.iter().rposition(|t| *t <= 0.5 * t_n)?;
+    let (t_h, l_h) = (traffic[h], levels[h]);
+    if !(t_h > 0.0 && l_h > super::LEVEL_FLOOR) {
+        return None;
+    }
+    let p = (l_n - l_h) / (20.0 * (t_n / t_h).log10());
+    let p_rate = rate * t_n / 1e5 * std::f64::consts::LN_10 / 20.0;
+    ((0.5..=2.0).contains(&p) && (p_rate / p - 1.0).abs() < 0.2).then_some(p)
 }
 
 #[cfg(test)]
@@ -206,6 +238,19 @@ mod tests {
         let (l, r, lim) = (-3.7, 0.83, 2.9);
         let n = passages_to_limit(l, r, lim);
         assert!((l + r * n / 1e5 - lim).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_power_law_is_told_from_exponential_growth() {
+        // Amplitude proportional to traffic: L = 20 lg T + c, rate 20/(ln 10 T) 1e5.
+        let traffic: Vec<f64> = (1..=20).map(|k| 1e4 * k as f64).collect();
+        let linear: Vec<f64> = traffic.iter().map(|t| 20.0 * t.log10() - 100.0).collect();
+        let rate = 20.0 / (std::f64::consts::LN_10 * 2e5) * 1e5;
+        assert!((power_law(&linear, &traffic, rate).unwrap() - 1.0).abs() < 1e-9);
+        // Exponential growth at 1 dB per 1e5: not a power law.
+        let exponential: Vec<f64> = traffic.iter().map(|t| -30.0 + t / 1e5).collect();
+        assert_eq!(power_law(&exponential, &traffic, 1.0), None);
+        assert_eq!(power_law(&linear[..1], &traffic[..1], rate), None);
     }
 
     #[test]
@@ -246,8 +291,14 @@ mod tests {
         assert!(lines[0].starts_with("the 31.5 mm band reached the ISO 3095 limit (15.0 dB re 1 um) in passage 2"));
         assert!(lines[0].ends_with("after 4.0 MGT, 20 days at 10000 axles per day (2.00e5 wheel passages)"));
         // 25 mm: 3 dB at 1 dB per 1e5: 3e5 more, 5e5 from the start.
-        assert!(lines[1].starts_with("the 25 mm band reaches the ISO 3095 limit (13.0 dB re 1 um) after 10 MGT, 50 days"));
-        assert!(lines[1].ends_with("at passage 2's rate (+1.00 dB per 1e5 wheel passages from 10.0 dB)"), "{}", lines[1]);
+        assert!(
+            lines[1].starts_with("the 25 mm band reaches the ISO 3095 limit (13.0 dB re 1 um) after 10 MGT, 50 days")
+        );
+        assert!(
+            lines[1].ends_with("at passage 2's rate (+1.00 dB per 1e5 wheel passages from 10.0 dB)"),
+            "{}",
+            lines[1]
+        );
         assert!(lines[2].contains("31.5 mm (by 0.5 dB)"));
     }
 }

@@ -173,8 +173,11 @@ pub fn read_curve(text: &str, file: &str, set: BandSet) -> Result<Vec<(f64, f64)
 /// Reads the limit curve CSV at `path` (see [`read_curve`]).
 pub fn read_curve_file(path: &Path, set: BandSet) -> Result<Vec<(f64, f64)>, CurveError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| CurveError { file: file.clone(), line: 0, message: format!("cannot read: {e}") })?;
+    let text = std::fs::read_to_string(path).map_err(|e| CurveError {
+        file: file.clone(),
+        line: 0,
+        message: format!("cannot read: {e}"),
+    })?;
     read_curve(&text, &file, set)
 }
 
@@ -198,8 +201,8 @@ mod tests {
         let bands: Vec<Band> = (4..=25).map(Band::third_octave).collect();
         let limit = curve.on(&bands);
         let table = [
-            17.1, 15.0, 13.0, 11.0, 9.0, 7.0, 4.9, 2.9, 0.9, -1.1, -3.2, -5.0, -5.6, -6.2, -6.8, -7.4, -8.0, -8.6, -9.2,
-            -9.8, -10.4, -11.0,
+            17.1, 15.0, 13.0, 11.0, 9.0, 7.0, 4.9, 2.9, 0.9, -1.1, -3.2, -5.0, -5.6, -6.2, -6.8, -7.4, -8.0, -8.6,
+            -9.2, -9.8, -10.4, -11.0,
         ];
         assert_eq!(limit, table);
         // 400 mm is band k = 4, 3.15 mm k = 25; beyond the table no limit.

@@ -176,8 +176,10 @@ impl BandLevels {
     pub fn new(set: BandSet, grid: &RailGrid, half_band: f64) -> Self {
         let (n, length) = (grid.nx, grid.nx as f64 * grid.dx);
         let bands = resolved_bands(set, n, grid.dx);
-        let members =
-            bands.iter().map(|b| (1..=n / 2).filter(|&k| b.contains(length / k as f64)).map(|k| k - 1).collect()).collect();
+        let members = bands
+            .iter()
+            .map(|b| (1..=n / 2).filter(|&k| b.contains(length / k as f64)).map(|k| k - 1).collect())
+            .collect();
         let mut rows: Vec<usize> = (0..grid.ny).filter(|&j| grid.y(j).abs() <= half_band * (1.0 + 1e-12)).collect();
         if rows.is_empty() {
             rows.push(crate::metrics::centre_row(grid));
@@ -225,8 +227,8 @@ mod tests {
     fn third_octave_bands_have_the_nominal_labels_and_edges() {
         let labels: Vec<f64> = (10..=30).map(|k| Band::third_octave(k).wavelength * 1e3).collect();
         let want = [
-            100.0, 80.0, 63.0, 50.0, 40.0, 31.5, 25.0, 20.0, 16.0, 12.5, 10.0, 8.0, 6.3, 5.0, 4.0, 3.15, 2.5, 2.0,
-            1.6, 1.25, 1.0,
+            100.0, 80.0, 63.0, 50.0, 40.0, 31.5, 25.0, 20.0, 16.0, 12.5, 10.0, 8.0, 6.3, 5.0, 4.0, 3.15, 2.5, 2.0, 1.6,
+            1.25, 1.0,
         ];
         for (l, w) in labels.iter().zip(want) {
             assert!((l - w).abs() < 1e-9 * w, "{l} vs {w}");
@@ -275,7 +277,9 @@ mod tests {
         let line: Vec<f64> = grid
             .xs()
             .iter()
-            .map(|x| harmonics.iter().map(|(n, a)| a * (2.0 * PI * *n as f64 * x / length + 0.7 * *n as f64).sin()).sum())
+            .map(|x| {
+                harmonics.iter().map(|(n, a)| a * (2.0 * PI * *n as f64 * x / length + 0.7 * *n as f64).sin()).sum()
+            })
             .collect();
         let profile = Array2::from_shape_fn((grid.ny, grid.nx), |(_, i)| line[i]);
         let levels = BandLevels::new(BandSet::ThirdOctave, &grid, 0.005);
@@ -301,9 +305,8 @@ mod tests {
     fn lines_across_the_running_band_average_by_mean_square() {
         // Lines at y = -1, 0, 1 mm with 1, 3 and 1 um of one harmonic (25 mm).
         let grid = RailGrid { x_min: 0.0, dx: 1e-3, nx: 100, half_width: 0.001, dy: 0.001, ny: 3 };
-        let profile = Array2::from_shape_fn((3, 100), |(j, i)| {
-            [1e-6, 3e-6, 1e-6][j] * (2.0 * PI * 4.0 * i as f64 / 100.0).sin()
-        });
+        let profile =
+            Array2::from_shape_fn((3, 100), |(j, i)| [1e-6, 3e-6, 1e-6][j] * (2.0 * PI * 4.0 * i as f64 / 100.0).sin());
         // |y| <= 0.5 mm: the centre line alone, 4.5 um^2.
         let centre = BandLevels::new(BandSet::ThirdOctave, &grid, 0.0005);
         assert_eq!(centre.rows(), &[1]);

@@ -136,7 +136,13 @@ pub fn write_passes(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
     }
     if let Some(a) = u.axles_per_day {
         let v = to_limit.mapv(|n| n / a);
-        g.var_f64("days_to_limit", &dims, v.view().into_dyn(), "d", "days from the passage until the band reaches its limit")?;
+        g.var_f64(
+            "days_to_limit",
+            &dims,
+            v.view().into_dyn(),
+            "d",
+            "days from the passage until the band reaches its limit",
+        )?;
     }
     Ok(())
 }
