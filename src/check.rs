@@ -241,6 +241,7 @@ pub fn print_check(r: &Resolved) {
             ),
         }
         println!("checkpoints        every {} passages; rail stored every {}", g.checkpoint_every, g.store_every);
+        print_field_units(s, g);
         if corrugation::config::traffic::is_mix(&g.classes) {
             for c in &g.classes {
                 println!(
@@ -466,5 +467,38 @@ fn print_normal_contact(normal: NormalContact, fixed: bool) {
             "normal contact     auto: {linear}; a corrugation that opens the patch inside is reported (the \
              nonlinear profile contact needs contact.grid = \"fixed\")"
         ),
+    }
+}
+
+/// The roughness levels' bands and limit, and the traffic in the operator's
+/// units (issue 35).
+fn print_field_units(s: &corrugation::params::Scene, g: &corrugation::params::GrowthParams) {
+    use corrugation::levels::{forecast::Units, resolved_bands};
+    let grid = corrugation::build::study_grid(s);
+    let bands = resolved_bands(s.levels.bands, grid.nx, grid.dx);
+    let limit = s.levels.limit.on(&bands);
+    match (bands.first(), bands.last()) {
+        (Some(long), Some(short)) => println!(
+            "roughness levels   {} bands, {} to {} (a quarter of the stretch down to the grid), against the {} limit \
+             ({} of them with a value)",
+            bands.len(),
+            long.label(),
+            short.label(),
+            s.levels.limit.name,
+            limit.iter().filter(|l| l.is_finite()).count()
+        ),
+        _ => println!("roughness levels   no band resolved (a band needs a quarter of the stretch)"),
+    }
+    let shares: Vec<f64> = g.classes.iter().map(|c| c.share).collect();
+    let units = Units::new(&g.operation, &shares);
+    let mut parts = Vec::new();
+    if let Some(t) = units.tonnes_per_passage {
+        parts.push(format!("{t:.2} t per wheel passage (MGT)"));
+    }
+    if let Some(a) = units.axles_per_day {
+        parts.push(format!("{a} axles per day (days)"));
+    }
+    if !parts.is_empty() {
+        println!("operator traffic   {}", parts.join(", "));
     }
 }

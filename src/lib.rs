@@ -16,6 +16,7 @@ pub mod creep_coefficients;
 pub mod dynamics;
 pub mod growth;
 pub mod hertz;
+pub mod levels;
 pub mod loads;
 pub mod metrics;
 pub mod model_choice;

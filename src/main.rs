@@ -378,7 +378,7 @@ fn report(s: &RunSummary, out: &Path) {
         s.rms_corrugation,
     );
     if let Some(reason) = &s.stop_reason {
-        say!("the study stopped before its planned passages (growth.stop = \"saturation\"): {reason}");
+        say!("the study stopped before its planned passages (growth.stop): {reason}");
     }
     let (q, pass) = s.max_update_ratio;
     if q > s.update_bound * (1.0 + 1e-9) {
@@ -392,5 +392,9 @@ fn report(s: &RunSummary, out: &Path) {
              its amplitude (bound {}); {effect}. Lower growth.traffic_scale or set growth.adaptive = true.",
             s.update_bound
         );
+    }
+    // The last lines: where the rail stands against the roughness limit.
+    for line in &s.outlook {
+        say!("{line}");
     }
 }

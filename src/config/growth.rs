@@ -38,7 +38,7 @@ pub fn read(
     let adaptive = s.bool("adaptive", false);
     let scale_max = s.f64("traffic_scale_max", Some(1e9), Range::Closed(1.0, 1e9));
     let ratio = s.f64("max_update_ratio", Some(DEFAULT_MAX_UPDATE_RATIO), Range::OpenClosed(0.0, 1.0));
-    let traffic = match (traffic_scale, adaptive, scale_max, ratio) {
+    let traffic_scaling = match (traffic_scale, adaptive, scale_max, ratio) {
         (Some(scale), Some(false), Some(_), Some(max_update_ratio)) => {
             Some(TrafficScaling::Fixed { scale, max_update_ratio })
         }
@@ -54,10 +54,11 @@ pub fn read(
     let store_every = s.usize("store_every", Some(1), 1, 1_000_000);
     let checkpoint_every = s.usize("checkpoint_every", Some(10), 1, 1_000_000);
     let history = s.usize_list("contact_history", vec![0], 1_000_000);
-    let stop = s.choice("stop", Some("never"), &["never", "saturation"]);
+    let stop = s.choice("stop", Some("never"), &["never", "saturation", "limit"]);
     let rate = s.f64("saturation_rate", Some(DEFAULT_SATURATION_RATE), Range::OpenClosed(0.0, 100.0));
     let stop = match (stop.as_deref(), rate) {
         (Some("saturation"), Some(rate)) => Some(StopRule::Saturation { rate }),
+        (Some("limit"), Some(_)) => Some(StopRule::Limit),
         (Some(_), Some(_)) => Some(StopRule::Never),
         _ => None,
     };
@@ -83,9 +84,24 @@ pub fn read(
         _ => None,
     };
     resolved.insert("dynamics".into(), Value::Table(s.finish()));
-    let classes = super::traffic::read(root, resolved, BaseClass { unsprung_mass: mass, ..base }, errors);
+    let traffic = super::traffic::read(root, resolved, BaseClass { unsprung_mass: mass, ..base }, errors);
+    let (classes, operation) = match traffic {
+        Some((c, o)) => (Some(c), Some(o)),
+        None => (None, None),
+    };
 
-    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics, stop, classes, directions) {
+    match (
+        passes,
+        traffic_scaling,
+        store_every,
+        checkpoint_every,
+        history,
+        roughness,
+        dynamics,
+        stop,
+        classes,
+        (operation, directions),
+    ) {
         (
             Some(passes),
             Some(traffic),
@@ -96,7 +112,7 @@ pub fn read(
             Some(dynamics),
             Some(stop),
             Some(classes),
-            Some(directions),
+            (Some(operation), Some(directions)),
         ) => Ok(Some(GrowthParams {
             passes,
             traffic,
@@ -108,6 +124,7 @@ pub fn read(
             directions,
             stop,
             classes,
+            operation,
         })),
         _ => Err(()),
     }

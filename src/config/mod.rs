@@ -10,6 +10,7 @@
 mod auto;
 pub mod contact;
 mod growth;
+mod levels;
 mod load;
 mod overrides;
 pub mod quantity;
@@ -101,7 +102,8 @@ pub struct Resolved {
     pub warnings: Vec<String>,
 }
 
-/// Reads and validates the config file at `path` with `--set` overrides.
+/// Reads and validates the config file at `path` with `--set` overrides
+/// (files it names are relative to its folder).
 pub fn load_file(path: &Path, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
     let source = path.display().to_string();
     if is_hdf5(path) {
@@ -258,6 +260,12 @@ fn overridden_step_sets_both(root: &mut Table, overrides: &[String]) {
 
 /// Sections and their readers, in the order they are documented.
 fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigError>) -> (Option<Scene>, Table) {
+    // Files other than a measured record (levels.limit_file) are read
+    // relative to the config's folder; a resumed run has their contents.
+    let dir = match records {
+        RecordSource::Dir(d) => d.as_path(),
+        RecordSource::Stored(_) => Path::new("."),
+    };
     let mut resolved = Table::new();
     fn section<'e>(root: &mut Table, name: &str, errors: &'e mut Vec<ConfigError>) -> Section<'e> {
         Section::new(root, "", name, errors)
@@ -323,6 +331,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     };
     let ctx = roughness::Context { source: records, stretch, wheel_radius };
     let growth = growth::read(&mut root, &mut resolved, base, &ctx, errors);
+    let levels = levels::read(&mut root, &mut resolved, dir, errors);
     let vehicle = vehicle::read(&mut root, &mut resolved, errors);
     let wheelset = wheelset::read(&mut root, &mut resolved, errors);
     // The track matters to growth studies (and is read when given).
@@ -410,7 +419,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
             "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into(),
         ));
     }
-    let (Some(vehicle), Some(wheelset)) = (vehicle, wheelset) else {
+    let (Some(vehicle), Some(wheelset), Some(levels)) = (vehicle, wheelset, levels) else {
         return (None, resolved);
     };
     let Some(track) = track else {
@@ -529,6 +538,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         step_length,
         rail: RailParams { x_min, x_max, dx, dy, half_width },
         output: OutputParams { store_fields, title },
+        levels,
         growth,
         track,
         vehicle,

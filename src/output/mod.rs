@@ -2,6 +2,7 @@
 //! run-file layout (README: Output) ([`run_file`]).
 
 pub mod checkpoint;
+mod field_units;
 mod h5ds;
 pub mod netcdf;
 pub mod run_file;

@@ -8,7 +8,8 @@
 //! * group `rail`: coordinates `x`, `y`, `pass`; `traffic(pass)`,
 //!   `profile(pass, y, x)`, `wear(pass, y, x)`, and `state(y, x)`, the
 //!   profile after the last passage done (what a resumed run starts from);
-//! * group `passes`: one row per simulated passage;
+//! * group `passes`: one row per simulated passage, with the band levels
+//!   in the field's units ([`super::field_units`]);
 //! * group `contact/pass_NNNNN`: the patch history of a stored passage;
 //! * group `record` (a measured initial roughness): coordinate `position`
 //!   (m), `height(position)` (m), the record as read, before processing;
@@ -19,7 +20,8 @@ use super::netcdf::{NcError, NcGroup, write_atomically};
 use crate::contact::Elements;
 use crate::growth::record::RecordSamples;
 use crate::growth::state::{PassRow, RailSnapshot, RunState};
-use crate::params::TrafficClass;
+use crate::levels::Band;
+use crate::params::{Operation, TrafficClass};
 use crate::passage::{PatchFields, PatchHistory};
 use crate::rail_grid::RailGrid;
 use ndarray::{Array1, Array2, Array3, ArrayView1};
@@ -53,6 +55,14 @@ pub struct RunRecord<'a> {
     pub classes: &'a [TrafficClass],
     /// The measured record of the initial roughness, if any.
     pub record: Option<&'a RecordSamples>,
+    /// The bands of the roughness levels.
+    pub bands: &'a [Band],
+    /// Each band's limit (dB re 1 um; inf: none).
+    pub limit: &'a [f64],
+    /// The limit's name ("ISO 3095").
+    pub limit_name: &'a str,
+    /// The traffic in the operator's units (a growth study's `[traffic]`).
+    pub operation: Option<&'a Operation>,
 }
 
 /// Writes `record` to `path` atomically.
@@ -69,8 +79,12 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         root.attr_str("stop_reason", record.stop_reason.unwrap_or(""))?;
         root.attr_i64("passes_done", done as i64)?;
         root.attr_i64("passes_planned", record.passes_planned as i64)?;
-        write_rail(&root.group("rail")?, record)?;
-        write_passes(&root.group("passes")?, &record.state.rows, record.wavelengths, record.classes)?;
+        let rail = root.group("rail")?;
+        write_rail(&rail, record)?;
+        super::field_units::write_rail(&rail, record)?;
+        let passes = root.group("passes")?;
+        write_passes(&passes, &record.state.rows, record.wavelengths, record.classes)?;
+        super::field_units::write_passes(&passes, record)?;
         if !record.classes.is_empty() {
             write_classes(&root.group("traffic")?, record.classes)?;
         }

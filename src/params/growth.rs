@@ -84,6 +84,21 @@ pub struct GrowthParams {
     /// The traffic classes (`[[traffic.mix]]`, shares summing to 1; one
     /// class of the base config without `[traffic]`).
     pub classes: Vec<TrafficClass>,
+    /// The traffic in the operator's units (`[traffic]`'s axle loads and
+    /// axles per day), where given.
+    pub operation: Operation,
+}
+
+/// The traffic in the operator's units: what converts wheel passages of
+/// the rail into million gross tonnes and days ([`crate::levels::forecast`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Operation {
+    /// Gross mass per axle of each traffic class, in class order (kg);
+    /// None where not given (no tonnes).
+    pub axle_loads: Option<Vec<f64>>,
+    /// Axles over the rail per day, each one wheel passage of the rail
+    /// (1/d); None where not given (no days).
+    pub axles_per_day: Option<f64>,
 }
 
 /// The directions of a growth study's track dynamics (`dynamics.directions`).
@@ -120,6 +135,9 @@ pub enum StopRule {
         /// saturated (dB per 1e5 real passages).
         rate: f64,
     },
+    /// Stops after the passage at which a band's roughness level reaches
+    /// its limit from below (`levels.limit`; [`crate::levels`]).
+    Limit,
 }
 
 /// How `m`, the real passages one simulated passage stands for, is chosen

@@ -13,7 +13,8 @@ mod growth;
 
 pub use choice::{AutoChoice, Candidate};
 pub use growth::{
-    Directions, DynamicsKind, GrowthParams, LevelBand, ProfileHarmonic, Roughness, StopRule, TrafficClass,
+    Directions, DynamicsKind, GrowthParams, LevelBand, Operation, ProfileHarmonic, Roughness, StopRule,
+    TrafficClass,
     TrafficScaling,
 };
 
@@ -365,6 +366,22 @@ pub struct OutputParams {
     pub title: String,
 }
 
+/// The roughness levels the run reports (`[levels]`): their bands and the
+/// limit they are held against ([`crate::levels`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LevelParams {
+    /// The bands.
+    pub bands: crate::levels::BandSet,
+    /// The limit curve.
+    pub limit: crate::levels::limit::LimitCurve,
+}
+
+impl Default for LevelParams {
+    fn default() -> Self {
+        LevelParams { bands: crate::levels::BandSet::ThirdOctave, limit: crate::levels::limit::LimitCurve::iso3095() }
+    }
+}
+
 /// A whole validated scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -399,6 +416,8 @@ pub struct Scene {
     pub rail: RailParams,
     /// Output.
     pub output: OutputParams,
+    /// The roughness levels reported and their limit (`[levels]`).
+    pub levels: LevelParams,
     /// Growth study (None: a single passage).
     pub growth: Option<GrowthParams>,
     /// The track under the wheel (`[track]`).

@@ -133,6 +133,9 @@ pub struct RunSummary {
     pub update_bound: f64,
     /// Why the study stopped before its planned passages (`growth.stop`).
     pub stop_reason: Option<String>,
+    /// Where the rail stands against the roughness limit, in words
+    /// ([`crate::levels::forecast::outlook`]; empty for one passage).
+    pub outlook: Vec<String>,
 }
 
 /// Runs the scene (one passage, or a growth study over `growth.passes`
@@ -198,6 +201,7 @@ pub fn resume(
     let layout = StateLayout {
         grid_shape: (grid.ny, grid.nx),
         wavelengths: wavelengths(grid.nx, grid.dx).len(),
+        bands: crate::levels::resolved_bands(scene.levels.bands, grid.nx, grid.dx).len(),
         elements,
         fields: scene.output.store_fields,
         history_passes: &growth.contact_history,
@@ -258,6 +262,10 @@ fn continue_run(
                 Some(crate::params::Roughness::Measured(m)) => Some(&m.samples),
                 _ => None,
             },
+            bands: study.bands().0,
+            limit: study.bands().1,
+            limit_name: &scene.levels.limit.name,
+            operation: scene.growth.as_ref().map(|g| &g.operation),
         };
         write_run_file(out, &record)
     };
@@ -279,6 +287,26 @@ fn continue_run(
     progress(Event::Writing { done: study.state().rows.len() });
     write(&study)?;
     let rows = &study.state().rows;
+    let outlook = match &scene.growth {
+        Some(g) => {
+            let (bands, limit) = study.bands();
+            let levels: Vec<Vec<f64>> = rows.iter().map(|r| r.roughness_level.clone()).collect();
+            let rates: Vec<Vec<f64>> = rows.iter().map(|r| r.level_rate.clone()).collect();
+            let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
+            let shares: Vec<f64> = study.classes().iter().map(|c| c.share).collect();
+            crate::levels::forecast::outlook(&crate::levels::forecast::Standing {
+                bands,
+                limit,
+                limit_name: &scene.levels.limit.name,
+                initial: &study.state().initial_level,
+                levels: &levels,
+                rates: &rates,
+                traffic: &traffic,
+                units: crate::levels::forecast::Units::new(&g.operation, &shares),
+            })
+        }
+        None => Vec::new(),
+    };
     Ok(RunSummary {
         passes: rows.len(),
         computed: rows.len() - study.first(),
@@ -296,5 +324,6 @@ fn continue_run(
             .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a }),
         update_bound: study.update_bound(),
         stop_reason: study.stopped().map(str::to_owned),
+        outlook,
     })
 }
