@@ -15,8 +15,10 @@ use crate::dynamics::discrete_dynamics::DiscreteDynamics;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
 use crate::dynamics::torsion::{TorsionFeedback, WheelsetTorsion};
 use crate::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
+use crate::dynamics::wheelset::rigid::RigidWheelset;
+use crate::dynamics::wheelset::{WheelsetModel, standard};
 use crate::hertz::{HertzPatch, HertzShape};
-use crate::params::{ContactGrid, ContactModel, DynamicsKind, NormalContact, Scene};
+use crate::params::{ContactGrid, ContactModel, DynamicsKind, NormalContact, Scene, WheelsetModes};
 use crate::passage::PassageSpec;
 use crate::rail_grid::RailGrid;
 use crate::wear::{CellDeposit, WearDeposit, WearKernel};
@@ -285,7 +287,7 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
 /// *Veh. Syst. Dyn.* 11 (1982) 1-13; quasi-static), for a wheel of mean
 /// normal force `n0` (N).
 pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<TorsionFeedback> {
-    let (w, xi0) = (scene.wheelset?, scene.creepage_x?);
+    let (w, xi0) = (scene.wheelset.as_ref()?, scene.creepage_x?);
     let elastic = scene.material.elastic;
     let coefficients = creep_coefficients(shape.aspect(), elastic.poisson_ratio).expect("validated aspect");
     let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, elastic.shear_modulus());
@@ -313,6 +315,46 @@ pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<To
         radius: scene.geometry.wheel_radius,
     };
     Some(TorsionFeedback { torsion, force_per_normal, force_per_creepage })
+}
+
+/// The wheelset's modal model ([`crate::dynamics::wheelset`]) where the
+/// scene has `[wheelset]`: with `model = "modal"` the rigid wheelset on its
+/// primary suspension and the default's or the user's table's flexible
+/// modes; with the torsional model alone (`model = "torsion"`) its two
+/// modes ([`WheelsetModel::torsion`]), whose receptance is the torsion's
+/// eq. 1. The rolling radius is the scene's wheel radius.
+pub fn wheelset_model(scene: &Scene) -> Option<WheelsetModel> {
+    let w = scene.wheelset.as_ref()?;
+    let radius = scene.geometry.wheel_radius;
+    let Some(m) = &w.modal else {
+        let torsion =
+            WheelsetTorsion { stiffness: w.stiffness, loss_factor: w.loss_factor, inertia: w.inertia, radius };
+        return Some(WheelsetModel::torsion(&torsion));
+    };
+    let rigid = RigidWheelset {
+        mass: m.mass,
+        roll_inertia: m.roll_inertia,
+        yaw_inertia: m.yaw_inertia,
+        spin_inertia: 2.0 * w.inertia,
+        stiffness_x: m.suspension_stiffness[0],
+        stiffness_y: m.suspension_stiffness[1],
+        stiffness_z: m.suspension_stiffness[2],
+        loss_factor: m.suspension_loss_factor,
+        axle_box_half_spacing: m.axle_box_spacing / 2.0,
+        contact_half_spacing: m.contact_spacing / 2.0,
+        radius,
+    };
+    let model = match &m.modes {
+        WheelsetModes::Default { bending_damping, wheel_damping } => standard::default_model(&standard::Design {
+            rigid,
+            torsional_stiffness: w.stiffness,
+            torsional_loss_factor: w.loss_factor,
+            bending_damping: *bending_damping,
+            wheel_damping: *wheel_damping,
+        }),
+        WheelsetModes::Table { table, .. } => standard::table_model(&rigid, table),
+    };
+    Some(model.expect("validated keys and table make a valid model"))
 }
 
 /// The track model of a growth study, if it has one. The discrete model

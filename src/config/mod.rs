@@ -94,18 +94,27 @@ pub struct Resolved {
     pub toml: String,
 }
 
-/// Reads and validates the config file at `path` with `--set` overrides.
+/// Reads and validates the config file at `path` with `--set` overrides;
+/// files the config names (a wheelset's modal table) are relative to its
+/// directory.
 pub fn load_file(path: &Path, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
     let source = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| ConfigErrors {
         source: source.clone(),
         errors: vec![ConfigError::new("file", format!("cannot read: {e}"))],
     })?;
-    load_str(&text, &source, overrides)
+    load_str_in(&text, &source, path.parent().unwrap_or(Path::new("")), overrides)
 }
 
-/// Validates config `text` (from `source`, for messages) with overrides.
+/// Validates config `text` (from `source`, for messages) with overrides;
+/// files it names are relative to the current directory.
 pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
+    load_str_in(text, source, Path::new(""), overrides)
+}
+
+/// Validates config `text` (from `source`, for messages) with overrides;
+/// files it names are relative to `base`.
+pub fn load_str_in(text: &str, source: &str, base: &Path, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
     let fail = |errors| ConfigErrors { source: source.to_string(), errors };
     let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
         fail(vec![ConfigError::new("TOML syntax", e.to_string().trim().replace('\n', "\n    "))])
@@ -115,7 +124,7 @@ pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolv
     let defaults = if overrides.is_empty() {
         Table::new()
     } else {
-        let mut d = read_scene(root.clone(), &mut Vec::new()).1;
+        let mut d = read_scene(root.clone(), base, &mut Vec::new()).1;
         if !d.contains_key("track") {
             track::read(&mut Table::new(), &mut d, &mut Vec::new());
         }
@@ -124,7 +133,7 @@ pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolv
     let mut errors: Vec<ConfigError> =
         overrides.iter().filter_map(|o| overrides::apply(&mut root, o, &defaults).err()).collect();
     overridden_step_sets_both(&mut root, overrides);
-    let (scene, resolved) = read_scene(root, &mut errors);
+    let (scene, resolved) = read_scene(root, base, &mut errors);
     match scene {
         Some(scene) if errors.is_empty() => {
             Ok(Resolved { scene, toml: toml::to_string(&resolved).expect("resolved config serialises") })
@@ -160,7 +169,7 @@ fn overridden_step_sets_both(root: &mut Table, overrides: &[String]) {
 }
 
 /// Sections and their readers, in the order they are documented.
-fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>, Table) {
+fn read_scene(mut root: Table, files_dir: &Path, errors: &mut Vec<ConfigError>) -> (Option<Scene>, Table) {
     let mut resolved = Table::new();
     fn section<'e>(root: &mut Table, name: &str, errors: &'e mut Vec<ConfigError>) -> Section<'e> {
         Section::new(root, "", name, errors)
@@ -222,7 +231,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         traffic::BaseClass { speed, normal_force: normal, longitudinal_force: longitudinal, unsprung_mass: None };
     let growth = growth::read(&mut root, &mut resolved, base, errors);
     let vehicle = vehicle::read(&mut root, &mut resolved, errors);
-    let wheelset = wheelset::read(&mut root, &mut resolved, errors);
+    let wheelset = wheelset::read(&mut root, &mut resolved, files_dir, errors);
     // The track matters to growth studies (and is read when given).
     let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
         track::read(&mut root, &mut resolved, errors)

@@ -93,6 +93,14 @@ impl<'a> Section<'a> {
         self.table.contains_key(key)
     }
 
+    /// Takes `key` out of the section where it is given and records
+    /// `message` as its error (a key that does not fit the other keys).
+    pub fn reject(&mut self, key: &str, message: &str) {
+        if self.table.remove(key).is_some() {
+            self.error(key, message.to_string());
+        }
+    }
+
     /// Records an error on `key`.
     pub fn error(&mut self, key: &str, message: String) {
         let k = self.key(key);

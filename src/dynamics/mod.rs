@@ -27,6 +27,7 @@ pub mod torsion;
 pub mod track;
 pub mod track_response;
 pub mod vehicle;
+pub mod wheelset;
 
 pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,
