@@ -37,7 +37,7 @@ fn the_torsional_model_s_resolved_config_has_no_new_key() {
     let r = load_str(&config(""), "t", &[]).unwrap();
     let section = r.toml.split("[wheelset]").nth(1).unwrap();
     let keys: Vec<&str> = section.lines().filter_map(|l| l.split_once(" = ").map(|(k, _)| k)).collect();
-    assert_eq!(keys, ["torsional_stiffness", "polar_inertia", "torsional_loss_factor"], "{section}");
+    assert_eq!(keys, ["polar_inertia", "torsional_loss_factor", "torsional_stiffness"], "{section}");
     let w = r.scene.wheelset.as_ref().unwrap();
     assert!(w.modal.is_none());
     let model = wheelset_model(&r.scene).unwrap();
