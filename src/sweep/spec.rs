@@ -22,7 +22,7 @@
 //! are numbered row-major over the dimensions (the last varies fastest),
 //! and member `i` writes `member_<i>.h5` in the output directory.
 
-use crate::config::{ConfigErrors, Resolved, load_str};
+use crate::config::{ConfigErrors, Resolved, load_str_in};
 use std::fmt;
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
@@ -283,7 +283,8 @@ impl SweepSpec {
     pub fn resolve(&self, index: usize) -> Result<Resolved, ConfigErrors> {
         let member = self.member(index);
         let source = format!("{} (member {index}: {})", self.base.display(), member.overrides.join(", "));
-        load_str(&self.base_text, &source, &self.overrides(&member))
+        let folder = self.base.parent().unwrap_or(Path::new(""));
+        load_str_in(&self.base_text, &source, folder, &self.overrides(&member))
     }
 
     /// Every member's validated config, or every member's errors at once:

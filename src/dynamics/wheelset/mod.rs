@@ -43,8 +43,8 @@
 //! `rad/(m sqrt(kg))` for the rotation) and modal coordinates `q_k`
 //! (`u = Phi q`). In the non-rotating (Eulerian) frame the spinning
 //! wheelset obeys (Baeza, Vila, Xie, Iwnicki, *J. Sound Vib.* 330 (2011)
-//! 4493-4507; Vila, Baeza, Martinez-Casas, Carballeira, *Veh. Syst. Dyn.*
-//! 52 (2014))
+//! 4493-4507; Vila et al., *Veh. Syst. Dyn.* 52
+//! (2014))
 //!
 //! ```text
 //! q'' + Omega G q' + diag(w_k^2 (1 + i eta_k)) q = Phi^T f                (1)

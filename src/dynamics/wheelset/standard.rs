@@ -12,14 +12,15 @@
 //! | n = 2, 3 axial (per wheel, a pair each) | 360, 1000 Hz | Thompson 2009, ch. 5 | half the rim's and a third of the web's mass |
 //! | n = 2, 3 radial (per wheel, a pair each) | 1900, 2150 Hz | Thompson 2009, ch. 5 | half the rim's mass |
 //!
-//! Wu, Jin, Cai, Han, Xiao, *Key factors of the initiation and development
+//! Wu et al., *Key factors of the initiation and development
 //! of polygonal wear in the wheels of a high-speed train*, Appl. Sci. 10
 //! (2020) 5880, Fig. 8: the bending modes of a wheelset's FE model at 87,
 //! 143, 284 and 576 Hz. Thompson, *Railway Noise and Vibration*, Elsevier
 //! 2009, ch. 5: the modes of a railway wheel (the 920 mm freight wheel),
-//! named by their nodal diameters `n`; the wheel's values here are rounded
-//! and typical of such a wheel, not one wheel's measurement: a user's FE
-//! table ([`super::table`]) replaces them.
+//! named by their nodal diameters `n`; the wheel's values here are typical
+//! of such a wheel as that chapter describes them, rounded, and were not
+//! read off its tables: for a real wheel give its FE analysis as a table
+//! ([`super::table`]).
 //!
 //! **The beam model of the bending modes.** The axle is a free-free
 //! Timoshenko beam (E = 210 GPa, nu = 0.3, rho = 7850 kg/m^3, shear factor
