@@ -75,7 +75,7 @@ fn modal_keys_are_checked_and_belong_to_the_modal_model() {
     let e = errors(&config("model = \"modal\"\nsuspension_stiffness_y = 0"));
     assert!(e.len() == 1 && e[0].starts_with("wheelset.suspension_stiffness_y") && e[0].contains("[10000"), "{e:?}");
     let e = errors(&config("model = \"modal\"\nwheel_damping = 0.7"));
-    assert!(e.len() == 1 && e[0].starts_with("wheelset.wheel_damping") && e[0].contains("[0, 0.5)"), "{e:?}");
+    assert!(e.len() == 1 && e[0].starts_with("wheelset.wheel_damping") && e[0].contains("(0, 0.5]"), "{e:?}");
     let e = errors(&config("model = \"modal\"\nspeed = 3"));
     assert!(e.len() == 1 && e[0] == "wheelset.speed: unknown key", "{e:?}");
 }

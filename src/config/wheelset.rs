@@ -86,8 +86,8 @@ fn read_modal(s: &mut Section, base: &Path) -> Option<ModalWheelsetParams> {
     let contacts = s.f64("contact_spacing", Some(ws::CONTACT_SPACING), Range::Closed(0.5, 2.5));
     let modes = match modes?.as_str() {
         "default" => {
-            let bending = s.f64("bending_damping", Some(ws::BENDING_DAMPING), Range::ClosedOpen(0.0, 0.5));
-            let wheel = s.f64("wheel_damping", Some(ws::WHEEL_DAMPING), Range::ClosedOpen(0.0, 0.5));
+            let bending = s.f64("bending_damping", Some(ws::BENDING_DAMPING), Range::OpenClosed(0.0, 0.5));
+            let wheel = s.f64("wheel_damping", Some(ws::WHEEL_DAMPING), Range::OpenClosed(0.0, 0.5));
             WheelsetModes::Default { bending_damping: bending?, wheel_damping: wheel? }
         }
         file => {

@@ -341,8 +341,13 @@ impl WheelsetModel {
     /// (rotation) at degree of freedom `i` per force (moment) at `j`, in m/N,
     /// m/(N m) = rad/N, rad/(N m) ([`dof`]).
     ///
+    /// A mode without damping is singular at its own frequency (the table
+    /// and the default's keys require damping; the torsion's loss factor
+    /// may be 0, as in [`super::torsion`]).
+    ///
     /// # Panics
-    /// If `omega` is not finite and > 0 or `spin` is not finite.
+    /// If `omega` is not finite and > 0 or `spin` is not finite, or a
+    /// coupled block is singular (an undamped mode hit exactly).
     pub fn receptance(&self, omega: f64, spin: f64) -> Receptance {
         assert!(omega.is_finite() && omega > 0.0, "omega = {omega} rad/s must be finite and > 0");
         assert!(spin.is_finite(), "spin = {spin} rad/s must be finite");

@@ -11,7 +11,7 @@
 //! |---|---|---|
 //! | `name` | | the mode's name, unique (e.g. `first symmetric bending (vertical)`) |
 //! | `frequency` | Hz | natural frequency of the non-rotating free wheelset, >= 1 Hz |
-//! | `damping_ratio` or `loss_factor` | 1 | one of the two columns (or both, one value per row): viscous ratio in [0, 1), loss factor >= 0 |
+//! | `damping_ratio` or `loss_factor` | 1 | one of the two columns (or both, one value per row): viscous ratio in (0, 1), loss factor > 0 |
 //! | `x0`, `y0`, `z0`, `theta0` | 1/sqrt(kg); rad/(m sqrt(kg)) | the mass-normalised mode (unit modal mass, 1 kg) at wheel 0's contact (`+y` side): longitudinal (with the rotation's `-r theta`), lateral, vertical displacement, rotation about the axle |
 //! | `x1`, `y1`, `z1`, `theta1` | same | at wheel 1's contact (`-y` side) |
 //! | `partner` (optional) | | the name of a mode this one is coupled to by the rotation, or empty |
@@ -38,6 +38,9 @@ use std::fmt;
 
 /// The participation columns, in the order of [`super::dof`].
 pub const SHAPE_COLUMNS: [&str; DOFS] = ["x0", "y0", "z0", "theta0", "x1", "y1", "z1", "theta1"];
+
+/// Why a mode needs damping.
+const UNDAMPED: &str = " (an undamped mode's receptance is infinite at its frequency: give the structure's damping)";
 
 /// A problem in a table, at a line (1-based; 0: the whole table).
 #[derive(Debug, Clone, PartialEq)]
@@ -140,10 +143,10 @@ pub fn parse(text: &str) -> Result<ModalTable, TableError> {
         let ratio = ratio_col.map(|c| number(c, "damping_ratio")).transpose()?.flatten();
         let loss = loss_col.map(|c| number(c, "loss_factor")).transpose()?.flatten();
         let damping = match (ratio, loss) {
-            (Some(z), None) if (0.0..1.0).contains(&z) => Damping::Ratio(z),
-            (Some(z), None) => return Err(at(line, format!("damping_ratio = {z} must be in [0, 1)"))),
-            (None, Some(e)) if e >= 0.0 => Damping::LossFactor(e),
-            (None, Some(e)) => return Err(at(line, format!("loss_factor = {e} must be >= 0"))),
+            (Some(z), None) if z > 0.0 && z < 1.0 => Damping::Ratio(z),
+            (Some(z), None) => return Err(at(line, format!("damping_ratio = {z} must be in (0, 1){UNDAMPED}"))),
+            (None, Some(e)) if e > 0.0 => Damping::LossFactor(e),
+            (None, Some(e)) => return Err(at(line, format!("loss_factor = {e} must be > 0{UNDAMPED}"))),
             _ => return Err(at(line, "give exactly one of damping_ratio and loss_factor".into())),
         };
         let mut shape = [0.0; DOFS];
