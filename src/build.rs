@@ -11,7 +11,7 @@ use crate::contact::transient::{ElasticModel, Transient};
 use crate::contact::{Elements, EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::TrackDynamics;
-use crate::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3};
+use crate::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
 use crate::dynamics::contact_point::ContactLaw;
 use crate::dynamics::continuous3::Continuous3;
 use crate::dynamics::discrete::DiscreteTrack;
@@ -20,8 +20,10 @@ use crate::dynamics::discrete3::Discrete3;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
 use crate::dynamics::torsion::{TorsionFeedback, WHEEL_POLAR_INERTIA, WheelsetTorsion};
 use crate::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
+use crate::dynamics::wheelset::rigid::RigidWheelset;
+use crate::dynamics::wheelset::{WheelsetModel, standard};
 use crate::hertz::{HertzPatch, HertzShape};
-use crate::params::{ContactGrid, ContactModel, Directions, DynamicsKind, NormalContact, Scene};
+use crate::params::{ContactGrid, ContactModel, Directions, DynamicsKind, NormalContact, Scene, WheelsetModes};
 use crate::passage::PassageSpec;
 use crate::rail_grid::RailGrid;
 use crate::wear::{CellDeposit, WearDeposit, WearKernel};
@@ -292,7 +294,7 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
 /// *Veh. Syst. Dyn.* 11 (1982) 1-13; quasi-static), for a wheel of mean
 /// normal force `n0` (N).
 pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<TorsionFeedback> {
-    let (w, xi0) = (scene.wheelset?, scene.creepage_x?);
+    let (w, xi0) = (scene.wheelset.as_ref()?, scene.creepage_x?);
     let elastic = scene.material.elastic;
     let coefficients = creep_coefficients(shape.aspect(), elastic.poisson_ratio).expect("validated aspect");
     let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, elastic.shear_modulus());
@@ -320,6 +322,46 @@ pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<To
         radius: scene.geometry.wheel_radius,
     };
     Some(TorsionFeedback { torsion, force_per_normal, force_per_creepage })
+}
+
+/// The wheelset's modal model ([`crate::dynamics::wheelset`]) where the
+/// scene has `[wheelset]`: with `model = "modal"` the rigid wheelset on its
+/// primary suspension and the default's or the user's table's flexible
+/// modes; with the torsional model alone (`model = "torsion"`) its two
+/// modes ([`WheelsetModel::torsion`]), whose receptance is the torsion's
+/// eq. 1. The rolling radius is the scene's wheel radius.
+pub fn wheelset_model(scene: &Scene) -> Option<WheelsetModel> {
+    let w = scene.wheelset.as_ref()?;
+    let radius = scene.geometry.wheel_radius;
+    let Some(m) = &w.modal else {
+        let torsion =
+            WheelsetTorsion { stiffness: w.stiffness, loss_factor: w.loss_factor, inertia: w.inertia, radius };
+        return Some(WheelsetModel::torsion(&torsion));
+    };
+    let rigid = RigidWheelset {
+        mass: m.mass,
+        roll_inertia: m.roll_inertia,
+        yaw_inertia: m.yaw_inertia,
+        spin_inertia: 2.0 * w.inertia,
+        stiffness_x: m.suspension_stiffness[0],
+        stiffness_y: m.suspension_stiffness[1],
+        stiffness_z: m.suspension_stiffness[2],
+        loss_factor: m.suspension_loss_factor,
+        axle_box_half_spacing: m.axle_box_spacing / 2.0,
+        contact_half_spacing: m.contact_spacing / 2.0,
+        radius,
+    };
+    let model = match &m.modes {
+        WheelsetModes::Default { bending_damping, wheel_damping } => standard::default_model(&standard::Design {
+            rigid,
+            torsional_stiffness: w.stiffness,
+            torsional_loss_factor: w.loss_factor,
+            bending_damping: *bending_damping,
+            wheel_damping: *wheel_damping,
+        }),
+        WheelsetModes::Table { table, .. } => standard::table_model(&rigid, table),
+    };
+    Some(model.expect("validated keys and table make a valid model"))
 }
 
 /// The contact at the mean state of a wheel of mean normal force `n0`
@@ -369,7 +411,8 @@ pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64) 
 }
 
 /// The dynamics in every direction of a growth study's wheel
-/// ([`ContactDynamics`]): the track of `dynamics.model`, the rigid wheel of
+/// ([`ContactDynamics`]): the track of `dynamics.model`, the wheelset's
+/// modal model (`[wheelset] model = "modal"`) or the rigid wheel of
 /// unsprung mass `mass` (kg) with the wheelset's torsion where configured,
 /// and the steady contact law at the wheel's mean loads.
 fn contact_dynamics(scene: &Scene, d: &Derived, mass: f64, contact_offset: f64) -> Box<dyn TrackDynamics> {
@@ -384,16 +427,21 @@ fn contact_dynamics(scene: &Scene, d: &Derived, mass: f64, contact_offset: f64) 
         },
         _ => Rail3::Continuous(Continuous3::new(&scene.track, contact_offset)),
     };
+    let modal = scene.wheelset.as_ref().is_some_and(|w| w.modal.is_some());
     let wheel = Wheel3 {
         mass,
         radius: scene.geometry.wheel_radius,
-        polar_inertia: scene.wheelset.map_or(WHEEL_POLAR_INERTIA, |w| w.inertia),
-        torsion: scene.wheelset.map(|w| WheelsetTorsion {
+        polar_inertia: scene.wheelset.as_ref().map_or(WHEEL_POLAR_INERTIA, |w| w.inertia),
+        torsion: scene.wheelset.as_ref().map(|w| WheelsetTorsion {
             stiffness: w.stiffness,
             loss_factor: w.loss_factor,
             inertia: w.inertia,
             radius: scene.geometry.wheel_radius,
         }),
+    };
+    let wheel = match wheelset_model(scene).filter(|_| modal) {
+        Some(model) => WheelSide::Modal { model, spin: scene.speed / scene.geometry.wheel_radius },
+        None => WheelSide::Rigid(wheel),
     };
     let model = ContactDynamics::new(rail, wheel, law, loads.normal_force, grid.nx, grid.dx, scene.speed)
         .unwrap_or_else(|e| panic!("the track's receptances in three directions could not be computed: {e}"));

@@ -2,7 +2,7 @@
 //! patches, mesh or grid, passage, rail grid, growth settings, resonances)
 //! and a rough cost estimate.
 
-use corrugation::build::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics};
+use corrugation::build::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics, wheelset_model};
 use corrugation::config::Resolved;
 use corrugation::config::quantity::engineering;
 use corrugation::config::units::key_units;
@@ -225,6 +225,7 @@ pub fn print_check(r: &Resolved) {
             corner
         );
     }
+    print_wheelset_modes(s);
     let cost = corrugation::cost::estimate(s);
     if let Some(g) = &s.growth {
         match g.traffic {
@@ -435,6 +436,36 @@ fn number(v: &toml::Value) -> Option<f64> {
 }
 
 /// What the normal contact of a growth study sees of the rail.
+/// The modal wheelset's modes (`[wheelset] model = "modal"`), at rest and
+/// as the scene's spin `V / r` moves the coupled ones.
+fn print_wheelset_modes(s: &corrugation::params::Scene) {
+    let Some(modal) = s.wheelset.as_ref().and_then(|w| w.modal.as_ref()) else {
+        return;
+    };
+    let Some(model) = wheelset_model(s) else {
+        return;
+    };
+    let source = match &modal.modes {
+        corrugation::params::WheelsetModes::Default { .. } => "the default freight wheelset".to_string(),
+        corrugation::params::WheelsetModes::Table { path, .. } => format!("the table {path}"),
+    };
+    println!(
+        "wheelset           modal model: {} modes ({source}, on the primary suspension); the receptance at both \
+         contacts in x, y, z and rotation",
+        model.modes().len()
+    );
+    for (k, m) in model.modes().iter().enumerate() {
+        println!("wheelset           mode {k}: {}", m.describe());
+    }
+    let spin = s.speed / s.geometry.wheel_radius;
+    let moved: Vec<String> = model.frequencies(spin).iter().map(|f| format!("{f:.1}")).collect();
+    println!(
+        "wheelset           spinning at V / r = {spin:.1} rad/s the undamped modes are at {} Hz (the gyroscopic \
+         coupling splits the bending pairs and the wheel's diametral pairs)",
+        moved.join(", ")
+    );
+}
+
 fn print_normal_contact(normal: NormalContact, fixed: bool) {
     let linear = "the linear profile contact (the patch moved and stretched with the contact and the rest of the \
                   normal problem's linear response to the corrugation under it); the dynamics see its flat-punch \

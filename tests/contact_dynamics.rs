@@ -6,7 +6,7 @@
 //! force that the normal force's variation drives; on the discrete track
 //! the responses vary across the bay; a study with it resumes bit for bit.
 use corrugation::config::load_str;
-use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3};
+use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
 use corrugation::dynamics::contact_point::ContactLaw;
 use corrugation::dynamics::continuous3::Continuous3;
 use corrugation::dynamics::discrete::DiscreteTrack;
@@ -43,7 +43,8 @@ fn continuous_track_against_the_vertical_chain_and_the_rims_motion() {
     let (nodes, dx, speed) = (600, 2e-4, 27.78);
     let track = TrackConfig::default();
     let rail = Continuous3::new(&track, 0.0);
-    let model = ContactDynamics::new(Rail3::Continuous(rail), wheel(), law(), 1e5, nodes, dx, speed).unwrap();
+    let model =
+        ContactDynamics::new(Rail3::Continuous(rail), WheelSide::Rigid(wheel()), law(), 1e5, nodes, dx, speed).unwrap();
     for wavelength in [0.03, 0.12 / 7.0, 0.06] {
         let k = 2.0 * PI / wavelength;
         let r = 1e-6;
@@ -88,7 +89,7 @@ fn discrete_track_varies_the_response_across_the_bay_and_feeds_the_lateral_creep
             vertical: DiscreteTrack::new(&track),
             sleeper_x0: 0.0,
         };
-        ContactDynamics::new(rail, wheel(), law(), 1e5, nodes, dx, speed).unwrap()
+        ContactDynamics::new(rail, WheelSide::Rigid(wheel()), law(), 1e5, nodes, dx, speed).unwrap()
     };
     let k = 2.0 * PI / 0.024;
     let profile: Vec<f64> = (0..nodes).map(|i| 1e-6 * (k * i as f64 * dx).cos()).collect();

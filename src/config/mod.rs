@@ -333,7 +333,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     let growth = growth::read(&mut root, &mut resolved, base, &ctx, errors);
     let levels = levels::read(&mut root, &mut resolved, dir, errors);
     let vehicle = vehicle::read(&mut root, &mut resolved, errors);
-    let wheelset = wheelset::read(&mut root, &mut resolved, errors);
+    let wheelset = wheelset::read(&mut root, &mut resolved, dir, errors);
     // The track matters to growth studies (and is read when given).
     let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
         track::read(&mut root, &mut resolved, errors)

@@ -108,6 +108,15 @@ impl<'a> Section<'a> {
         self.table.remove(key)
     }
 
+    /// Takes `key` out of the section where it is given and records
+    /// `message` as its error (a key that does not fit the other keys).
+    pub fn reject(&mut self, key: &str, message: &str) {
+        self.ask(key);
+        if self.table.remove(key).is_some() {
+            self.error(key, message.to_string());
+        }
+    }
+
     fn ask(&mut self, key: &str) {
         if !self.asked.iter().any(|k| k == key) {
             self.asked.push(key.to_string());

@@ -99,6 +99,17 @@ const UNITS: &[(&str, &str)] = &[
     ("wheelset.polar_inertia", "kg m2"),
     ("wheelset.torsional_loss_factor", "1"),
     ("rolling.creepage_x", "1"),
+    ("wheelset.mass", "kg"),
+    ("wheelset.roll_inertia", "kg m2"),
+    ("wheelset.yaw_inertia", "kg m2"),
+    ("wheelset.suspension_stiffness_x", "N/m"),
+    ("wheelset.suspension_stiffness_y", "N/m"),
+    ("wheelset.suspension_stiffness_z", "N/m"),
+    ("wheelset.suspension_loss_factor", "1"),
+    ("wheelset.axle_box_spacing", "m"),
+    ("wheelset.contact_spacing", "m"),
+    ("wheelset.bending_damping", "1"),
+    ("wheelset.wheel_damping", "1"),
 ];
 
 /// The unit of config key `key` (`load.harmonics[0].amplitude` counts as

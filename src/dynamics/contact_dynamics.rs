@@ -20,12 +20,16 @@
 //! parametric excitation (the static deflection under the wheel's own
 //! load along the bay) the profile includes on the discrete track.
 //!
-//! **The wheel** (until a modal wheelset replaces it): rigid, free above
-//! its suspension in every direction, `-1 / (M w^2)` per axis (`M` the
-//! unsprung mass per wheel), and its rotation about the axle at the rim:
-//! the rigid wheelset's spin (`-r^2 / (2 J w^2)`, both wheels' inertia,
-//! the other wheel's creep force uncorrelated) or, with `[wheelset]`, the
-//! torsional model's `T(w) V / (i w)` ([`super::torsion`] eq. 2).
+//! **The wheel**: with `[wheelset] model = "modal"` the wheelset's modal
+//! model ([`super::wheelset`]: the rigid wheelset on its primary
+//! suspension, its flexible modes, the gyroscopic coupling of its spin),
+//! the modelled rail's wheel its wheel 0 and the other wheel's creep forces
+//! uncorrelated with this rail's profile; otherwise rigid, free above its
+//! suspension in every direction, `-1 / (M w^2)` per axis (`M` the unsprung
+//! mass per wheel), and its rotation about the axle at the rim: the rigid
+//! wheelset's spin (`-r^2 / (2 J w^2)`, both wheels' inertia) or, with the
+//! torsional `[wheelset]`, the torsional model's `T(w) V / (i w)`
+//! ([`super::torsion`] eq. 2).
 //!
 //! **The contact** at the mean state: the Hertz stiffness and the steady
 //! creep curve's slopes (FASTSIM's, as the torsional feedback's).
@@ -43,6 +47,7 @@ use super::discrete_dynamics::{harmonics, parametric_path};
 use super::discrete3::{Discrete3, Discrete3Error};
 use super::section::Mat3;
 use super::torsion::WheelsetTorsion;
+use super::wheelset::{Dir, WheelsetModel, dof};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use rustfft::FftPlanner;
@@ -69,6 +74,59 @@ pub enum Rail3 {
         sleeper_x0: f64,
     },
 }
+
+/// The wheel's side of the contact.
+#[derive(Debug, Clone)]
+pub enum WheelSide {
+    /// The rigid wheel (module docs).
+    Rigid(Wheel3),
+    /// The wheelset's modal model ([`super::wheelset`]), the modelled
+    /// rail's wheel its wheel 0, spinning at `spin` (rad/s, `V / r`), the
+    /// other wheel's creep forces uncorrelated with this rail's profile.
+    Modal {
+        /// The wheelset.
+        model: WheelsetModel,
+        /// Spin speed (rad/s).
+        spin: f64,
+    },
+}
+
+impl WheelSide {
+    /// The wheel's receptance at the contact in the rail's axes (m/N; x
+    /// along with the rim's rotation, y across to the right, z down) at
+    /// `omega` (rad/s) and `speed` (m/s). The wheelset's axes have y to
+    /// the left and z up: its (x, y, z) block of wheel 0 turns by `S =
+    /// diag(1, -1, -1)` on both sides.
+    pub fn receptance(&self, omega: f64, speed: f64) -> Mat3 {
+        match self {
+            WheelSide::Rigid(w) => w.receptance(omega, speed),
+            WheelSide::Modal { model, spin } => {
+                let h = model.receptance(omega, *spin);
+                let sign = [1.0, -1.0, -1.0];
+                Mat3::from_fn(|a, b| h[(dof(0, DIRECTIONS[a]), dof(0, DIRECTIONS[b]))] * (sign[a] * sign[b]))
+            }
+        }
+    }
+
+    /// The wheel's resonances for reports (label, Hz).
+    fn resonances(&self) -> Vec<(String, f64)> {
+        match self {
+            WheelSide::Rigid(w) => w.torsion.map_or_else(Vec::new, |t| {
+                vec![("the wheelset's torsion: the wheels twisting against each other".into(), t.resonance())]
+            }),
+            // The modes at rest (`check` prints their split while spinning).
+            WheelSide::Modal { model, .. } => model
+                .modes()
+                .iter()
+                .filter(|m| m.frequency > 0.0)
+                .map(|m| (format!("wheelset: {}", m.name), m.frequency))
+                .collect(),
+        }
+    }
+}
+
+/// The wheelset's directions of the rail's x, y, z.
+const DIRECTIONS: [Dir; 3] = [Dir::X, Dir::Y, Dir::Z];
 
 /// The wheel at the contact (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -115,7 +173,7 @@ pub struct ContactSignals {
 #[derive(Debug, Clone)]
 pub struct ContactDynamics {
     rail: Rail3,
-    wheel: Wheel3,
+    wheel: WheelSide,
     law: ContactLaw,
     /// Mean normal force (N), for the parametric excitation.
     mean_load: f64,
@@ -132,7 +190,7 @@ impl ContactDynamics {
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         rail: Rail3,
-        wheel: Wheel3,
+        wheel: WheelSide,
         law: ContactLaw,
         mean_load: f64,
         nodes: usize,
@@ -252,15 +310,14 @@ impl TrackDynamics for ContactDynamics {
         if let Rail3::Discrete { vertical, .. } = &self.rail {
             out.push(("pinned-pinned: the rail between two sleepers".into(), vertical.pinned_pinned_frequency()));
         }
-        if let Some(t) = self.wheel.torsion {
-            out.push(("the wheelset's torsion: the wheels twisting against each other".into(), t.resonance()));
+        out.extend(self.wheel.resonances());
+        if let WheelSide::Rigid(w) = &self.wheel {
+            let (speed, ..) = self.key;
+            let c = self.law.force_per_creepage[0][0].norm();
+            // Where the creep force's damping of the rim's spin meets its inertia.
+            let corner = c * w.radius * w.radius / (2.0 * w.polar_inertia * speed.abs()) / (2.0 * PI);
+            out.push(("the rim's spin: force held below, creepage above".into(), corner));
         }
-        let (speed, ..) = self.key;
-        let w = &self.wheel;
-        let c = self.law.force_per_creepage[0][0].norm();
-        // Where the creep force's damping of the rim's spin meets its inertia.
-        let corner = c * w.radius * w.radius / (2.0 * w.polar_inertia * speed.abs()) / (2.0 * PI);
-        out.push(("the rim's spin: force held below, creepage above".into(), corner));
         out
     }
 

@@ -33,6 +33,7 @@ pub mod track;
 pub mod track_response;
 pub mod vehicle;
 pub mod waves;
+pub mod wheelset;
 
 pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,
