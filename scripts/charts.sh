@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every speed/accuracy study of the README in one command: the accuracy map
+# Every speed/accuracy study of the book in one command: the accuracy map
 # behind contact.model = "auto" (installed into the source and
 # docs/src/figures), the speed-accuracy chart of the four paper scenes, the
 # growth-rate accuracy of a growth study, the stability map of both
