@@ -52,11 +52,20 @@ fn cells(line: &str) -> Vec<String> {
     out.into_iter().map(|c| c.trim().to_string()).collect()
 }
 
-/// The page's key rows: first cell a single backticked dotted key.
+/// The rows of the page's key tables (those whose header's first cell is
+/// `key`): first cell a single backticked dotted key.
 fn page_rows(problems: &mut Vec<String>) -> BTreeMap<String, Row> {
     let mut rows = BTreeMap::new();
+    let mut in_key_table = false;
     for (n, line) in PAGE.lines().enumerate() {
-        if !line.starts_with("| `") {
+        if !line.starts_with('|') {
+            in_key_table = false;
+            continue;
+        }
+        if line.starts_with("| key |") {
+            in_key_table = true;
+        }
+        if !in_key_table || !line.starts_with("| `") {
             continue;
         }
         let c = cells(line);
@@ -227,15 +236,23 @@ fn default_matches(v: &Value, cell: &str, resolved: &BTreeMap<String, Value>) ->
     let equal = |a: &Value, b: &Value| match (a, b) {
         (Value::Array(x), Value::Array(y)) => {
             x.len() == y.len()
-                && x.iter().zip(y).all(|(p, q)| match (p.as_float().or(p.as_integer().map(|i| i as f64)), q.as_float().or(q.as_integer().map(|i| i as f64))) {
-                    (Some(p), Some(q)) => close(p, q),
-                    _ => p == q,
+                && x.iter().zip(y).all(|(p, q)| {
+                    match (
+                        p.as_float().or(p.as_integer().map(|i| i as f64)),
+                        q.as_float().or(q.as_integer().map(|i| i as f64)),
+                    ) {
+                        (Some(p), Some(q)) => close(p, q),
+                        _ => p == q,
+                    }
                 })
         }
-        _ => match (a.as_float().or(a.as_integer().map(|i| i as f64)), b.as_float().or(b.as_integer().map(|i| i as f64))) {
-            (Some(p), Some(q)) => close(p, q),
-            _ => a == b,
-        },
+        _ => {
+            match (a.as_float().or(a.as_integer().map(|i| i as f64)), b.as_float().or(b.as_integer().map(|i| i as f64)))
+            {
+                (Some(p), Some(q)) => close(p, q),
+                _ => a == b,
+            }
+        }
     };
     for word in backticked(cell) {
         if let Some(other) = resolved.get(&word)
@@ -248,12 +265,16 @@ fn default_matches(v: &Value, cell: &str, resolved: &BTreeMap<String, Value>) ->
         Value::String(s) if s.is_empty() => cell.contains("\"\""),
         Value::String(s) => backticked(cell).contains(s),
         Value::Boolean(b) => cell.split(|c: char| !c.is_alphanumeric()).any(|w| w == b.to_string()),
-        Value::Float(_) | Value::Integer(_) => tokens(cell)
-            .iter()
-            .any(|t| matches!(t, Token::Number(x) if equal(v, &Value::Float(*x)))),
+        Value::Float(_) | Value::Integer(_) => {
+            tokens(cell).iter().any(|t| matches!(t, Token::Number(x) if equal(v, &Value::Float(*x))))
+        }
         Value::Array(_) => cell.split('`').any(|w| {
             w.starts_with('[')
-                && format!("v = {w}").parse::<Table>().ok().and_then(|t| t.get("v").cloned()).is_some_and(|a| equal(v, &a))
+                && format!("v = {w}")
+                    .parse::<Table>()
+                    .ok()
+                    .and_then(|t| t.get("v").cloned())
+                    .is_some_and(|a| equal(v, &a))
         }),
         _ => false,
     }
@@ -328,8 +349,8 @@ fn probes() -> Vec<(String, Table)> {
     ));
     out.push(with(
         "the automatic model choice",
-        "[contact]\nmodel = \"auto\"\ntolerance = 0.1\n[growth]\nstop = \"saturation\"",
-        &[],
+        "[contact]\nmodel = \"auto\"\ntolerance = 0.1\n[passage]\nstep_length = 2e-4\n[growth]\nstop = \"saturation\"",
+        &["contact.grid", "contact.dx", "contact.dy"],
     ));
     out
 }
@@ -353,7 +374,7 @@ fn set(t: &mut Table, key: &str, v: Value) {
 fn explore() -> (KeyLog, Vec<(String, Table, Table)>) {
     let mut log = KeyLog::new();
     let mut valid = Vec::new();
-    let mut merge = |l: KeyLog, log: &mut KeyLog| {
+    let merge = |l: KeyLog, log: &mut KeyLog| {
         for (k, v) in l {
             log.entry(k).or_default().extend(v);
         }
@@ -404,7 +425,11 @@ fn the_configuration_reference_is_the_code_s() {
         leaves(resolved, "", &mut all);
         for (k, v) in &all {
             if !given.contains_key(k) {
-                let problem = if default_matches(v, &rows.get(&generic_key(k)).map_or(String::new(), |r| r.default.clone()), &all) {
+                let problem = if default_matches(
+                    v,
+                    &rows.get(&generic_key(k)).map_or(String::new(), |r| r.default.clone()),
+                    &all,
+                ) {
                     None
                 } else {
                     Some(v.clone())
@@ -444,7 +469,12 @@ fn the_configuration_reference_is_the_code_s() {
                     .find_map(|(_, _, r)| {
                         let mut all = BTreeMap::new();
                         leaves(r, "", &mut all);
-                        all.into_iter().find(|(k, _)| generic_key(k) == *key).map(|(_, v)| v.to_string())
+                        all.into_iter().find(|(k, _)| generic_key(k) == *key).map(|(_, v)| match v {
+                            Value::String(s) if s.is_empty() => "`\"\"`".to_string(),
+                            Value::String(s) => format!("`{s}`"),
+                            Value::Array(_) => format!("`{v}`"),
+                            v => v.to_string(),
+                        })
                     })
                     .unwrap_or_default()
             };
@@ -476,10 +506,7 @@ fn the_configuration_reference_is_the_code_s() {
         }
         if let Some(seen) = defaults.get(key) {
             for (config, v) in seen.iter().take(2) {
-                problems.push(format!(
-                    "`{key}`: default \"{}\" but {config} resolves it to {v}",
-                    row.default
-                ));
+                problems.push(format!("`{key}`: default \"{}\" but {config} resolves it to {v}", row.default));
             }
         }
         if let Some(tries) = required.get(key) {
@@ -529,7 +556,10 @@ fn short_forms_read_as_the_page_writes_them() {
     assert!(!allowed_matches("`a`", "one of \"a\", \"b\""));
     assert!(allowed_matches("[-0.1, 0.1]; only with creepage control", "a number in [-0.1, 0.1]"));
     assert!(!allowed_matches("[-0.1, 0.2]", "a number in [-0.1, 0.1]"));
-    assert!(same_tokens("list of 1 to 8 numbers, each [0, 50]", &short_form("a list of 1 to 8 numbers, each a number in [0, 50]")));
+    assert!(same_tokens(
+        "list of 1 to 8 numbers, each [0, 50]",
+        &short_form("a list of 1 to 8 numbers, each a number in [0, 50]")
+    ));
     assert_eq!(cells("| `a.b` | m | 1 | \\|x\\| < 2 | y |"), vec!["`a.b`", "m", "1", "|x| < 2", "y"]);
     let none = BTreeMap::new();
     assert!(default_matches(&Value::Float(1e9), "1e9", &none));
