@@ -161,7 +161,14 @@ fn backticked(s: &str) -> Vec<String> {
 
 /// The page's short form of a reader's description of what a key allows.
 fn short_form(description: &str) -> String {
-    let d = description;
+    // A number that may carry its unit is described with the unit and an
+    // example ("a number in (0, 200] in m/s (or a string with its unit,
+    // e.g. 70km/h)"): the range is what the page's cell gives, the unit is
+    // in its own column.
+    let d = match description.find(" (or a string with its unit") {
+        Some(i) => description[..i].rsplit_once(" in ").map_or(&description[..i], |(head, _)| head),
+        None => description,
+    };
     let simple = [
         ("a finite number", "finite"),
         ("a finite number > 0", "> 0"),
@@ -549,6 +556,7 @@ fn remove(t: &mut Table, key: &str) {
 #[test]
 fn short_forms_read_as_the_page_writes_them() {
     assert_eq!(short_form("a number in [0, 0.5)"), "[0, 0.5)");
+    assert_eq!(short_form("a number in (0, 200] in m/s (or a string with its unit, e.g. 70km/h)"), "(0, 200]");
     assert_eq!(short_form("an integer in [1, 1000000]"), "integer in [1, 1000000]");
     assert!(same_tokens("integer in [1, 1e6]", &short_form("an integer in [1, 1000000]")));
     assert_eq!(short_form("an integer in [0, 9223372036854775807]"), "integer >= 0");
