@@ -1,4 +1,4 @@
-//! Command line of `corrugation` (README: Command line).
+//! Command line of `corrugation` (book: docs/src/reference/cli.md).
 //!
 //! Exit codes: 0 success, 1 the run failed (solver or output), 2 bad input
 //! (command line or config).

@@ -1,5 +1,5 @@
-//! One wheel passage over the rail stretch: the model chain (README:
-//! Model chain of one passage) at every time step.
+//! One wheel passage over the rail stretch: the model chain (book:
+//! docs/src/theory/model-chain.md) at every time step.
 //!
 //! For each patch position `X_c = start + n h` (time `t = n h / V`):
 //! imposed loads `N(X_c)`, `F_x(X_c)` -> Hertz patch -> tangential solution

@@ -208,7 +208,7 @@ fn a_string_key_takes_a_bare_word_in_every_config() {
 #[test]
 fn either_step_key_set_alone_sets_both_on_the_fixed_grid() {
     // paper_normal_30mm gives passage.step_length, growth_exact contact.dx;
-    // one override of the other key moves both (README, Configuration); two
+    // one override of the other key moves both (docs/src/reference/configuration.md); two
     // that differ are refused, and an invalid one leaves the file's key.
     let fixed = ["contact.model=exact-transient", "contact.grid=fixed"].map(String::from);
     let growth = include_str!("../configs/growth_exact.toml");

@@ -1,7 +1,7 @@
 """Reading corrugation run files (HDF5, netCDF-4 compatible).
 
 The layout (groups ``rail``, ``passes`` and ``contact/pass_NNNNN``) is described
-in ``schema.py`` and in the README.  Structure (which groups exist, root
+in ``schema.py`` and in the book (docs/src/reference/run-file.md).  Structure (which groups exist, root
 attributes) is read with h5py; data are opened as xarray Datasets with the
 h5netcdf engine, so dimension names come from the HDF5 dimension scales.
 

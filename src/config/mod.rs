@@ -1,6 +1,7 @@
 //! Scene configuration: TOML text -> validated [`Scene`].
 //!
-//! Every key is documented in the README (section "Configuration"). Unknown
+//! Every key is documented in the book's configuration reference
+//! (`docs/src/reference/configuration.md`, checked against [`schema`]). Unknown
 //! keys, missing keys, wrong types and out-of-range values are all collected
 //! and reported together, each naming its dotted key and the allowed range;
 //! then the cross-checks that need several keys (curvature sign, load
@@ -17,6 +18,7 @@ pub mod quantity;
 mod reader;
 pub mod record;
 pub mod roughness;
+pub mod schema;
 mod track;
 pub mod traffic;
 pub mod units;

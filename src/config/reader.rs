@@ -98,12 +98,14 @@ impl<'a> Section<'a> {
 
     /// Whether `key` is (still) in the section.
     pub fn has(&self, key: &str) -> bool {
+        super::schema::note(&self.key(key), None);
         self.table.contains_key(key)
     }
 
     /// Takes `key`'s raw value out of the section (None when absent),
     /// counting it as a known key.
     pub fn raw(&mut self, key: &str) -> Option<Value> {
+        super::schema::note(&self.key(key), Some("a string"));
         self.ask(key);
         self.table.remove(key)
     }
@@ -141,6 +143,7 @@ impl<'a> Section<'a> {
         extract: impl Fn(Value) -> Result<T, Value>,
     ) -> Option<T> {
         self.ask(key);
+        super::schema::note(&self.key(key), Some(expect));
         match self.table.remove(key) {
             None => {
                 if default.is_none() {
@@ -250,6 +253,7 @@ impl<'a> Section<'a> {
         let expect = format!("a list of 1 to {max} numbers, each {}", range.describe());
         let unit = key_units(&self.key(key));
         self.ask(key);
+        super::schema::note(&self.key(key), Some(&expect));
         let v = match self.table.remove(key) {
             None => default,
             Some(Value::Array(a)) if (1..=max).contains(&a.len()) => {
@@ -288,6 +292,7 @@ impl<'a> Section<'a> {
     pub fn usize_list(&mut self, key: &str, default: Vec<usize>, hi: usize) -> Option<Vec<usize>> {
         let expect = format!("a list of integers in [0, {hi}]");
         self.ask(key);
+        super::schema::note(&self.key(key), Some(&expect));
         let v = match self.table.remove(key) {
             None => default,
             Some(Value::Array(a)) => {
@@ -316,6 +321,7 @@ impl<'a> Section<'a> {
     /// with `read` as section `key[i]`.
     pub fn array_of_tables<T>(&mut self, key: &str, mut read: impl FnMut(&mut Section) -> Option<T>) -> Option<Vec<T>> {
         self.ask(key);
+        super::schema::note(&self.key(key), Some("an array of tables"));
         let items = match self.table.remove(key) {
             None => Vec::new(),
             Some(Value::Array(a)) => a,

@@ -1,7 +1,10 @@
-//! The unit of every numeric config key (as the README's Configuration
-//! table gives it), for outputs that name keys, such as a sweep's axes, for
-//! values written with their unit ([`super::quantity`]) and for `check`'s
-//! engineering units.
+//! The unit of every numeric config key, for outputs that name keys, such
+//! as a sweep's axes. The book's configuration reference
+//! (`docs/src/reference/configuration.md`) gives the same units: the test
+//! `tests/config_reference.rs` holds the two together and asks for an entry
+//! here for every key that holds a number.
+//! It also serves values written with their unit ([`super::quantity`]) and
+//! `check`'s engineering units.
 
 /// (key with array indices removed, unit).
 const UNITS: &[(&str, &str)] = &[
@@ -12,6 +15,7 @@ const UNITS: &[(&str, &str)] = &[
     ("geometry.wheel_profile_radius", "m"),
     ("geometry.rail_head_radius", "m"),
     ("rolling.speed", "m/s"),
+    ("rolling.creepage_x", "1"),
     ("rolling.creepage_y", "1"),
     ("rolling.spin", "1/m"),
     ("load.normal_force", "N"),
@@ -42,6 +46,7 @@ const UNITS: &[(&str, &str)] = &[
     ("growth.max_update_ratio", "1"),
     ("growth.store_every", "1"),
     ("growth.checkpoint_every", "1"),
+    ("growth.contact_history", "1"),
     ("growth.saturation_rate", "dB/1e5 passages"),
     ("roughness.seed", "1"),
     ("roughness.rms", "m"),
@@ -86,11 +91,6 @@ const UNITS: &[(&str, &str)] = &[
     ("track.pad_length", "m"),
     ("track.ballast_lateral_stiffness", "N/m"),
     ("track.ballast_longitudinal_stiffness", "N/m"),
-    ("traffic.mix.speed", "m/s"),
-    ("traffic.mix.normal_force", "N"),
-    ("traffic.mix.longitudinal_force", "N"),
-    ("traffic.mix.unsprung_mass", "kg"),
-    ("traffic.mix.share", "1"),
     ("vehicle.wheels", "m"),
     ("vehicle.unsprung_mass", "kg"),
     ("vehicle.normal_force", "N"),
@@ -98,7 +98,6 @@ const UNITS: &[(&str, &str)] = &[
     ("wheelset.torsional_stiffness", "N m/rad"),
     ("wheelset.polar_inertia", "kg m2"),
     ("wheelset.torsional_loss_factor", "1"),
-    ("rolling.creepage_x", "1"),
     ("wheelset.mass", "kg"),
     ("wheelset.roll_inertia", "kg m2"),
     ("wheelset.yaw_inertia", "kg m2"),
@@ -110,6 +109,12 @@ const UNITS: &[(&str, &str)] = &[
     ("wheelset.contact_spacing", "m"),
     ("wheelset.bending_damping", "1"),
     ("wheelset.wheel_damping", "1"),
+    ("traffic.mix.speed", "m/s"),
+    ("traffic.mix.normal_force", "N"),
+    ("traffic.mix.longitudinal_force", "N"),
+    ("traffic.mix.unsprung_mass", "kg"),
+    ("traffic.mix.share", "1"),
+    ("traffic.mix.wheels", "m"),
 ];
 
 /// The unit of config key `key` (`load.harmonics[0].amplitude` counts as

@@ -1,5 +1,5 @@
-//! Vehicle-track dynamics for the corrugation growth loop (README:
-//! Growth studies): the dynamic wheel-rail normal force excited by the rail
+//! Vehicle-track dynamics for the corrugation growth loop (book:
+//! docs/src/theory/track.md): the dynamic wheel-rail normal force excited by the rail
 //! profile of the current passage.
 //!
 //! The rail profile `r(X)` over the periodic stretch of length `L` is expanded

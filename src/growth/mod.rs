@@ -1,5 +1,5 @@
-//! Long-term corrugation growth on a periodic stretch of rail (README: Growth
-//! studies): the outer loop over wheel passages
+//! Long-term corrugation growth on a periodic stretch of rail (book:
+//! docs/src/theory/growth-loop.md): the outer loop over wheel passages
 //!
 //! ```text
 //! r_n(X, Y) -> N_n(X) = imposed + dynamic(r_n) -> passage -> W_n(X, Y)

@@ -1,4 +1,4 @@
-//! The growth loop as a type (README: Growth studies): one simulated
+//! The growth loop as a type (book: docs/src/theory/growth-loop.md): one simulated
 //! passage at a time,
 //!
 //! ```text

@@ -1,4 +1,4 @@
-//! The run-file layout (README: Output), written atomically (temporary
+//! The run-file layout (book: docs/src/reference/run-file.md), written atomically (temporary
 //! file, fsync, rename) so that a reader never sees a half-written file.
 //!
 //! * root attributes: `title`, `version`, `contact_model`, `config` (the

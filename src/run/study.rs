@@ -1,4 +1,4 @@
-//! The pass loop (README: Growth studies), with checkpoints and resume:
+//! The pass loop (book: docs/src/guide/checkpoints.md), with checkpoints and resume:
 //!
 //! ```text
 //! for each simulated passage n:
