@@ -1,7 +1,7 @@
 //! Steady rolling on the fixed grid (CONTACT's scene c, concave reading):
 //! from a Cattaneo start, roll at constant N and F_x until steady, and print
 //! the creepage and the wear integral `INT p3 |s| / V dA` (N) of the last
-//! step, for the grid-convergence study of the README.
+//! step, for the grid-convergence study of the book (docs/src/theory/fixed-grid.md).
 //!
 //! `cargo run --release --example grid_steady -- DX DY [N F_X ROLLED LAW SCHEME TOLERANCE SOLVER]`
 //! (m, m, N, N, m, regularised|coulomb, first-|second-|third-order, units of eps,

@@ -16,7 +16,7 @@
 #
 # Writes out/accuracy_map/accuracy_map.{csv,png} and, with --install, copies
 # the CSV to src/model_choice/accuracy_map.csv (the table compiled into the
-# binary) and the chart to docs/figures/accuracy_map.png.
+# binary) and the chart to docs/src/figures/accuracy_map.png.
 # About 3 minutes on 2 cores (25 before the fixed grid's symmetric products).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -52,6 +52,6 @@ done
 .venv/bin/corrugation-post accuracy-map "$manifest" --out "$out"
 if [ "$install" = 1 ]; then
   cp "$out/accuracy_map.csv" src/model_choice/accuracy_map.csv
-  cp "$out/accuracy_map.png" docs/figures/accuracy_map.png
+  cp "$out/accuracy_map.png" docs/src/figures/accuracy_map.png
   echo "installed src/model_choice/accuracy_map.csv (rebuild to use it)"
 fi

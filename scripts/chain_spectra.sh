@@ -10,7 +10,7 @@
 #     reference),
 #   - the linear contact on the 0.2 mm grid,
 #   - FASTSIM with the linear contact (growth_exact's scene only).
-# Writes out/chain_spectra/rates.csv and prints the tables (README, The
+# Writes out/chain_spectra/rates.csv and prints the tables (book, The
 # consistent chain). About 15 minutes on 2 cores (DISCRETE=0: 3).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Every speed/accuracy study of the README in one command: the accuracy map
+# Every speed/accuracy study of the book in one command: the accuracy map
 # behind contact.model = "auto" (installed into the source and
-# docs/figures), the speed-accuracy chart of the four paper scenes, the
+# docs/src/figures), the speed-accuracy chart of the four paper scenes, the
 # growth-rate accuracy of a growth study, the stability map of both
 # exact-model solvers and both fixed-grid friction laws, the convergence of
 # both discretisations of the exact model, and the cost of the exact model

@@ -12,7 +12,7 @@
 #   - the linear profile contact on the adapted mesh: the exact model
 #     (20 x 20, 0.2 mm steps; 28 x 28, 0.143 mm), the simplified transient
 #     model (20 x 20) and FASTSIM (40 x 40).
-# Writes out/consistent_chain/rates.csv and prints the table (the README's,
+# Writes out/consistent_chain/rates.csv and prints the table (the book's,
 # The consistent chain). About 30 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."

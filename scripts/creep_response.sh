@@ -7,7 +7,7 @@
 #     mesh (20 x 20, 0.2 mm steps), the simplified-transient model and
 #     FASTSIM (40 x 40), at F_x = 20 kN and at F_x = 0 (the linear
 #     theory's full adhesion), to out/creep_response/*.csv;
-#   - the figure docs/figures/creep_response.png;
+#   - the figure docs/src/figures/creep_response.png;
 #   - the cost: REPEATS (default 5) runs each of one table (the torsional
 #     loop's inputs xi_x and N, and all four) and of a 3-passage growth
 #     study (growth_exact.toml; growth_discrete.toml), median CPU seconds,
@@ -200,6 +200,6 @@ for j, (key, label) in enumerate(entries):
 ax[0, 0].legend(fontsize=7)
 fig.suptitle("Creep forces' frequency response, paper's scene (N = 100 kN, 100 km/h; solid F_x = 20 kN, dotted 0)")
 fig.tight_layout()
-fig.savefig("docs/figures/creep_response.png", dpi=110)
-print("wrote docs/figures/creep_response.png")
+fig.savefig("docs/src/figures/creep_response.png", dpi=110)
+print("wrote docs/src/figures/creep_response.png")
 EOF

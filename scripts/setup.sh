@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs what corrugation needs on a Debian machine that has a Rust
 # toolchain, gcc and python3: HDF5 (libhdf5-dev, pkg-config) from Debian,
-# and a Python venv (.venv) with the post-processing package (postprocess/,
-# its dependencies from PyPI).
+# a Python venv (.venv) with the post-processing package (postprocess/,
+# its dependencies from PyPI), and mdbook for the book (docs/): Debian's
+# package where the release has one, else from crates.io at a pinned
+# version (Debian 12 has none; cargo install takes a few minutes, once).
 # Idempotent: does nothing that is already done.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,4 +38,20 @@ if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
   .venv/bin/python -m pip install -q --upgrade pip
   PYTHONWARNINGS=ignore .venv/bin/python -m pip install -q -e "postprocess[test]"
   echo "$want" > "$stamp"
+fi
+
+# mdbook builds the book (docs/); scripts/test.sh builds it and checks its
+# links. Without its serve and watch features (a local web server and a
+# file watcher, which the build does not need) it compiles in about half
+# the time.
+MDBOOK_VERSION=0.5.4
+if ! command -v mdbook >/dev/null && [ ! -x "${CARGO_HOME:-$HOME/.cargo}/bin/mdbook" ]; then
+  if [ "$apt_updated" -eq 0 ]; then as_root apt-get update -qq; apt_updated=1; fi
+  if [ -n "$(apt-cache policy mdbook 2>/dev/null | sed -n 's/^ *Candidate: *//p' | grep -v '(none)')" ]; then
+    echo "setup: installing mdbook from Debian" >&2
+    apt_install mdbook
+  else
+    echo "setup: installing mdbook $MDBOOK_VERSION from crates.io (cargo install, a few minutes, once)" >&2
+    cargo install mdbook --locked --version "$MDBOOK_VERSION" --no-default-features --features search --quiet
+  fi
 fi

@@ -3,7 +3,8 @@
 # (unit, integration, doc), a compile check of benchmarks and examples, then
 # the Python post-processing tests on a run file produced by the binary, and
 # the sweep commands against a real single-node Slurm cluster
-# (scripts/slurm_test.sh, about 40 s).
+# (scripts/slurm_test.sh, about 20 s; it installs slurm-wlm and munge from
+# Debian as root), and builds the book (docs/) and checks its links.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -25,3 +26,8 @@ CORRUGATION_RUN_FILE="$PWD/$run_dir/paper_normal_15mm.h5" CORRUGATION_BIN="$PWD/
   .venv/bin/python -m pytest -q postprocess/tests
 # Sweeps on a real Slurm (installs slurm-wlm and munge where missing).
 CORRUGATION_BIN="$PWD/target/debug/corrugation" bash scripts/slurm_test.sh
+# The book: built with mdbook (scripts/setup.sh installs it), its internal
+# links and anchors checked (external links are not followed).
+mdbook=$(command -v mdbook || echo "${CARGO_HOME:-$HOME/.cargo}/bin/mdbook")
+"$mdbook" build docs
+python3 scripts/check_links.py docs/book

@@ -3,6 +3,7 @@
 //! solver, the wear deposit and the track dynamics. Used by the run, the
 //! growth loop, `check` and the cost model alike; knows nothing of files.
 
+use crate::contact::Creepage;
 use crate::contact::fastsim::Fastsim;
 use crate::contact::grid::{Alignment, FixedGrid, spec::FixedGridSpec};
 use crate::contact::transient::elastic::{ExactElastic, WinklerElastic};
@@ -10,16 +11,26 @@ use crate::contact::transient::{ElasticModel, Transient};
 use crate::contact::{Elements, EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::TrackDynamics;
+use crate::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
+use crate::dynamics::contact_point::ContactLaw;
+use crate::dynamics::continuous3::Continuous3;
+use crate::dynamics::creep_response;
 use crate::dynamics::discrete::DiscreteTrack;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
+use crate::dynamics::discrete3::Discrete3;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
-use crate::dynamics::torsion::{TorsionFeedback, WheelsetTorsion};
+use crate::dynamics::torsion::{TorsionFeedback, WHEEL_POLAR_INERTIA, WheelsetTorsion};
 use crate::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
+use crate::dynamics::wheelset::rigid::RigidWheelset;
+use crate::dynamics::wheelset::{WheelsetModel, standard};
 use crate::hertz::{HertzPatch, HertzShape};
-use crate::params::{ContactGrid, ContactModel, DynamicsKind, NormalContact, Scene};
+use crate::params::{
+    ContactGrid, ContactModel, CreepForces, Directions, DynamicsKind, NormalContact, Scene, WheelsetModes,
+};
 use crate::passage::PassageSpec;
 use crate::rail_grid::RailGrid;
 use crate::wear::{CellDeposit, WearDeposit, WearKernel};
+use num_complex::Complex64;
 
 /// Quantities derived from a scene (what `corrugation check` prints).
 #[derive(Debug, Clone)]
@@ -95,6 +106,7 @@ pub fn derive(scene: &Scene) -> Derived {
             None => torsion_feedback(scene, &shape, loads.normal_force).into_iter().collect(),
         },
         dynamic_creepage_x: None,
+        dynamic_longitudinal_force: None,
         dynamic_creepage_y: None,
         dynamic_spin: None,
         surface: None,
@@ -285,7 +297,7 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
 /// *Veh. Syst. Dyn.* 11 (1982) 1-13; quasi-static), for a wheel of mean
 /// normal force `n0` (N).
 pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<TorsionFeedback> {
-    let (w, xi0) = (scene.wheelset?, scene.creepage_x?);
+    let (w, xi0) = (scene.wheelset.as_ref()?, scene.creepage_x?);
     let elastic = scene.material.elastic;
     let coefficients = creep_coefficients(shape.aspect(), elastic.poisson_ratio).expect("validated aspect");
     let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, elastic.shear_modulus());
@@ -315,6 +327,154 @@ pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<To
     Some(TorsionFeedback { torsion, force_per_normal, force_per_creepage })
 }
 
+/// The wheelset's modal model ([`crate::dynamics::wheelset`]) where the
+/// scene has `[wheelset]`: with `model = "modal"` the rigid wheelset on its
+/// primary suspension and the default's or the user's table's flexible
+/// modes; with the torsional model alone (`model = "torsion"`) its two
+/// modes ([`WheelsetModel::torsion`]), whose receptance is the torsion's
+/// eq. 1. The rolling radius is the scene's wheel radius.
+pub fn wheelset_model(scene: &Scene) -> Option<WheelsetModel> {
+    let w = scene.wheelset.as_ref()?;
+    let radius = scene.geometry.wheel_radius;
+    let Some(m) = &w.modal else {
+        let torsion =
+            WheelsetTorsion { stiffness: w.stiffness, loss_factor: w.loss_factor, inertia: w.inertia, radius };
+        return Some(WheelsetModel::torsion(&torsion));
+    };
+    let rigid = RigidWheelset {
+        mass: m.mass,
+        roll_inertia: m.roll_inertia,
+        yaw_inertia: m.yaw_inertia,
+        spin_inertia: 2.0 * w.inertia,
+        stiffness_x: m.suspension_stiffness[0],
+        stiffness_y: m.suspension_stiffness[1],
+        stiffness_z: m.suspension_stiffness[2],
+        loss_factor: m.suspension_loss_factor,
+        axle_box_half_spacing: m.axle_box_spacing / 2.0,
+        contact_half_spacing: m.contact_spacing / 2.0,
+        radius,
+    };
+    let model = match &m.modes {
+        WheelsetModes::Default { bending_damping, wheel_damping } => standard::default_model(&standard::Design {
+            rigid,
+            torsional_stiffness: w.stiffness,
+            torsional_loss_factor: w.loss_factor,
+            bending_damping: *bending_damping,
+            wheel_damping: *wheel_damping,
+        }),
+        WheelsetModes::Table { table, .. } => standard::table_model(&rigid, table),
+    };
+    Some(model.expect("validated keys and table make a valid model"))
+}
+
+/// The contact at the mean state of a wheel of mean normal force `n0`
+/// (N), for the dynamics in every direction: the Hertz stiffness and the
+/// steady creep curve's slopes `d(F_x, F_y) / dN` and `d(F_x, F_y) /
+/// d(xi_x, xi_y)` by central differences (1e-3 relative steps) of FASTSIM's
+/// steady solution on a 40 x 40 mesh with the Hertz pressure (as
+/// [`torsion_feedback`]), at the mean creepage: the prescribed one, or
+/// under force control the one FASTSIM finds for the mean force.
+pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64) -> ContactLaw {
+    let elastic = scene.material.elastic;
+    let coefficients = creep_coefficients(shape.aspect(), elastic.poisson_ratio).expect("validated aspect");
+    let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, elastic.shear_modulus());
+    let patch0 = shape.patch(n0).expect("validated loads keep N > 0");
+    let input = StepInput {
+        patch: patch0,
+        speed: scene.speed,
+        dt: 0.0,
+        friction: scene.material.friction,
+        force_x: fx0,
+        creepage_x: scene.creepage_x,
+        creepage_y: scene.creepage_y,
+        spin: scene.spin,
+        position: 0.0,
+    };
+    let xi0 = match scene.creepage_x {
+        Some(xi) => xi,
+        None => fastsim.solve_force(&input).map(|s| s.creepage.x).unwrap_or(0.0),
+    };
+    let forces = |n: f64, x: f64, y: f64| {
+        let patch = shape.patch(n).expect("validated loads keep N > 0");
+        let s =
+            fastsim.solve_creepage(&patch, Creepage { x, y, spin: scene.spin }, scene.material.friction, scene.speed);
+        [s.force_x, s.force_y]
+    };
+    let y0 = scene.creepage_y;
+    let (dn, dx, dy) = (1e-3 * n0, 1e-3 * xi0.abs().max(1e-5), 1e-3 * y0.abs().max(1e-5));
+    let diff = |a: [f64; 2], b: [f64; 2], h: f64| [0, 1].map(|i| Complex64::new((a[i] - b[i]) / (2.0 * h), 0.0));
+    let per_normal = diff(forces(n0 + dn, xi0, y0), forces(n0 - dn, xi0, y0), dn);
+    let per_x = diff(forces(n0, xi0 + dx, y0), forces(n0, xi0 - dx, y0), dx);
+    let per_y = diff(forces(n0, xi0, y0 + dy), forces(n0, xi0, y0 - dy), dy);
+    ContactLaw {
+        stiffness: hertz_stiffness(patch0.normal_force, patch0.approach),
+        force_per_normal: per_normal,
+        force_per_creepage: [[per_x[0], per_y[0]], [per_x[1], per_y[1]]],
+    }
+}
+
+/// The dynamics in every direction of a growth study's wheel
+/// ([`ContactDynamics`]): the track of `dynamics.model`, the wheelset's
+/// modal model (`[wheelset] model = "modal"`) or the rigid wheel of
+/// unsprung mass `mass` (kg) with the wheelset's torsion where configured,
+/// and the steady contact law at the wheel's mean loads.
+fn contact_dynamics(
+    scene: &Scene,
+    d: &Derived,
+    mass: f64,
+    contact_offset: f64,
+    creep_forces: CreepForces,
+) -> Box<dyn TrackDynamics> {
+    let loads = scene.vehicle.wheel_loads(0, &scene.loads);
+    let law = steady_contact_law(scene, &d.shape, loads.normal_force, loads.longitudinal_force);
+    // The dynamics loop needs the creepages' and the normal force's columns.
+    let response = match creep_forces {
+        CreepForces::Steady => None,
+        CreepForces::Transient => Some(
+            creep_response::scene::default_response(
+                scene,
+                loads.normal_force,
+                loads.longitudinal_force,
+                [true, true, false, true],
+            )
+            .unwrap_or_else(|e| {
+                panic!(
+                    "the creep forces' frequency response could not be measured on the passage's contact solver: \
+                     {e}; dynamics.creep_forces = \"steady\" closes the loop with FASTSIM's steady slopes instead"
+                )
+            }),
+        ),
+    };
+    let grid = periodic_grid(scene);
+    let rail = match scene.growth.as_ref().map(|g| g.dynamics) {
+        Some(DynamicsKind::Discrete { .. }) => Rail3::Discrete {
+            model: Discrete3::new(&scene.track, contact_offset),
+            vertical: DiscreteTrack::new(&scene.track),
+            sleeper_x0: grid.x_min,
+        },
+        _ => Rail3::Continuous(Continuous3::new(&scene.track, contact_offset)),
+    };
+    let modal = scene.wheelset.as_ref().is_some_and(|w| w.modal.is_some());
+    let wheel = Wheel3 {
+        mass,
+        radius: scene.geometry.wheel_radius,
+        polar_inertia: scene.wheelset.as_ref().map_or(WHEEL_POLAR_INERTIA, |w| w.inertia),
+        torsion: scene.wheelset.as_ref().map(|w| WheelsetTorsion {
+            stiffness: w.stiffness,
+            loss_factor: w.loss_factor,
+            inertia: w.inertia,
+            radius: scene.geometry.wheel_radius,
+        }),
+    };
+    let wheel = match wheelset_model(scene).filter(|_| modal) {
+        Some(model) => WheelSide::Modal { model, spin: scene.speed / scene.geometry.wheel_radius },
+        None => WheelSide::Rigid(wheel),
+    };
+    let model = ContactDynamics::new(rail, wheel, law, response, loads.normal_force, grid.nx, grid.dx, scene.speed)
+        .unwrap_or_else(|e| panic!("the track's receptances in three directions could not be computed: {e}"));
+    Box::new(model)
+}
+
 /// The track model of a growth study, if it has one. The discrete model
 /// tabulates its receptances for the study's speed and periodic stretch
 /// (the first rail node is above a sleeper). Several wheels
@@ -337,7 +497,16 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamic
             })
             .collect()
     };
-    match scene.growth.as_ref()?.dynamics {
+    let growth = scene.growth.as_ref()?;
+    // Several wheels: the vertical models (the config refuses them in
+    // every direction).
+    if let (Directions::All { contact_offset, creep_forces }, Some(mass)) =
+        (growth.directions, growth.dynamics.unsprung_mass())
+        && v.wheels.len() == 1
+    {
+        return Some(contact_dynamics(scene, d, v.wheel_mass(0, mass), contact_offset, creep_forces));
+    }
+    match growth.dynamics {
         DynamicsKind::Imposed => None,
         DynamicsKind::Receptance { unsprung_mass } => {
             let wheels = coupled(unsprung_mass);

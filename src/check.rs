@@ -2,11 +2,15 @@
 //! patches, mesh or grid, passage, rail grid, growth settings, resonances)
 //! and a rough cost estimate.
 
-use corrugation::build::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics};
+use corrugation::build::{derive, fixed_grid_load, fixed_grid_spec, periodic_grid, track_dynamics, wheelset_model};
 use corrugation::config::Resolved;
+use corrugation::config::quantity::engineering;
+use corrugation::config::units::key_units;
 use corrugation::contact::grid::GRID_MARGIN;
 use corrugation::contact::grid::convolution::smooth_padding;
+use corrugation::growth::record::MeasuredRoughness;
 use corrugation::model_choice::{AccuracyMap, SAFETY, departures};
+use corrugation::params::Roughness;
 use corrugation::params::TrafficScaling;
 use corrugation::params::{AutoChoice, Candidate};
 use corrugation::params::{DynamicsKind, NormalContact};
@@ -221,6 +225,7 @@ pub fn print_check(r: &Resolved) {
             corner
         );
     }
+    print_wheelset_modes(s);
     let cost = corrugation::cost::estimate(s);
     if let Some(g) = &s.growth {
         match g.traffic {
@@ -237,6 +242,7 @@ pub fn print_check(r: &Resolved) {
             ),
         }
         println!("checkpoints        every {} passages; rail stored every {}", g.checkpoint_every, g.store_every);
+        print_field_units(s, g);
         if corrugation::config::traffic::is_mix(&g.classes) {
             for c in &g.classes {
                 println!(
@@ -306,9 +312,160 @@ pub fn print_check(r: &Resolved) {
         cost.per_passage * cost.passes as f64,
         cost.memory / 1e6
     );
+    if let Some(Roughness::Measured(m)) = s.growth.as_ref().map(|g| &g.roughness) {
+        for line in record_lines(m) {
+            println!("record             {line}");
+        }
+    }
+    print_inputs(&r.toml);
+}
+
+/// What became of a measured record (for `check` and the start of `run`).
+pub fn record_lines(m: &MeasuredRoughness) -> Vec<String> {
+    let (r, p, s) = (&m.report, &m.processing, &m.samples);
+    let n = s.positions.len();
+    let um = |v: f64| format!("{:.3} um", v * 1e6);
+    let mut out = vec![format!(
+        "{}: {n} samples, {:.4} .. {:.4} m at {:.4} mm (file units: position {}, height {}); sha256 {}",
+        s.file.display(),
+        s.positions[0],
+        s.positions[n - 1],
+        s.spacing() * 1e3,
+        s.position_unit,
+        s.height_unit,
+        &s.sha256()[..16],
+    )];
+    let (k0, start, m_samples) = r.window;
+    out.push(format!(
+        "window {start:.4} .. {:.4} m (samples {} .. {}) onto the stretch; the record holds {} whole window(s){}",
+        start + m_samples as f64 * s.spacing(),
+        k0 + 1,
+        k0 + m_samples,
+        r.windows,
+        if r.windows > 1 { " (roughness.window_start picks another)" } else { "" }
+    ));
+    match p.spike_threshold {
+        Some(k) if r.spikes.is_empty() => out.push(format!("spikes: none beyond {k} robust standard deviations")),
+        Some(k) => {
+            let list: Vec<String> =
+                r.spikes.iter().take(10).map(|(x, h, w)| format!("{x:.4} m ({}, {w} sample(s))", um(*h))).collect();
+            let more = if r.spikes.len() > 10 { format!(", and {} more", r.spikes.len() - 10) } else { String::new() };
+            out.push(format!(
+                "spikes removed: {} beyond {k} robust standard deviations, at {}{more}",
+                r.spikes.len(),
+                list.join(", ")
+            ));
+        }
+        None => out.push("spikes: not removed (roughness.remove_spikes = false)".into()),
+    }
+    match (p.curvature_radius, r.filled) {
+        (Some(radius), Some((deepest, raised))) => out.push(format!(
+            "curvature processing with a {radius} m wheel: {raised} sample(s) raised, the deepest by {}",
+            um(deepest)
+        )),
+        _ => out.push("curvature processing: off (roughness.curvature_processing = false)".into()),
+    }
+    if let Some(slope) = r.slope {
+        out.push(format!("detrended: slope {slope:.3e} removed"));
+    }
+    let (seam, steps) = r.seam;
+    out.push(format!(
+        "periodic seam: the last sample joins the first with a step of {} (rms step between neighbours {}{})",
+        um(seam),
+        um(steps),
+        if seam.abs() > 3.0 * steps {
+            "; a step this large adds a 1/n tail to the spectrum: roughness.detrend or another window helps"
+        } else {
+            ""
+        }
+    ));
+    out.push(format!(
+        "profile: {} harmonics, wavelengths {:.2} .. {:.1} mm; rms {} of the window, {} kept",
+        m.harmonics.len(),
+        p.wavelength_min * 1e3,
+        p.wavelength_max.min(f64::MAX) * 1e3,
+        um(r.rms.0),
+        um(r.rms.1)
+    ));
+    out
+}
+
+/// Every physical input of the resolved config in SI and, where an
+/// engineer writes it otherwise, in engineering units.
+fn print_inputs(toml: &str) {
+    let Ok(t) = toml.parse::<toml::Table>() else { return };
+    let mut rows = Vec::new();
+    collect_inputs(&t, "", &mut rows);
+    println!("inputs             (SI, as the run uses them; engineering units beside)");
+    for (key, v, unit) in rows {
+        let eng = engineering(v, unit).map(|e| format!("  = {e}")).unwrap_or_default();
+        let unit = if unit == "1" { "" } else { unit };
+        let si = if v != 0.0 && !(1e-3..1e5).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") };
+        println!("  {key:<38} {si:>18} {unit}{eng}");
+    }
+}
+
+fn collect_inputs(t: &toml::Table, prefix: &str, out: &mut Vec<(String, f64, &'static str)>) {
+    for (k, v) in t {
+        let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+        match v {
+            toml::Value::Table(t) => collect_inputs(t, &key, out),
+            toml::Value::Array(a) => {
+                for (i, item) in a.iter().enumerate() {
+                    match item {
+                        toml::Value::Table(t) => collect_inputs(t, &format!("{key}[{i}]"), out),
+                        other => {
+                            if let (Some(x), Some(u)) = (number(other), key_units(&key)) {
+                                out.push((format!("{key}[{i}]"), x, u));
+                            }
+                        }
+                    }
+                }
+            }
+            other => {
+                if let (Some(x), Some(u)) = (number(other), key_units(&key)) {
+                    out.push((key, x, u));
+                }
+            }
+        }
+    }
+}
+
+fn number(v: &toml::Value) -> Option<f64> {
+    v.as_float().or(v.as_integer().map(|i| i as f64))
 }
 
 /// What the normal contact of a growth study sees of the rail.
+/// The modal wheelset's modes (`[wheelset] model = "modal"`), at rest and
+/// as the scene's spin `V / r` moves the coupled ones.
+fn print_wheelset_modes(s: &corrugation::params::Scene) {
+    let Some(modal) = s.wheelset.as_ref().and_then(|w| w.modal.as_ref()) else {
+        return;
+    };
+    let Some(model) = wheelset_model(s) else {
+        return;
+    };
+    let source = match &modal.modes {
+        corrugation::params::WheelsetModes::Default { .. } => "the default freight wheelset".to_string(),
+        corrugation::params::WheelsetModes::Table { path, .. } => format!("the table {path}"),
+    };
+    println!(
+        "wheelset           modal model: {} modes ({source}, on the primary suspension); the receptance at both \
+         contacts in x, y, z and rotation",
+        model.modes().len()
+    );
+    for (k, m) in model.modes().iter().enumerate() {
+        println!("wheelset           mode {k}: {}", m.describe());
+    }
+    let spin = s.speed / s.geometry.wheel_radius;
+    let moved: Vec<String> = model.frequencies(spin).iter().map(|f| format!("{f:.1}")).collect();
+    println!(
+        "wheelset           spinning at V / r = {spin:.1} rad/s the undamped modes are at {} Hz (the gyroscopic \
+         coupling splits the bending pairs and the wheel's diametral pairs)",
+        moved.join(", ")
+    );
+}
+
 fn print_normal_contact(normal: NormalContact, fixed: bool) {
     let linear = "the linear profile contact (the patch moved and stretched with the contact and the rest of the \
                   normal problem's linear response to the corrugation under it); the dynamics see its flat-punch \
@@ -341,5 +498,38 @@ fn print_normal_contact(normal: NormalContact, fixed: bool) {
             "normal contact     auto: {linear}; a corrugation that opens the patch inside is reported (the \
              nonlinear profile contact needs contact.grid = \"fixed\")"
         ),
+    }
+}
+
+/// The roughness levels' bands and limit, and the traffic in the operator's
+/// units (issue 35).
+fn print_field_units(s: &corrugation::params::Scene, g: &corrugation::params::GrowthParams) {
+    use corrugation::levels::{forecast::Units, resolved_bands};
+    let grid = corrugation::build::study_grid(s);
+    let bands = resolved_bands(s.levels.bands, grid.nx, grid.dx);
+    let limit = s.levels.limit.on(&bands);
+    match (bands.first(), bands.last()) {
+        (Some(long), Some(short)) => println!(
+            "roughness levels   {} bands, {} to {} (a quarter of the stretch down to the grid), against the {} limit \
+             ({} of them with a value)",
+            bands.len(),
+            long.label(),
+            short.label(),
+            s.levels.limit.name,
+            limit.iter().filter(|l| l.is_finite()).count()
+        ),
+        _ => println!("roughness levels   no band resolved (a band needs a quarter of the stretch)"),
+    }
+    let shares: Vec<f64> = g.classes.iter().map(|c| c.share).collect();
+    let units = Units::new(&g.operation, &shares);
+    let mut parts = Vec::new();
+    if let Some(t) = units.tonnes_per_passage {
+        parts.push(format!("{t:.2} t per wheel passage (MGT)"));
+    }
+    if let Some(a) = units.axles_per_day {
+        parts.push(format!("{a} axles per day (days)"));
+    }
+    if !parts.is_empty() {
+        println!("operator traffic   {}", parts.join(", "));
     }
 }

@@ -1,7 +1,7 @@
 //! A rough cost model of a scene: CPU time per passage on 2 cores, the
 //! set-up of the discrete track's receptances, and memory. `check` prints
 //! it; sweeps use it for their plan and their Slurm time and memory limits.
-//! The times are fitted to measurements (README, Performance); they are
+//! The times are fitted to measurements (book: docs/src/performance/); they are
 //! upper estimates on the development machines, not promises.
 
 use crate::build::{derive, fixed_grid_spec, periodic_grid};
@@ -120,7 +120,7 @@ pub fn auto_grid_solver(s: &Scene) -> GridSolver {
 
 impl ContactModel {
     /// CPU time per contact step (s, 2 cores) of this model in scene `s`
-    /// (whose model it is), from measurements (README, Performance):
+    /// (whose model it is), from measurements (book: docs/src/performance/):
     /// FASTSIM ~ 18 ns per element and solve, 25 solves; simplified-transient
     /// ~ 3 us per element; the exact model with constant N ~ 60 ms at 400
     /// elements, growing as N^3 (dense LU); with a varying N (harmonics or
@@ -128,8 +128,8 @@ impl ContactModel {
     /// fitted by 2.7e-9 N^3 s. The Gauss-Seidel solver
     /// (scripts/solver_scaling.sh, wall): 2.4 ms at 100 and 11.8 ms at 400
     /// elements (~N^1.15 while C fits in cache), ~N^2.2 beyond. Measured on
-    /// the old AMD development machine; the newer Intel one (README,
-    /// Performance) takes 0.45-0.6 of these times: an upper estimate. The
+    /// the old AMD development machine; the newer Intel one (book,
+    /// docs/src/performance/) takes 0.45-0.6 of these times: an upper estimate. The
     /// fixed grid: its step's fit (`fixed_grid_step`).
     pub fn step_cost(&self, s: &Scene, d: &crate::build::Derived) -> f64 {
         let n_el = self.mesh().map_or(0, |m| m.len()) as f64;

@@ -1,4 +1,4 @@
-//! Command line of `corrugation` (README: Command line).
+//! Command line of `corrugation` (book: docs/src/reference/cli.md).
 //!
 //! Exit codes: 0 success, 1 the run failed (solver or output), 2 bad input
 //! (command line or config).
@@ -126,6 +126,13 @@ fn main() -> ExitCode {
             if let Err(code) = new_output(&out, overwrite, true).and_then(|_| writable(&out)) {
                 return code;
             }
+            if let Some(corrugation::params::Roughness::Measured(m)) =
+                resolved.scene.growth.as_ref().map(|g| &g.roughness)
+            {
+                for line in check::record_lines(m) {
+                    say!("record: {line}");
+                }
+            }
             run(&resolved, &out)
         }
         Command::Resume { file, passes, output, overwrite } => {
@@ -183,11 +190,35 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
         k_h,
         &distances,
     );
-    match corrugation::output::track_file::write_track_file(out, &r, s.track.rail_name, &resolved.toml) {
+    // The head in three directions where the growth loop uses it (the
+    // default, and a config without a growth study).
+    let offset = match s.growth.as_ref().map(|g| g.directions) {
+        Some(corrugation::params::Directions::Vertical) => None,
+        Some(corrugation::params::Directions::All { contact_offset, .. }) => Some(contact_offset),
+        None => Some(0.0),
+    };
+    let head = match offset.map(|o| {
+        corrugation::dynamics::head_response::head_response(
+            &s.track,
+            o,
+            &r.frequency,
+            &r.position,
+            &r.source,
+            &distances,
+        )
+    }) {
+        Some(Ok(h)) => Some(h),
+        Some(Err(e)) => {
+            say!("error: the rail head's receptances in three directions: {e}");
+            return ExitCode::FAILURE;
+        }
+        None => None,
+    };
+    match corrugation::output::track_file::write_track_file(out, &r, head.as_ref(), s.track.rail_name, &resolved.toml) {
         Ok(()) => {
             say!(
                 "wrote {}: {} rail on {} m sleeper spacing; pinned-pinned {:.0} Hz (simply supported span {:.0} Hz), \
-                 rail on pad {:.0} Hz, track on ballast {:.0} Hz; contact spring {:.3e} N/m, wheel {mass} kg{}",
+                 rail on pad {:.0} Hz, track on ballast {:.0} Hz; contact spring {:.3e} N/m, wheel {mass} kg{}{}",
                 out.display(),
                 s.track.rail_name,
                 s.track.sleeper_spacing,
@@ -200,7 +231,8 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
                     String::new()
                 } else {
                     format!("; transfer receptances between the wheels at {distances:?} m")
-                }
+                },
+                if head.is_some() { "; the rail head in three directions" } else { "" }
             );
             ExitCode::SUCCESS
         }
@@ -224,10 +256,14 @@ fn reset_sigpipe() {
 }
 
 fn load(path: &Path, set: &[String]) -> Result<Resolved, ExitCode> {
-    config::load_file(path, set).map_err(|e| {
+    let r = config::load_file(path, set).map_err(|e| {
         say_raw!("error: {e}");
         ExitCode::from(2)
-    })
+    })?;
+    for w in &r.warnings {
+        say!("warning: {w}");
+    }
+    Ok(r)
 }
 
 /// Before computing anything: an existing `out` is replaced only with
@@ -367,7 +403,7 @@ fn report(s: &RunSummary, out: &Path) {
         s.rms_corrugation,
     );
     if let Some(reason) = &s.stop_reason {
-        say!("the study stopped before its planned passages (growth.stop = \"saturation\"): {reason}");
+        say!("the study stopped before its planned passages (growth.stop): {reason}");
     }
     let (q, pass) = s.max_update_ratio;
     if q > s.update_bound * (1.0 + 1e-9) {
@@ -381,5 +417,9 @@ fn report(s: &RunSummary, out: &Path) {
              its amplitude (bound {}); {effect}. Lower growth.traffic_scale or set growth.adaptive = true.",
             s.update_bound
         );
+    }
+    // The last lines: where the rail stands against the roughness limit.
+    for line in &s.outlook {
+        say!("{line}");
     }
 }

@@ -1,5 +1,5 @@
-//! One wheel passage over the rail stretch: the model chain (README:
-//! Model chain of one passage) at every time step.
+//! One wheel passage over the rail stretch: the model chain (book:
+//! docs/src/theory/model-chain.md) at every time step.
 //!
 //! For each patch position `X_c = start + n h` (time `t = n h / V`):
 //! imposed loads `N(X_c)`, `F_x(X_c)` -> Hertz patch -> tangential solution
@@ -58,6 +58,9 @@ pub struct PassageSpec {
     pub torsion: Vec<TorsionFeedback>,
     /// Variation of the prescribed creepage added to `creepage_x` (1).
     pub dynamic_creepage_x: Option<PeriodicSignal>,
+    /// Variation of the prescribed longitudinal force added to the imposed
+    /// loads' (N; force control).
+    pub dynamic_longitudinal_force: Option<PeriodicSignal>,
     /// Variation of the lateral creepage added to `creepage_y` (1).
     pub dynamic_creepage_y: Option<PeriodicSignal>,
     /// Variation of the spin added to `spin` (1/m).
@@ -370,7 +373,10 @@ pub fn run_passage(
             speed: spec.speed,
             dt,
             friction: spec.friction,
-            force_x: spec.loads.longitudinal_force_at(x),
+            force_x: spec
+                .dynamic_longitudinal_force
+                .as_ref()
+                .map_or(spec.loads.longitudinal_force_at(x), |d| spec.loads.longitudinal_force_at(x) + d.at(x)),
             creepage_x: spec.creepage_x.map(|c| c + spec.dynamic_creepage_x.as_ref().map_or(0.0, |d| d.at(x))),
             creepage_y: spec.dynamic_creepage_y.as_ref().map_or(spec.creepage_y, |d| spec.creepage_y + d.at(x)),
             spin: spec.dynamic_spin.as_ref().map_or(spec.spin, |d| spec.spin + d.at(x)),

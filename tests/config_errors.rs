@@ -42,7 +42,10 @@ fn corpus_of_bad_values() {
         ),
         ("material.poisson_ratio=0.5", "material.poisson_ratio: = 0.5 is out of range; expected a number in [0, 0.5)"),
         ("material.young_modulus=-1", "material.young_modulus: = -1 is out of range; expected a finite number > 0"),
-        ("material.young_modulus=\"steel\"", "material.young_modulus: expected a finite number > 0, found string"),
+        (
+            "material.young_modulus=\"steel\"",
+            "material.young_modulus: `steel` is not a number with a unit (such as \"210GPa\"); expected a finite number > 0 in Pa",
+        ),
         ("load.normal_force=0", "load.normal_force: = 0 is out of range; expected a finite number > 0"),
         ("load.normal_force=nan", "load.normal_force: = NaN is out of range"),
         (
@@ -205,7 +208,7 @@ fn a_string_key_takes_a_bare_word_in_every_config() {
 #[test]
 fn either_step_key_set_alone_sets_both_on_the_fixed_grid() {
     // paper_normal_30mm gives passage.step_length, growth_exact contact.dx;
-    // one override of the other key moves both (README, Configuration); two
+    // one override of the other key moves both (docs/src/reference/configuration.md); two
     // that differ are refused, and an invalid one leaves the file's key.
     let fixed = ["contact.model=exact-transient", "contact.grid=fixed"].map(String::from);
     let growth = include_str!("../configs/growth_exact.toml");
@@ -288,7 +291,13 @@ fn whole_numbers_written_as_floats_are_integers() {
 #[test]
 fn missing_keys_and_syntax() {
     let e = errors(&BASE.replace("young_modulus = 2.1e11          # Pa\n", ""), &[]);
-    assert_eq!(e, vec!["material.young_modulus: missing; expected a finite number > 0".to_string()]);
+    assert_eq!(
+        e,
+        vec![
+            "material.young_modulus: missing; expected a finite number > 0 in Pa (or a string with its unit, e.g. \"210GPa\")"
+                .to_string()
+        ]
+    );
     let e = errors("[material\nx = 1", &[]);
     assert!(e[0].starts_with("TOML syntax:"), "{e:?}");
     // The parser's picture of the line keeps its line breaks.

@@ -85,6 +85,8 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
         "growth.contact_history=[3, 0, 0]",
         "output.store_fields=true",
         "growth.adaptive=false",
+        "traffic.axle_load=22.5e3",
+        "traffic.axles_per_day=4000",
     ];
     let full = run(dir.path(), "full.h5", &[&set[..], &["growth.passes=4"]].concat());
     let part = run(dir.path(), "part.h5", &[&set[..], &["growth.passes=2"]].concat());
@@ -93,6 +95,22 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     let s = resume(&part, Some(2), Some(&resumed), &mut |_| {}).unwrap();
     assert_eq!((s.passes, s.computed), (4, 2));
     assert_same(&full, &resumed);
+    // The field-unit variables are among those compared.
+    let names: Vec<String> = contents(&resumed).into_iter().map(|(n, _)| n).collect();
+    for v in [
+        "/passes/band",
+        "/passes/initial_level",
+        "/passes/roughness_level",
+        "/passes/level_rate",
+        "/passes/limit_level",
+        "/passes/passages_to_limit",
+        "/passes/traffic_mgt",
+        "/passes/mgt_to_limit",
+        "/passes/days_to_limit",
+        "/rail/traffic_days",
+    ] {
+        assert!(names.iter().any(|n| n == v), "{v} not written");
+    }
     assert_eq!(read_i64(&resumed, "rail", "pass").unwrap().as_slice().unwrap(), &[2, 3]);
     // The source file is left as it was.
     assert_eq!(read_f64(&part, "passes", "traffic").unwrap().len(), 2);
@@ -314,4 +332,32 @@ fn a_study_that_stops_at_saturation_ends_at_full_sliding() {
     assert_eq!(read_attr_str(&out, "", "status").unwrap(), "complete");
     let reason = read_attr_str(&out, "", "stop_reason").unwrap();
     assert!(reason.starts_with("full sliding in passage 1: ") && reason.contains("friction limit"), "{reason}");
+}
+
+#[test]
+fn a_file_written_before_the_levels_resumes_with_levels_from_its_spectra() {
+    // A run file of a version without the band levels (they are removed
+    // here): the resumed run derives the stored passages' levels from their
+    // centre-line spectra and goes on; the new passage's rate follows them.
+    let dir = tempfile::tempdir().unwrap();
+    let part = run(dir.path(), "old.h5", &["growth.passes=2", "growth.adaptive=false", "growth.contact_history=[]"]);
+    {
+        let file = hdf5::File::open_rw(&part).unwrap();
+        let passes = file.group("passes").unwrap();
+        for v in ["roughness_level", "level_rate", "initial_level", "passages_to_limit"] {
+            passes.unlink(v).unwrap();
+        }
+    }
+    let s = resume(&part, Some(1), None, &mut |_| {}).unwrap();
+    assert_eq!((s.passes, s.computed), (3, 1));
+    let level = read_f64(&part, "passes", "roughness_level").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    let rate = read_f64(&part, "passes", "level_rate").unwrap().into_dimensionality::<ndarray::Ix2>().unwrap();
+    let m = read_f64(&part, "passes", "traffic_scale").unwrap();
+    assert_eq!(level.dim().0, 3);
+    for k in 0..level.dim().1 {
+        assert!(level.column(k).iter().all(|l| l.is_finite()));
+        if level[[1, k]] > -120.0 && level[[2, k]] > -120.0 {
+            assert!((rate[[2, k]] - (level[[2, k]] - level[[1, k]]) * 1e5 / m[2]).abs() < 1e-9);
+        }
+    }
 }

@@ -99,9 +99,13 @@ fn the_vehicle_section_places_the_wheels() {
     // One wheel without [vehicle]; a bogie's and a car's distances; the
     // wheels must start at the leading one and run backwards.
     assert_eq!(load(&[]).unwrap().scene.vehicle.wheels, vec![0.0]);
-    let bogie = load(&["vehicle.wheels=[0.0, 2.5]"]).unwrap().scene.vehicle;
+    let vertical = "dynamics.directions=vertical";
+    let bogie = load(&["vehicle.wheels=[0.0, 2.5]", vertical]).unwrap().scene.vehicle;
     assert_eq!(bogie.distances(), vec![2.5]);
-    let car = load(&["vehicle.wheels=[0, 2.5, 17.5, 20.0]"]).unwrap().scene.vehicle;
+    // The dynamics in every direction closes one wheel's contact.
+    let e = errors(&["vehicle.wheels=[0.0, 2.5]"]);
+    assert!(e.len() == 1 && e[0].contains("dynamics.directions = \"vertical\""), "{e:?}");
+    let car = load(&["vehicle.wheels=[0, 2.5, 17.5, 20.0]", vertical]).unwrap().scene.vehicle;
     assert_eq!(car.distances(), vec![2.5, 15.0, 17.5, 20.0]);
     for (set, expected) in [
         ("vehicle.wheels=[1.0, 2.5]", "vehicle.wheels: starts at 1 m; the first is the leading wheel, at 0 m"),
@@ -110,7 +114,7 @@ fn the_vehicle_section_places_the_wheels() {
         ("vehicle.wheels=[]", "vehicle.wheels: expected a list of 1 to 8 numbers"),
         ("vehicle.axles=2", "vehicle.axles: unknown key"),
     ] {
-        let e = errors(&[set]);
+        let e = errors(&[set, vertical]);
         assert_eq!(e.len(), 1, "{set}: {e:?}");
         assert!(e[0].starts_with(expected), "{set}: {}", e[0]);
     }
@@ -125,7 +129,13 @@ fn track_writes_the_transfer_between_the_wheels() {
     std::fs::write(&config, format!("{GROWTH}\n[vehicle]\nwheels = [0.0, 2.5]\n")).unwrap();
     let out = dir.path().join("bogie_track.h5");
     let bin = env!("CARGO_BIN_EXE_corrugation");
-    let o = std::process::Command::new(bin).arg("track").arg(&config).arg("-o").arg(&out).output().unwrap();
+    let o = std::process::Command::new(bin)
+        .arg("track")
+        .arg(&config)
+        .args(["--set", "dynamics.directions=vertical", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     // The file's transfer at 2.5 m from a force above a sleeper and at
     // mid-span is the discrete track's, at every 60th frequency.

@@ -248,6 +248,8 @@ fn fastsim(extra: &[&str]) -> corrugation::config::Resolved {
         .map(|s| s.to_string())
         .collect();
     set.push("growth.contact_history=[0, 3]".into());
+    // Several wheels couple through the rail's vertical receptances.
+    set.push("dynamics.directions=vertical".into());
     load_str(include_str!("../configs/growth_fastsim.toml"), "vehicle test", &set).unwrap()
 }
 
@@ -304,7 +306,13 @@ fn a_traffic_class_may_be_a_vehicle() {
     // the profile of the study whose vehicle is that bogie, and not the
     // single wheel's (fixed traffic scale).
     let dir = tempfile::tempdir().unwrap();
-    let fixed = ["growth.adaptive=false", "growth.traffic_scale=1e3", "growth.passes=2", "growth.contact_history=[]"];
+    let fixed = [
+        "growth.adaptive=false",
+        "growth.traffic_scale=1e3",
+        "growth.passes=2",
+        "growth.contact_history=[]",
+        "dynamics.directions=vertical",
+    ];
     let set: Vec<String> = fixed.iter().map(|s| s.to_string()).collect();
     let text = include_str!("../configs/growth_fastsim.toml");
     let class = |name: &str, wheels: &str| format!("[[traffic.mix]]\nname = \"{name}\"\nshare = 1.0\n{wheels}\n");
@@ -383,11 +391,21 @@ fn several_wheels_need_a_track_model_and_room() {
         };
     let growth = include_str!("../configs/growth_fastsim.toml");
     let single = include_str!("../configs/paper_normal_30mm.toml");
+    let vertical = "dynamics.directions=vertical";
     for (text, set, expected) in [
         (single, vec!["vehicle.wheels=[0.0, 2.5]"], "a single passage rolls one wheel"),
+        (growth, vec!["vehicle.wheels=[0.0, 2.5]"], "closes one wheel's contact so far"),
         (growth, vec!["vehicle.wheels=[0.0, 2.5]", "dynamics.model=imposed"], "dynamics.model = \"imposed\""),
-        (growth, vec!["vehicle.wheels=[0.0, 0.8]"], "closer than a wheel's diameter (2 geometry.wheel_radius = 1 m)"),
-        (growth, vec!["vehicle.wheels=[0.0, 2.5]", "vehicle.normal_force=[1e5]"], "has 1 values; one per wheel"),
+        (
+            growth,
+            vec!["vehicle.wheels=[0.0, 0.8]", vertical],
+            "closer than a wheel's diameter (2 geometry.wheel_radius = 1 m)",
+        ),
+        (
+            growth,
+            vec!["vehicle.wheels=[0.0, 2.5]", "vehicle.normal_force=[1e5]", vertical],
+            "has 1 values; one per wheel",
+        ),
         (single, vec!["vehicle.normal_force=[1e5]"], "a single passage takes load.*"),
         (
             growth,
@@ -395,6 +413,7 @@ fn several_wheels_need_a_track_model_and_room() {
                 "vehicle.wheels=[0.0, 2.5]",
                 "vehicle.longitudinal_force=[2e4, 4e4]",
                 "vehicle.normal_force=[1e5, 9e4]",
+                vertical,
             ],
             "wheel 2: |F_x| reaches",
         ),

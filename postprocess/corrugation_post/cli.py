@@ -36,17 +36,22 @@ def _parser() -> argparse.ArgumentParser:
     )
     sub = parser.add_subparsers(dest="command", required=True)
 
-    fig = sub.add_parser("figures", help="wear map, centre-line wear, loads, traction snapshots")
+    fig = sub.add_parser("figures", help="wear map, centre-line wear, loads, traction snapshots, growth, "
+                         "roughness levels against the limit")
     fig.add_argument("run", help="run file (.h5)")
     fig.add_argument("--out", required=True, help="output folder (created if needed)")
     fig.add_argument("--pass", dest="pass_index", type=int, default=None,
-                     help="stored passage index (default: the last stored)")
+                     help="passage N as the terminal counts them, from 1 (default: the last stored)")
+    fig.add_argument("--levels-at", dest="levels_at", type=int, nargs="+", default=None, metavar="N",
+                     help="passages (from 1) whose band levels levels.png draws (default: up to four spread "
+                          "over the run)")
 
     cmp_ = sub.add_parser("compare", help="overlay several runs, table of relative differences")
     cmp_.add_argument("runs", nargs="+", help="run files; the first is the reference")
     cmp_.add_argument("--out", required=True, help="output folder (created if needed)")
     cmp_.add_argument("--pass", dest="pass_index", type=int, default=None,
-                      help="stored passage index (default: the last one stored in every run)")
+                      help="passage N as the terminal counts them, from 1 (default: the last one stored in every "
+                           "run)")
 
     grw = sub.add_parser("growth", help="compare growth studies: rms and one harmonic against traffic")
     grw.add_argument("runs", nargs="+", help="growth-study run files; the first is the reference")
@@ -98,7 +103,7 @@ def _warn(problems) -> None:
 def _figures(args) -> int:
     from .figures import make_figures
 
-    paths, problems, notes = make_figures(args.run, args.out, args.pass_index)
+    paths, problems, notes = make_figures(args.run, args.out, args.pass_index, args.levels_at)
     for p in paths:
         print(p)
     for msg in notes:

@@ -44,11 +44,10 @@ class RunCurves:
 
 
 def _common_pass(runs: list[Run], requested: int | None) -> int:
-    """``requested`` (checked in every run), else the last passage stored in all runs."""
+    """The stored index of passage ``requested`` (counted from 1, checked in
+    every run), else of the last passage stored in all runs."""
     if requested is not None:
-        for run in runs:
-            run.resolve_pass(requested)
-        return requested
+        return [run.resolve_pass(requested) for run in runs][0]
     common = set.intersection(*(set(run.passes()) for run in runs))
     if not common:
         raise RunFileError("the runs have no stored passage index in common; use --pass")
@@ -99,7 +98,7 @@ def table_rows(curves: list[RunCurves]) -> list[dict]:
     ref = curves[0]
     return [
         {
-            "label": c.label, "file": str(c.path), "pass": c.pass_index,
+            "label": c.label, "file": str(c.path), "pass": c.pass_index + 1,
             "max_centreline_wear_m": c.max_centreline_wear_m,
             "max_centreline_wear_rel_diff": _rel(c.max_centreline_wear_m, ref.max_centreline_wear_m),
             "mean_abs_creepage_x": c.mean_abs_creepage_x,
@@ -131,7 +130,7 @@ def _overlay(curves: list[RunCurves], out_dir: Path) -> list[Path]:
     for c in curves:
         ax.plot(c.x_mm, c.centreline_um, label=c.label)
     ax.set(xlabel="x along rail (mm)", ylabel="wear depth at y ≈ 0 (µm)",
-           title=f"Centre-line wear depth, stored passage {pass_index}")
+           title=f"Centre-line wear depth of passage {pass_index + 1}")
     ax.grid(alpha=0.3)
     ax.legend()
     wear_png = out_dir / "compare_wear_centreline.png"
@@ -143,7 +142,7 @@ def _overlay(curves: list[RunCurves], out_dir: Path) -> list[Path]:
         if c.creepage_x is not None:
             ax.plot(c.xc_mm, c.creepage_x, label=c.label)
     ax.set(xlabel="patch centre x_c (mm)", ylabel="creepage_x (signed)",
-           title=f"Longitudinal creepage, stored passage {pass_index}")
+           title=f"Longitudinal creepage, passage {pass_index + 1}")
     ax.grid(alpha=0.3)
     ax.legend()
     creep_png = out_dir / "compare_creepage.png"
@@ -166,7 +165,7 @@ def _side_by_side_maps(runs: list[Run], labels: list[str], pass_index: int, out_
         ax.set(ylabel="y (mm)", title=label)
     axes[-1].set_xlabel("x along rail (mm)")
     fig.colorbar(mesh, ax=list(axes), label="wear depth (µm)")
-    fig.suptitle(f"Wear depth, stored passage {pass_index}")
+    fig.suptitle(f"Wear depth of passage {pass_index + 1} alone")
     path = out_dir / "compare_wear_maps.png"
     fig.savefig(path, dpi=DPI)
     return path

@@ -1,7 +1,11 @@
-"""Figures of one run: wear maps (paper Figs. 6-8), loads, traction snapshots (Figs. 3-4).
+"""Figures of one run: wear maps (paper Figs. 6-8), loads, traction snapshots
+(Figs. 3-4), growth, and the roughness levels against their limit
+(``levels.py``).
 
-Every figure function takes a ``Run``, a stored passage index and an output
-folder, writes one PNG and returns its path.  Figures are built on
+Every figure function takes a ``Run``, a stored passage index (the ``pass``
+coordinate, from 0) and an output folder, writes one PNG and returns its
+path.  Titles number passages from 1, as the terminal does; lengths are in
+mm, roughness in µm or dB re 1 µm.  Figures are built on
 ``matplotlib.figure.Figure`` objects (no pyplot, no display needed).
 """
 
@@ -23,7 +27,7 @@ DPI = 150
 
 
 def _title(run: Run, what: str, pass_index: int, note: str = "") -> str:
-    return f"{what}, stored passage {pass_index}{note}\ncontact model: {run.contact_model}"
+    return f"{what}, passage {pass_index + 1}{note}\ncontact model: {run.contact_model}"
 
 
 def _save(fig: Figure, out_dir: Path, name: str) -> Path:
@@ -34,9 +38,17 @@ def _save(fig: Figure, out_dir: Path, name: str) -> Path:
 
 
 def _traffic_note(rail, pass_index: int) -> str:
+    """Where the passage stands in the study: the traffic the rail has seen
+    up to it (the passage's own wear is one simulated wheel passage's)."""
     if "traffic" not in rail:
         return ""
-    return f" (cumulative traffic {int(rail['traffic'].sel({'pass': pass_index}).values)})"
+    seen = float(rail["traffic"].sel({"pass": pass_index}).values)
+    return f" (the rail has seen {seen:.3g} wheel passages in all)"
+
+
+def _wear_title(run: Run, pass_index: int, note: str) -> str:
+    return (f"Wear depth of passage {pass_index + 1} alone: one wheel passage, unscaled{note}\n"
+            f"contact model: {run.contact_model}")
 
 
 def wear_map(run: Run, pass_index: int, out_dir: Path) -> Path:
@@ -51,7 +63,7 @@ def wear_map(run: Run, pass_index: int, out_dir: Path) -> Path:
     mesh = ax.pcolormesh(x, y, values_in(wear, unit), shading="auto", cmap="viridis")
     fig.colorbar(mesh, ax=ax, label=f"wear depth ({label})")
     ax.set(xlabel="x along rail (mm)", ylabel="y lateral (mm)",
-           title=_title(run, "Wear depth", pass_index, note))
+           title=_wear_title(run, pass_index, note))
     return _save(fig, out_dir, "wear_map.png")
 
 
@@ -69,7 +81,7 @@ def wear_centreline(run: Run, pass_index: int, out_dir: Path) -> Path:
     ax.plot(x, values_in(row, unit), label=f"centre line (y = {y0:.2f} mm)")
     ax.plot(x, values_in(wear.max("y"), unit), "--", label="maximum over y")
     ax.set(xlabel="x along rail (mm)", ylabel=f"wear depth ({label})",
-           title=_title(run, "Wear depth", pass_index, note))
+           title=_wear_title(run, pass_index, note))
     ax.grid(alpha=0.3)
     ax.legend()
     return _save(fig, out_dir, "wear_centreline.png")
@@ -237,15 +249,21 @@ def spectrum(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     wl = spec[spec.dims[0]]
     fig = Figure(figsize=(8, 4), layout="constrained")
     ax = fig.add_subplot()
+    # Amplitudes in µm, wavelengths in mm (the units of the other figures);
+    # a spectrum in other units (a PSD) is drawn as stored.
     try:
-        ax.semilogx(values_in(wl, "mm"), spec.values)
+        y, ylabel = values_in(spec, "um"), "amplitude (µm)"
+    except ValueError:
+        y, ylabel = spec.values, f"{spec.attrs.get('long_name', 'spectrum')} ({spec.attrs.get('units', '?')})"
+    try:
+        ax.semilogx(values_in(wl, "mm"), y, "o-", ms=2)
         ax.set_xlabel(f"{wl.name} (mm)")
     except ValueError:
-        ax.semilogx(wl.values, spec.values)
+        ax.semilogx(wl.values, y, "o-", ms=2)
         ax.set_xlabel(f"{wl.name} ({wl.attrs.get('units', '?')})")
-    ax.set_ylabel(f"{spec.attrs.get('long_name', 'spectrum')} ({spec.attrs.get('units', '?')})")
+    ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3, which="both")
-    ax.set_title(_title(run, "Roughness spectrum", pass_index))
+    ax.set_title(_title(run, "Centre-line corrugation amplitude spectrum", pass_index))
     return _save(fig, out_dir, "spectrum.png")
 
 
@@ -264,7 +282,7 @@ def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     fig = Figure(figsize=(8, 6 if scaling else 4), layout="constrained")
     axes = fig.subplots(2 if scaling else 1, 1, squeeze=False, sharex=True)[:, 0]
     axes[0].plot(traffic, rms, "o-", ms=3)
-    axes[0].set(ylabel="rms corrugation (µm)", title=f"Corrugation growth\ncontact model: {run.contact_model}")
+    axes[0].set(ylabel="rms corrugation (µm)", title=f"{_rms_trend(rms, traffic)}\ncontact model: {run.contact_model}")
     axes[0].grid(alpha=0.3)
     if scaling:
         axes[1].semilogy(traffic, scale, "o-", ms=3, label="traffic scale m (passages per update)")
@@ -277,6 +295,16 @@ def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     return _save(fig, out_dir, "rms_corrugation.png")
 
 
+def _rms_trend(rms_um: np.ndarray, traffic: np.ndarray) -> str:
+    """What the rms does over the run, in words: grows, falls or holds."""
+    first, last = float(rms_um[0]), float(rms_um[-1])
+    if first > 0 and abs(last / first - 1) < 0.01:
+        verb = "holds at"
+        return f"The rms corrugation {verb} {last:.3g} µm over {traffic[-1]:.3g} wheel passages"
+    verb = "grows" if last > first else "falls"
+    return f"The rms corrugation {verb} from {first:.3g} to {last:.3g} µm over {traffic[-1]:.3g} wheel passages"
+
+
 def profile_snapshots(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     """Centre-line rail profile (minus its mean) at up to six stored passages,
     coloured by traffic (growth studies)."""
@@ -285,6 +313,7 @@ def profile_snapshots(run: Run, pass_index: int, out_dir: Path) -> Path | None:
             return None
         line = rail["profile"].sel(y=0.0, method="nearest").load()
         traffic = rail["traffic"].values if "traffic" in rail else rail["pass"].values
+        passes = rail["pass"].values
         x_mm = values_in(rail["x"], "mm")
     picks = np.unique(np.linspace(0, line.sizes["pass"] - 1, min(6, line.sizes["pass"])).round().astype(int))
     um = values_in(line, "um")
@@ -292,7 +321,8 @@ def profile_snapshots(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     ax = fig.add_subplot()
     colours = [f"C{k}" for k in range(len(picks))]
     for colour, k in zip(colours, picks):
-        ax.plot(x_mm, um[k] - um[k].mean(), color=colour, lw=1.2, label=f"traffic {traffic[k]:.3g}")
+        ax.plot(x_mm, um[k] - um[k].mean(), color=colour, lw=1.2,
+                label=f"after passage {passes[k] + 1} (traffic {traffic[k]:.3g})")
     ax.set(xlabel="x (mm)", ylabel="profile minus mean (µm)",
            title=f"Rail profile on the centre line at stored passages\ncontact model: {run.contact_model}")
     ax.legend(fontsize=8, ncols=2)
@@ -352,38 +382,71 @@ CONTACT_FIGURES: tuple[FigureFn, ...] = (loads, traction_snapshots)
 OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram, profile_snapshots)
 
 
-def make_figures(path, out_dir, pass_index: int | None = None):
-    """Write every figure of one run.
+def contact_pass_for(run: Run, pass_index: int) -> int | None:
+    """The stored index whose contact history the contact figures draw: the
+    passage's own, else the latest one before it, else the first after it."""
+    kept = run.contact_passes()
+    if not kept:
+        return None
+    if pass_index in kept:
+        return pass_index
+    before = [p for p in kept if p < pass_index]
+    return before[-1] if before else kept[0]
 
-    Returns ``(paths, problems, notes)``: the PNGs written, one message per
-    figure that could not be made, and one per figure the run's own settings
-    leave out (fields not stored).  Raises RunFileError when the file itself
-    is unusable.
+
+def make_figures(path, out_dir, pass_number: int | None = None, levels_at: list[int] | None = None):
+    """Write every figure of one run that its contents allow.
+
+    ``pass_number`` counts passages from 1 as the terminal does (default: the
+    last stored); ``levels_at`` the passages of the band-level figure
+    (default: spread over the run).  Returns ``(paths, problems, notes)``:
+    the PNGs written, one message per figure that could not be made (a
+    defect of the file), and one per figure left out or drawn for another
+    passage because the run did not store what it needs (not a problem).
+    Raises RunFileError when the file itself is unusable.
     """
+    from . import levels
+
     run = Run.open(path)
-    pass_index = run.resolve_pass(pass_index)
+    pass_index = run.resolve_pass(pass_number)
     out_dir = Path(out_dir)
-    todo = list(RAIL_FIGURES)
-    problems = []
-    if pass_index in run.contact_passes():
-        todo += CONTACT_FIGURES
+    todo = [(fn, pass_index) for fn in RAIL_FIGURES]
+    notes = []
+    contact = contact_pass_for(run, pass_index)
+    if contact is None:
+        notes.append(f"{run.path}: no contact history stored (growth.contact_history); "
+                     "loads.png and traction_snapshots.png skipped")
     else:
-        problems.append(f"{run.path}: no contact history for passage {pass_index}; "
-                        "loads.png and traction_snapshots.png skipped")
-    todo += OPTIONAL_FIGURES
-    paths, notes = [], []
-    for fn in todo:
+        if contact != pass_index:
+            notes.append(f"{run.path}: passage {pass_index + 1} has no contact history; loads.png and "
+                         f"traction_snapshots.png show passage {contact + 1}, the nearest one kept")
+        todo += [(fn, contact) for fn in CONTACT_FIGURES]
+    todo += [(fn, pass_index) for fn in OPTIONAL_FIGURES]
+
+    def band_levels(r, _p, o):
+        return levels.band_levels(r, o, levels_at)
+
+    def level_growth(r, _p, o):
+        return levels.level_growth(r, o)
+
+    todo += [(band_levels, pass_index), (level_growth, pass_index)]
+    paths, problems = [], []
+    for fn, p in todo:
+        name = fn.__name__
         try:
-            written = fn(run, pass_index, out_dir)
+            written = fn(run, p, out_dir)
         except FigureSkipped as note:
             notes.append(f"{run.path}: {note}")
             continue
         except KeyError as err:
-            problems.append(f"{run.path}: {fn.__name__}: missing variable {err}")
+            problems.append(f"{run.path}: {name}: missing variable {err}")
             continue
         except (RunFileError, ValueError) as err:
-            problems.append(f"{run.path}: {fn.__name__}: {err}")
+            problems.append(f"{run.path}: {name}: {err}")
             continue
         if written is not None:
             paths.append(written)
+    if not levels.has_levels(run):
+        notes.append(f"{run.path}: no roughness levels (passes/roughness_level: written since issue 35); "
+                     "levels.png and level_growth.png skipped")
     return paths, problems, notes

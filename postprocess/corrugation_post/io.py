@@ -1,7 +1,7 @@
 """Reading corrugation run files (HDF5, netCDF-4 compatible).
 
 The layout (groups ``rail``, ``passes`` and ``contact/pass_NNNNN``) is described
-in ``schema.py`` and in the README.  Structure (which groups exist, root
+in ``schema.py`` and in the book (docs/src/reference/run-file.md).  Structure (which groups exist, root
 attributes) is read with h5py; data are opened as xarray Datasets with the
 h5netcdf engine, so dimension names come from the HDF5 dimension scales.
 
@@ -63,8 +63,14 @@ def check_run_file(path: str | Path) -> Path:
     try:
         with h5py.File(path, "r") as f:
             has_rail = isinstance(f.get(RAIL), h5py.Group)
+            kind = ("a `corrugation track` file (receptances): `corrugation-post track` draws it"
+                    if isinstance(f.get("track"), h5py.Group)
+                    else "a collected sweep: `corrugation-post sweep` maps it" if "sweep_spec" in f.attrs
+                    else None)
     except OSError as err:  # truncated file, still being written, ...
         raise RunFileError(f"{path}: cannot be opened: {err}") from err
+    if kind is not None:
+        raise RunFileError(f"{path}: {kind}; not a run file")
     if not has_rail:
         raise RunFileError(
             f"{path}: no '{RAIL}' group; not a corrugation run file, "
@@ -157,18 +163,21 @@ class Run:
     def contact_passes(self) -> list[int]:
         return contact_passes(self.path)
 
-    def resolve_pass(self, requested: int | None) -> int:
-        """The requested stored passage, or the last one; error if not stored."""
+    def resolve_pass(self, number: int | None) -> int:
+        """The stored index (the ``pass`` coordinate, from 0) of passage
+        ``number`` as the terminal counts passages (from 1), or of the last
+        stored passage; error if not stored."""
         available = self.passes()
         if not available:
             raise RunFileError(f"{self.path}: no stored passages in group '{RAIL}'")
-        if requested is None:
+        if number is None:
             return available[-1]
-        if requested not in available:
+        if number - 1 not in available:
             raise RunFileError(
-                f"{self.path}: passage {requested} is not stored; stored: {_short(available)}"
+                f"{self.path}: passage {number} is not stored; stored passages (counted from 1): "
+                f"{_short([p + 1 for p in available])}"
             )
-        return requested
+        return number - 1
 
     def rail(self) -> xr.Dataset:
         return open_group(self.path, RAIL)

@@ -39,7 +39,7 @@ COLUMNS = ("wavelength", "amplitude", "mean_difference", "harmonic_difference", 
 # The line where the Hertz contact stops being good enough.
 THRESHOLD = 0.05
 # Below this amplitude the profile contact's own wear harmonic is within a
-# factor of two of its noise floor at 0.4 mm elements (README).
+# factor of two of its noise floor at 0.4 mm elements (docs/src/theory/validity-maps.md).
 PROFILE_USABLE = 5e-6
 
 

@@ -34,6 +34,22 @@ def test_track_file_and_figure(tmp_path):
     band = (f > 700) & (f < 1500)
     peak = f[band][np.argmax(mid[band])]
     assert abs(peak - ds.attrs["span_frequency_hz"]) < 0.03 * ds.attrs["span_frequency_hz"]
+    # The rail head in three directions (dynamics.directions = "all"): its
+    # receptance matrices are reciprocal and passive, and the vertical one
+    # is the vertical model's except about pinned-pinned, which the pads'
+    # pitch restraint (absent from the vertical model) moves up.
+    h = ds["head_receptance_real"] + 1j * ds["head_receptance_imag"]
+    assert h.dims == ("position", "frequency", "response", "force")
+    assert list(ds["response"].values) == ["x", "y", "z"] and ds["head_receptance_real"].attrs["units"] == "m/N"
+    hv = h.values
+    assert np.abs(hv - np.swapaxes(hv, 2, 3)).max() < 1e-8 * np.abs(hv).max()
+    for d in ("x", "y", "z"):
+        assert (ds["head_receptance_imag"].sel(response=d, force=d).values <= 0).all()
+    zz = h.sel(response="z", force="z").values
+    vertical = (ds["receptance_real"] + 1j * ds["receptance_imag"]).values
+    away = (f < 700) | (f > 1500)
+    assert (np.abs(zz - vertical) / np.abs(vertical))[:, away].max() < 0.02
+    assert ds["continuous_head_receptance_real"].dims == ("frequency", "response", "force")
     assert (tmp_path / "fig").exists() is False
     assert figure(out, tmp_path / "fig")[0].stat().st_size > 1000
     # Softer pads lower the rail-on-pad resonance by the square root.

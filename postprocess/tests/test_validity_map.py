@@ -59,7 +59,7 @@ def test_validity_map_compares_hertz_and_profile(tmp_path):
 def test_validity_map_of_the_linear_contact(tmp_path):
     # The candidate is read from the manifest: "linear" against "profile"
     # at 30 mm and 10 um, where the two agree within the linear range (the
-    # README's map: 4.4 % on the 0.4 mm grid).
+    # the book's map: 4.4 % on the 0.4 mm grid).
     rows = []
     for amplitude in (0.0, 1e-5):
         for normal in ("linear", "profile"):

@@ -24,6 +24,7 @@ pub fn shortest_wavelength(loads: &ImposedLoads, growth: Option<&GrowthParams>) 
         let profile = match &g.roughness {
             Roughness::None => f64::INFINITY,
             Roughness::Harmonics(hs) => hs.iter().map(|h| h.wavelength).fold(f64::INFINITY, f64::min),
+            Roughness::Measured(m) => m.harmonics.iter().map(|h| h.wavelength).fold(f64::INFINITY, f64::min),
             Roughness::Random { wavelength_min, .. } => *wavelength_min,
             // The lower edge of the shortest one-third-octave band.
             Roughness::Levels { bands, .. } => {

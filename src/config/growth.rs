@@ -7,16 +7,13 @@ use super::reader::{Range, Section};
 use super::traffic::BaseClass;
 use crate::growth::roughness::band_harmonics;
 use crate::growth::traffic::DEFAULT_MAX_UPDATE_RATIO;
-use crate::params::{DynamicsKind, GrowthParams, StopRule};
-use crate::params::{LevelBand, ProfileHarmonic, Roughness, TrafficScaling};
+use crate::params::{CreepForces, Directions, DynamicsKind, GrowthParams, StopRule};
+use crate::params::{LevelBand, TrafficScaling};
 use toml::{Table, Value};
 
 /// Default `growth.saturation_rate` (dB per 1e5 real passages): a tenth of
 /// a decibel, about 1 % of rms, per 1e5 passages.
 pub const DEFAULT_SATURATION_RATE: f64 = 0.1;
-
-/// Keys of `roughness.kind = "random"` (besides the seed).
-const RANDOM_KEYS: [&str; 3] = ["rms", "wavelength_min", "wavelength_max"];
 
 /// Reads the growth sections; `Ok(None)` for a single-passage scene, `Err`
 /// when a key is invalid (the errors are recorded).
@@ -24,6 +21,7 @@ pub fn read(
     root: &mut Table,
     resolved: &mut Table,
     base: BaseClass,
+    roughness: &super::roughness::Context,
     errors: &mut Vec<ConfigError>,
 ) -> Result<Option<GrowthParams>, ()> {
     if !root.contains_key("growth") {
@@ -40,7 +38,7 @@ pub fn read(
     let adaptive = s.bool("adaptive", false);
     let scale_max = s.f64("traffic_scale_max", Some(1e9), Range::Closed(1.0, 1e9));
     let ratio = s.f64("max_update_ratio", Some(DEFAULT_MAX_UPDATE_RATIO), Range::OpenClosed(0.0, 1.0));
-    let traffic = match (traffic_scale, adaptive, scale_max, ratio) {
+    let traffic_scaling = match (traffic_scale, adaptive, scale_max, ratio) {
         (Some(scale), Some(false), Some(_), Some(max_update_ratio)) => {
             Some(TrafficScaling::Fixed { scale, max_update_ratio })
         }
@@ -56,61 +54,33 @@ pub fn read(
     let store_every = s.usize("store_every", Some(1), 1, 1_000_000);
     let checkpoint_every = s.usize("checkpoint_every", Some(10), 1, 1_000_000);
     let history = s.usize_list("contact_history", vec![0], 1_000_000);
-    let stop = s.choice("stop", Some("never"), &["never", "saturation"]);
+    let stop = s.choice("stop", Some("never"), &["never", "saturation", "limit"]);
     let rate = s.f64("saturation_rate", Some(DEFAULT_SATURATION_RATE), Range::OpenClosed(0.0, 100.0));
     let stop = match (stop.as_deref(), rate) {
         (Some("saturation"), Some(rate)) => Some(StopRule::Saturation { rate }),
+        (Some("limit"), Some(_)) => Some(StopRule::Limit),
         (Some(_), Some(_)) => Some(StopRule::Never),
         _ => None,
     };
     resolved.insert("growth".into(), Value::Table(s.finish()));
 
-    let mut s = Section::new(root, "", "roughness", errors);
-    let kind = s.choice("kind", Some("none"), &["none", "harmonics", "random", "levels"]);
-    let is = |k: &str| kind.as_deref() == Some(k);
-    // The keys of the other kinds may stay (validated, unused), so that
-    // --set roughness.kind=... can switch kinds.
-    let harmonics = (is("harmonics") || s.has("harmonics")).then(|| s.array_of_tables("harmonics", read_harmonic));
-    let seed = (is("random") || is("levels") || s.has("seed")).then(|| s.usize("seed", None, 0, usize::MAX >> 1));
-    let random = (is("random") || RANDOM_KEYS.iter().any(|k| s.has(k))).then(|| {
-        let rms = s.f64("rms", None, Range::NonNegative);
-        let lo = s.f64("wavelength_min", None, Range::Positive);
-        let hi = s.f64("wavelength_max", None, Range::Positive);
-        match (seed.flatten(), rms, lo, hi) {
-            (Some(seed), Some(rms), Some(lo), Some(hi)) if lo <= hi => {
-                Some(Roughness::Random { seed: seed as u64, rms, wavelength_min: lo, wavelength_max: hi })
-            }
-            (Some(_), Some(_), Some(lo), Some(hi)) => {
-                s.error("wavelength_max", format!("= {hi} must be >= roughness.wavelength_min = {lo}"));
-                None
-            }
-            _ => None,
-        }
-    });
-    let levels = (is("levels") || s.has("bands")).then(|| {
-        let bands = s.array_of_tables("bands", read_band);
-        match (seed.flatten(), bands) {
-            (Some(seed), Some(bands)) if !bands.is_empty() => Some(Roughness::Levels { seed: seed as u64, bands }),
-            (Some(_), Some(_)) => {
-                s.error("bands", "must list at least one band".into());
-                None
-            }
-            _ => None,
-        }
-    });
-    let roughness = match kind.as_deref() {
-        Some("harmonics") => harmonics.flatten().map(Roughness::Harmonics),
-        Some("random") => random.flatten(),
-        Some("levels") => levels.flatten(),
-        Some(_) => Some(Roughness::None),
-        None => None,
-    };
-    resolved.insert("roughness".into(), Value::Table(s.finish()));
+    let roughness = super::roughness::read(root, resolved, roughness, errors);
 
     let mut s = Section::new(root, "", "dynamics", errors);
     let model = s.choice("model", Some("imposed"), &["imposed", "receptance", "discrete"]);
     // Read for every model so that --set can switch models.
     let mass = s.f64("unsprung_mass", Some(600.0), Range::OpenClosed(0.0, 1e4));
+    let directions = s.choice("directions", Some("all"), &["all", "vertical"]);
+    let offset = s.f64("contact_offset", Some(0.0), Range::Closed(-0.04, 0.04));
+    let creep_forces = s.choice("creep_forces", Some("transient"), &["transient", "steady"]);
+    let directions = match (directions.as_deref(), offset, creep_forces.as_deref()) {
+        (Some("vertical"), Some(_), Some(_)) => Some(Directions::Vertical),
+        (Some(_), Some(contact_offset), Some(c)) => Some(Directions::All {
+            contact_offset,
+            creep_forces: if c == "steady" { CreepForces::Steady } else { CreepForces::Transient },
+        }),
+        _ => None,
+    };
     let dynamics = match (model.as_deref(), mass) {
         (Some("receptance"), Some(m)) => Some(DynamicsKind::Receptance { unsprung_mass: m }),
         (Some("discrete"), Some(m)) => Some(DynamicsKind::Discrete { unsprung_mass: m }),
@@ -118,9 +88,24 @@ pub fn read(
         _ => None,
     };
     resolved.insert("dynamics".into(), Value::Table(s.finish()));
-    let classes = super::traffic::read(root, resolved, BaseClass { unsprung_mass: mass, ..base }, errors);
+    let traffic = super::traffic::read(root, resolved, BaseClass { unsprung_mass: mass, ..base }, errors);
+    let (classes, operation) = match traffic {
+        Some((c, o)) => (Some(c), Some(o)),
+        None => (None, None),
+    };
 
-    match (passes, traffic, store_every, checkpoint_every, history, roughness, dynamics, stop, classes) {
+    match (
+        passes,
+        traffic_scaling,
+        store_every,
+        checkpoint_every,
+        history,
+        roughness,
+        dynamics,
+        stop,
+        classes,
+        (operation, directions),
+    ) {
         (
             Some(passes),
             Some(traffic),
@@ -131,6 +116,7 @@ pub fn read(
             Some(dynamics),
             Some(stop),
             Some(classes),
+            (Some(operation), Some(directions)),
         ) => Ok(Some(GrowthParams {
             passes,
             traffic,
@@ -139,24 +125,13 @@ pub fn read(
             contact_history,
             roughness,
             dynamics,
+            directions,
             stop,
             classes,
+            operation,
         })),
         _ => Err(()),
     }
-}
-
-fn read_band(s: &mut Section) -> Option<LevelBand> {
-    let wavelength = s.f64("wavelength", None, Range::Positive);
-    let level = s.f64("level", None, Range::Closed(-100.0, 60.0));
-    Some(LevelBand { wavelength: wavelength?, level: level? })
-}
-
-fn read_harmonic(s: &mut Section) -> Option<ProfileHarmonic> {
-    let amplitude = s.f64("amplitude", None, Range::NonNegative);
-    let wavelength = s.f64("wavelength", None, Range::Positive);
-    let phase = s.f64("phase", Some(0.0), Range::Finite);
-    Some(ProfileHarmonic { amplitude: amplitude?, wavelength: wavelength?, phase: phase? })
 }
 
 /// Checks that every band of a level spectrum is resolved on the rail grid

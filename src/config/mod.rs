@@ -1,6 +1,7 @@
 //! Scene configuration: TOML text -> validated [`Scene`].
 //!
-//! Every key is documented in the README (section "Configuration"). Unknown
+//! Every key is documented in the book's configuration reference
+//! (`docs/src/reference/configuration.md`, checked against [`schema`]). Unknown
 //! keys, missing keys, wrong types and out-of-range values are all collected
 //! and reported together, each naming its dotted key and the allowed range;
 //! then the cross-checks that need several keys (curvature sign, load
@@ -10,9 +11,14 @@
 mod auto;
 pub mod contact;
 mod growth;
+mod levels;
 mod load;
 mod overrides;
+pub mod quantity;
 mod reader;
+pub mod record;
+pub mod roughness;
+pub mod schema;
 mod track;
 pub mod traffic;
 pub mod units;
@@ -32,6 +38,7 @@ use crate::params::{
 pub use auto::AUTO;
 pub use contact::{DEFAULT_GRID_DX, DEFAULT_GRID_DY};
 use reader::{Range, Section};
+pub use roughness::RecordSource;
 use std::fmt;
 use std::path::Path;
 use toml::{Table, Value};
@@ -92,20 +99,66 @@ pub struct Resolved {
     pub scene: Scene,
     /// The resolved config as TOML text (stored in the run file).
     pub toml: String,
+    /// Notes on values that look like unit mistakes (a number written
+    /// without its unit outside the key's usual range); the run goes on.
+    pub warnings: Vec<String>,
 }
 
-/// Reads and validates the config file at `path` with `--set` overrides.
+/// Reads and validates the config file at `path` with `--set` overrides
+/// (files it names are relative to its folder).
 pub fn load_file(path: &Path, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
     let source = path.display().to_string();
+    if is_hdf5(path) {
+        return Err(ConfigErrors {
+            source,
+            errors: vec![ConfigError::new(
+                "file",
+                format!(
+                    "is an HDF5 run file, not a config (TOML): `corrugation resume {}` continues it; its config is \
+                     stored in it (h5dump -a config, or xarray's attrs[\"config\"])",
+                    path.display()
+                ),
+            )],
+        });
+    }
     let text = std::fs::read_to_string(path).map_err(|e| ConfigErrors {
         source: source.clone(),
         errors: vec![ConfigError::new("file", format!("cannot read: {e}"))],
     })?;
-    load_str(&text, &source, overrides)
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    load_str_with(&text, &source, overrides, &RecordSource::Dir(dir.to_path_buf()))
 }
 
-/// Validates config `text` (from `source`, for messages) with overrides.
+/// Whether the file at `path` starts with the HDF5 signature (at offset 0
+/// or at one of the user-block offsets 512, 1024, 2048).
+pub fn is_hdf5(path: &Path) -> bool {
+    use std::io::Read;
+    const SIGNATURE: &[u8; 8] = b"\x89HDF\r\n\x1a\n";
+    let mut head = [0u8; 2056];
+    let Ok(mut f) = std::fs::File::open(path) else { return false };
+    let mut n = 0;
+    while n < head.len() {
+        match f.read(&mut head[n..]) {
+            Ok(0) | Err(_) => break,
+            Ok(k) => n += k,
+        }
+    }
+    [0, 512, 1024, 2048].iter().any(|&o| n >= o + 8 && &head[o..o + 8] == SIGNATURE)
+}
+
+/// Validates config `text` (from `source`, for messages) with overrides; a
+/// measured record's path is taken relative to the current folder.
 pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolved, ConfigErrors> {
+    load_str_with(text, source, overrides, &RecordSource::Dir(".".into()))
+}
+
+/// Validates config `text` with overrides, a measured record from `records`.
+pub fn load_str_with(
+    text: &str,
+    source: &str,
+    overrides: &[String],
+    records: &RecordSource,
+) -> Result<Resolved, ConfigErrors> {
     let fail = |errors| ConfigErrors { source: source.to_string(), errors };
     let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
         fail(vec![ConfigError::new("TOML syntax", e.to_string().trim().replace('\n', "\n    "))])
@@ -115,7 +168,7 @@ pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolv
     let defaults = if overrides.is_empty() {
         Table::new()
     } else {
-        let mut d = read_scene(root.clone(), &mut Vec::new()).1;
+        let mut d = read_scene(root.clone(), records, &mut Vec::new()).1;
         if !d.contains_key("track") {
             track::read(&mut Table::new(), &mut d, &mut Vec::new());
         }
@@ -124,14 +177,59 @@ pub fn load_str(text: &str, source: &str, overrides: &[String]) -> Result<Resolv
     let mut errors: Vec<ConfigError> =
         overrides.iter().filter_map(|o| overrides::apply(&mut root, o, &defaults).err()).collect();
     overridden_step_sets_both(&mut root, overrides);
-    let (scene, resolved) = read_scene(root, &mut errors);
+    let mut warnings = Vec::new();
+    plausibility(&root, "", &mut warnings);
+    let (scene, resolved) = read_scene(root, records, &mut errors);
     match scene {
         Some(scene) if errors.is_empty() => {
-            Ok(Resolved { scene, toml: toml::to_string(&resolved).expect("resolved config serialises") })
+            Ok(Resolved { scene, toml: toml::to_string(&resolved).expect("resolved config serialises"), warnings })
         }
         _ => Err(fail(errors)),
     }
 }
+
+/// Notes on the numbers of `table` (at dotted `prefix`) written without a
+/// unit that lie outside their key's usual range ([`quantity::plausibility`]).
+fn plausibility(table: &Table, prefix: &str, out: &mut Vec<String>) {
+    for (k, v) in table {
+        let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+        match v {
+            Value::Table(t) => plausibility(t, &key, out),
+            Value::Array(a) => {
+                for (i, item) in a.iter().enumerate() {
+                    if let Value::Table(t) = item {
+                        plausibility(t, &format!("{key}[{i}]"), out);
+                    }
+                }
+            }
+            Value::Float(_) | Value::Integer(_) => {
+                let x = v.as_float().or(v.as_integer().map(|i| i as f64)).unwrap_or(0.0);
+                out.extend(quantity::plausibility(&key, x));
+            }
+            _ => {}
+        }
+    }
+}
+
+/// The sections of a config, in the order they are documented.
+pub const SECTIONS: [&str; 16] = [
+    "material",
+    "geometry",
+    "rolling",
+    "load",
+    "contact",
+    "wear",
+    "passage",
+    "rail",
+    "output",
+    "growth",
+    "roughness",
+    "dynamics",
+    "traffic",
+    "vehicle",
+    "wheelset",
+    "track",
+];
 
 /// On the fixed grid the step is the element: `--set contact.dx` or
 /// `--set passage.step_length` alone sets both, so the file's value of the
@@ -149,8 +247,11 @@ fn overridden_step_sets_both(root: &mut Table, overrides: &[String]) {
     // reported as such, and the file's key stays).
     let given = if other.0 == "passage" { ("contact", "dx") } else { ("passage", "step_length") };
     let value = root.get(given.0).and_then(|t| t.get(given.1));
-    let valid =
-        value.and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64))).is_some_and(|v| v > 0.0 && v <= 0.01);
+    let number = |v: &Value| match v {
+        Value::String(t) => quantity::parse_quantity(t, "m").ok(),
+        v => v.as_float().or(v.as_integer().map(|i| i as f64)),
+    };
+    let valid = value.and_then(number).is_some_and(|v| v > 0.0 && v <= 0.01);
     if fixed
         && valid
         && let Some(Value::Table(t)) = root.get_mut(other.0)
@@ -160,7 +261,13 @@ fn overridden_step_sets_both(root: &mut Table, overrides: &[String]) {
 }
 
 /// Sections and their readers, in the order they are documented.
-fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>, Table) {
+fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigError>) -> (Option<Scene>, Table) {
+    // Files other than a measured record (levels.limit_file) are read
+    // relative to the config's folder; a resumed run has their contents.
+    let dir = match records {
+        RecordSource::Dir(d) => d.as_path(),
+        RecordSource::Stored(_) => Path::new("."),
+    };
     let mut resolved = Table::new();
     fn section<'e>(root: &mut Table, name: &str, errors: &'e mut Vec<ConfigError>) -> Section<'e> {
         Section::new(root, "", name, errors)
@@ -220,9 +327,15 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     resolved.insert("output".into(), Value::Table(s.finish()));
     let base =
         traffic::BaseClass { speed, normal_force: normal, longitudinal_force: longitudinal, unsprung_mass: None };
-    let growth = growth::read(&mut root, &mut resolved, base, errors);
+    let stretch = match (x_min, x_max) {
+        (Some(a), Some(b)) if b > a => Some((a, b)),
+        _ => None,
+    };
+    let ctx = roughness::Context { source: records, stretch, wheel_radius };
+    let growth = growth::read(&mut root, &mut resolved, base, &ctx, errors);
+    let levels = levels::read(&mut root, &mut resolved, dir, errors);
     let vehicle = vehicle::read(&mut root, &mut resolved, errors);
-    let wheelset = wheelset::read(&mut root, &mut resolved, errors);
+    let wheelset = wheelset::read(&mut root, &mut resolved, dir, errors);
     // The track matters to growth studies (and is read when given).
     let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
         track::read(&mut root, &mut resolved, errors)
@@ -231,7 +344,11 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
     };
 
     for (k, _) in root {
-        errors.push(ConfigError::new(&k, "unknown section or key".into()));
+        let message = match reader::nearest(&k, SECTIONS.iter().copied()) {
+            Some(near) => format!("unknown section or key; did you mean [{near}]?"),
+            None => format!("unknown section or key; the sections are {}", SECTIONS.join(", ")),
+        };
+        errors.push(ConfigError::new(&k, message));
     }
 
     // Everything below needs the keys it combines to be valid.
@@ -304,7 +421,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
             "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into(),
         ));
     }
-    let (Some(vehicle), Some(wheelset)) = (vehicle, wheelset) else {
+    let (Some(vehicle), Some(wheelset), Some(levels)) = (vehicle, wheelset, levels) else {
         return (None, resolved);
     };
     let Some(track) = track else {
@@ -423,6 +540,7 @@ fn read_scene(mut root: Table, errors: &mut Vec<ConfigError>) -> (Option<Scene>,
         step_length,
         rail: RailParams { x_min, x_max, dx, dy, half_width },
         output: OutputParams { store_fields, title },
+        levels,
         growth,
         track,
         vehicle,
@@ -472,6 +590,16 @@ fn check_growth(
             }
         }
         crate::params::Roughness::Levels { bands, .. } => growth::check_bands(bands, length, dx, errors),
+        crate::params::Roughness::Measured(m) if m.processing.wavelength_min <= 2.0 * dx => {
+            errors.push(ConfigError::new(
+                "roughness.wavelength_min",
+                format!(
+                    "= {} m must be > 2 rail.dx = {} m (resolved on the rail grid)",
+                    m.processing.wavelength_min,
+                    2.0 * dx
+                ),
+            ));
+        }
         crate::params::Roughness::Random { wavelength_min, .. } if *wavelength_min <= 2.0 * dx => {
             errors.push(ConfigError::new(
                 "roughness.wavelength_min",

@@ -1,8 +1,13 @@
 //! Typed, range-checked reading of one TOML section, collecting every error
 //! (unknown key, missing key, wrong type, out of range) instead of stopping at
-//! the first, and recording the resolved value (defaults filled in).
+//! the first, and recording the resolved value (defaults filled in). A
+//! number may be written as a string with its unit (`"70km/h"`), converted
+//! to the key's SI unit ([`super::quantity`]); an unknown key is answered
+//! with the nearest known one.
 
 use super::ConfigError;
+use super::quantity::{example, parse_quantity};
+use super::units::key_units;
 use toml::{Table, Value};
 
 /// Allowed range of a number, with its description for error messages.
@@ -59,6 +64,9 @@ pub struct Section<'a> {
     path: String,
     table: Table,
     errors: &'a mut Vec<ConfigError>,
+    /// The keys asked for (present or not): the known keys of the section,
+    /// for "did you mean".
+    asked: Vec<String>,
     /// The resolved section (defaults filled in).
     pub resolved: Table,
 }
@@ -75,12 +83,12 @@ impl<'a> Section<'a> {
                 Table::new()
             }
         };
-        Section { path, table, errors, resolved: Table::new() }
+        Section { path, table, errors, asked: Vec::new(), resolved: Table::new() }
     }
 
     /// A section from an already extracted table (array elements).
     pub fn from_table(path: String, table: Table, errors: &'a mut Vec<ConfigError>) -> Self {
-        Section { path, table, errors, resolved: Table::new() }
+        Section { path, table, errors, asked: Vec::new(), resolved: Table::new() }
     }
 
     /// Dotted name of `key` in this section.
@@ -90,7 +98,31 @@ impl<'a> Section<'a> {
 
     /// Whether `key` is (still) in the section.
     pub fn has(&self, key: &str) -> bool {
+        super::schema::note(&self.key(key), None);
         self.table.contains_key(key)
+    }
+
+    /// Takes `key`'s raw value out of the section (None when absent),
+    /// counting it as a known key.
+    pub fn raw(&mut self, key: &str) -> Option<Value> {
+        super::schema::note(&self.key(key), Some("a string"));
+        self.ask(key);
+        self.table.remove(key)
+    }
+
+    /// Takes `key` out of the section where it is given and records
+    /// `message` as its error (a key that does not fit the other keys).
+    pub fn reject(&mut self, key: &str, message: &str) {
+        self.ask(key);
+        if self.table.remove(key).is_some() {
+            self.error(key, message.to_string());
+        }
+    }
+
+    fn ask(&mut self, key: &str) {
+        if !self.asked.iter().any(|k| k == key) {
+            self.asked.push(key.to_string());
+        }
     }
 
     /// Records an error on `key`.
@@ -110,6 +142,8 @@ impl<'a> Section<'a> {
         expect: &str,
         extract: impl Fn(Value) -> Result<T, Value>,
     ) -> Option<T> {
+        self.ask(key);
+        super::schema::note(&self.key(key), Some(expect));
         match self.table.remove(key) {
             None => {
                 if default.is_none() {
@@ -130,7 +164,27 @@ impl<'a> Section<'a> {
     /// A number in `range`; `default` when absent (None = required).
     /// Returns None when missing or invalid (the error is recorded).
     pub fn f64(&mut self, key: &str, default: Option<f64>, range: Range) -> Option<f64> {
-        let v = self.take(key, default, &range.describe(), |v| match v {
+        let unit = key_units(&self.key(key));
+        if let (Some(Value::String(text)), Some(unit)) = (self.table.get(key), unit) {
+            match parse_quantity(text, unit) {
+                Ok(v) => {
+                    self.table.insert(key.into(), Value::Float(v));
+                }
+                Err(e) => {
+                    self.table.remove(key);
+                    self.ask(key);
+                    self.error(key, format!("{e}; expected {} in {unit}", range.describe()));
+                    return None;
+                }
+            }
+        }
+        let expect = match unit {
+            Some(u) if u != "1" => {
+                format!("{} in {u} (or a string with its unit, e.g. {})", range.describe(), example(u))
+            }
+            _ => range.describe(),
+        };
+        let v = self.take(key, default, &expect, |v| match v {
             Value::Float(f) => Ok(f),
             Value::Integer(i) => Ok(i as f64),
             other => Err(other),
@@ -197,12 +251,25 @@ impl<'a> Section<'a> {
     /// A non-empty list of at most `max` numbers in `range`.
     pub fn f64_list(&mut self, key: &str, default: Vec<f64>, range: Range, max: usize) -> Option<Vec<f64>> {
         let expect = format!("a list of 1 to {max} numbers, each {}", range.describe());
+        let unit = key_units(&self.key(key));
+        self.ask(key);
+        super::schema::note(&self.key(key), Some(&expect));
         let v = match self.table.remove(key) {
             None => default,
             Some(Value::Array(a)) if (1..=max).contains(&a.len()) => {
                 let mut out = Vec::new();
                 for item in a {
-                    match item.as_float().or(item.as_integer().map(|i| i as f64)) {
+                    let with_unit = match (&item, unit) {
+                        (Value::String(t), Some(u)) => match parse_quantity(t, u) {
+                            Ok(v) => Some(v),
+                            Err(e) => {
+                                self.error(key, format!("{e}; expected {expect}"));
+                                return None;
+                            }
+                        },
+                        _ => None,
+                    };
+                    match with_unit.or(item.as_float()).or(item.as_integer().map(|i| i as f64)) {
                         Some(x) if range.contains(x) => out.push(x),
                         _ => {
                             self.error(key, format!("contains `{item}`; expected {expect}"));
@@ -224,6 +291,8 @@ impl<'a> Section<'a> {
     /// A list of integers in `[0, hi]`.
     pub fn usize_list(&mut self, key: &str, default: Vec<usize>, hi: usize) -> Option<Vec<usize>> {
         let expect = format!("a list of integers in [0, {hi}]");
+        self.ask(key);
+        super::schema::note(&self.key(key), Some(&expect));
         let v = match self.table.remove(key) {
             None => default,
             Some(Value::Array(a)) => {
@@ -251,6 +320,8 @@ impl<'a> Section<'a> {
     /// An array of tables (e.g. `[[load.harmonics]]`); each element is read
     /// with `read` as section `key[i]`.
     pub fn array_of_tables<T>(&mut self, key: &str, mut read: impl FnMut(&mut Section) -> Option<T>) -> Option<Vec<T>> {
+        self.ask(key);
+        super::schema::note(&self.key(key), Some("an array of tables"));
         let items = match self.table.remove(key) {
             None => Vec::new(),
             Some(Value::Array(a)) => a,
@@ -283,12 +354,55 @@ impl<'a> Section<'a> {
 
     /// Reports the keys nobody asked for and returns the resolved section.
     pub fn finish(self) -> Table {
+        // The known keys: those asked for, and the numeric keys of this
+        // section in the unit table (read only for some choices).
+        let plain = super::units::strip_indices(&self.path);
+        let mut known: Vec<String> = self.asked.clone();
+        for (k, _) in super::units::all_keys() {
+            if let Some(rest) = k.strip_prefix(&plain).and_then(|r| r.strip_prefix('.'))
+                && !rest.contains('.')
+                && !known.iter().any(|x| x == rest)
+            {
+                known.push(rest.to_string());
+            }
+        }
         for (k, _) in self.table {
             let key = format!("{}.{k}", self.path);
-            self.errors.push(ConfigError::new(&key, "unknown key".into()));
+            self.errors.push(ConfigError::new(&key, unknown_key_message(&k, &known)));
         }
         self.resolved
     }
+}
+
+/// "unknown key" with the nearest of `known` where one is near (at most a
+/// third of its letters changed), else the list of known keys.
+pub fn unknown_key_message(key: &str, known: &[String]) -> String {
+    match nearest(key, known.iter().map(String::as_str)) {
+        Some(k) => format!("unknown key; did you mean `{k}`?"),
+        None if known.is_empty() => "unknown key".into(),
+        None => {
+            let mut list: Vec<&str> = known.iter().map(String::as_str).collect();
+            list.sort_unstable();
+            format!("unknown key; known here: {}", list.join(", "))
+        }
+    }
+}
+
+/// The candidate nearest to `word` in (Damerau-Levenshtein) edit
+/// distance, if within a third of the longer name (at least 2 edits), or
+/// the candidate that starts with `word` or that `word` starts with.
+pub fn nearest<'k>(word: &str, candidates: impl Iterator<Item = &'k str>) -> Option<&'k str> {
+    let w = word.to_lowercase();
+    candidates
+        .map(|c| {
+            let d = strsim::damerau_levenshtein(&w, &c.to_lowercase());
+            let allowed = (w.chars().count().max(c.chars().count()) / 3).max(2);
+            let prefix = c.len() >= 3 && w.len() >= 3 && (c.starts_with(&*w) || w.starts_with(c));
+            (c, d, d <= allowed || prefix)
+        })
+        .filter(|(_, _, near)| *near)
+        .min_by_key(|(_, d, _)| *d)
+        .map(|(c, _, _)| c)
 }
 
 /// Whether a float is a whole number written as a float (`1e3`, `1000.0`),

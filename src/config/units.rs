@@ -1,5 +1,10 @@
-//! The unit of every numeric config key (as the README's Configuration
-//! table gives it), for outputs that name keys, such as a sweep's axes.
+//! The unit of every numeric config key, for outputs that name keys, such
+//! as a sweep's axes. The book's configuration reference
+//! (`docs/src/reference/configuration.md`) gives the same units: the test
+//! `tests/config_reference.rs` holds the two together and asks for an entry
+//! here for every key that holds a number.
+//! It also serves values written with their unit ([`super::quantity`]) and
+//! `check`'s engineering units.
 
 /// (key with array indices removed, unit).
 const UNITS: &[(&str, &str)] = &[
@@ -10,6 +15,7 @@ const UNITS: &[(&str, &str)] = &[
     ("geometry.wheel_profile_radius", "m"),
     ("geometry.rail_head_radius", "m"),
     ("rolling.speed", "m/s"),
+    ("rolling.creepage_x", "1"),
     ("rolling.creepage_y", "1"),
     ("rolling.spin", "1/m"),
     ("load.normal_force", "N"),
@@ -40,6 +46,7 @@ const UNITS: &[(&str, &str)] = &[
     ("growth.max_update_ratio", "1"),
     ("growth.store_every", "1"),
     ("growth.checkpoint_every", "1"),
+    ("growth.contact_history", "1"),
     ("growth.saturation_rate", "dB/1e5 passages"),
     ("roughness.seed", "1"),
     ("roughness.rms", "m"),
@@ -50,7 +57,13 @@ const UNITS: &[(&str, &str)] = &[
     ("roughness.harmonics.phase", "rad"),
     ("roughness.bands.wavelength", "m"),
     ("roughness.bands.level", "dB"),
+    ("roughness.window_start", "m"),
+    ("roughness.spike_threshold", "1"),
+    ("roughness.curvature_radius", "m"),
+    ("roughness.position_column", "1"),
+    ("roughness.height_column", "1"),
     ("dynamics.unsprung_mass", "kg"),
+    ("dynamics.contact_offset", "m"),
     ("track.rail_bending_stiffness", "N m2"),
     ("track.rail_mass", "kg/m"),
     ("track.rail_shear_stiffness", "N"),
@@ -63,16 +76,69 @@ const UNITS: &[(&str, &str)] = &[
     ("track.ballast_stiffness", "N/m"),
     ("track.ballast_loss_factor", "1"),
     ("track.ballast_damping", "N s/m"),
+    ("track.rail_loss_factor", "1"),
+    ("track.rail_axial_stiffness", "N"),
+    ("track.rail_lateral_bending_stiffness", "N m2"),
+    ("track.rail_lateral_shear_stiffness", "N"),
+    ("track.rail_lateral_rotary_inertia", "kg m"),
+    ("track.rail_torsional_stiffness", "N m2"),
+    ("track.rail_polar_inertia", "kg m"),
+    ("track.rail_height", "m"),
+    ("track.rail_neutral_axis_height", "m"),
+    ("track.rail_shear_centre_height", "m"),
+    ("track.pad_lateral_stiffness", "N/m"),
+    ("track.pad_longitudinal_stiffness", "N/m"),
+    ("track.pad_width", "m"),
+    ("track.pad_length", "m"),
+    ("track.ballast_lateral_stiffness", "N/m"),
+    ("track.ballast_longitudinal_stiffness", "N/m"),
+    ("vehicle.wheels", "m"),
+    ("vehicle.unsprung_mass", "kg"),
+    ("vehicle.normal_force", "N"),
+    ("vehicle.longitudinal_force", "N"),
+    ("wheelset.torsional_stiffness", "N m/rad"),
+    ("wheelset.polar_inertia", "kg m2"),
+    ("wheelset.torsional_loss_factor", "1"),
+    ("wheelset.mass", "kg"),
+    ("wheelset.roll_inertia", "kg m2"),
+    ("wheelset.yaw_inertia", "kg m2"),
+    ("wheelset.suspension_stiffness_x", "N/m"),
+    ("wheelset.suspension_stiffness_y", "N/m"),
+    ("wheelset.suspension_stiffness_z", "N/m"),
+    ("wheelset.suspension_loss_factor", "1"),
+    ("wheelset.axle_box_spacing", "m"),
+    ("traffic.axle_load", "kg"),
+    ("traffic.mix.axle_load", "kg"),
+    ("traffic.axles_per_day", "1/d"),
+    ("traffic.trains_per_day", "1/d"),
+    ("traffic.axles_per_train", "1"),
+    ("levels.limit_table.wavelength", "m"),
+    ("levels.limit_table.level", "dB"),
+    ("wheelset.contact_spacing", "m"),
+    ("wheelset.bending_damping", "1"),
+    ("wheelset.wheel_damping", "1"),
     ("traffic.mix.speed", "m/s"),
     ("traffic.mix.normal_force", "N"),
     ("traffic.mix.longitudinal_force", "N"),
     ("traffic.mix.unsprung_mass", "kg"),
     ("traffic.mix.share", "1"),
+    ("traffic.mix.wheels", "m"),
 ];
 
 /// The unit of config key `key` (`load.harmonics[0].amplitude` counts as
 /// `load.harmonics.amplitude`); None for keys without a number.
 pub fn key_units(key: &str) -> Option<&'static str> {
+    let plain = strip_indices(key);
+    UNITS.iter().find(|(k, _)| *k == plain).map(|(_, u)| *u)
+}
+
+/// The numeric keys (array indices removed) with their SI units.
+pub fn all_keys() -> impl Iterator<Item = (&'static str, &'static str)> {
+    UNITS.iter().copied()
+}
+
+/// `load.harmonics[0].amplitude` -> `load.harmonics.amplitude`.
+pub fn strip_indices(key: &str) -> String {
     let mut plain = String::with_capacity(key.len());
     let mut depth = 0;
     for c in key.chars() {
@@ -83,7 +149,7 @@ pub fn key_units(key: &str) -> Option<&'static str> {
             _ => {}
         }
     }
-    UNITS.iter().find(|(k, _)| *k == plain).map(|(_, u)| *u)
+    plain
 }
 
 #[cfg(test)]
@@ -96,5 +162,6 @@ mod tests {
         assert_eq!(key_units("load.harmonics[2].amplitude"), Some("N"));
         assert_eq!(key_units("roughness.harmonics[0].amplitude"), Some("m"));
         assert_eq!(key_units("contact.model"), None);
+        assert_eq!(key_units("traffic.mix[1].axle_load"), Some("kg"));
     }
 }

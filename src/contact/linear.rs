@@ -21,7 +21,7 @@
 //! response on the Hertz area with its edge held, tried first, wore nine
 //! 0.2 um harmonics down at -0.67 dB per 1e5 passages at 30 mm where the
 //! nonlinear contact wears them at -1.40, -2.14 against -3.02 at 15 mm:
-//! README, The consistent chain). So the mesh moves:
+//! book: docs/src/theory/consistent-chain.md). So the mesh moves:
 //! [`MeshResponse::linear_patch`] fits the Hertz ellipse to the response's
 //! moments (a shift and a stretch, by reciprocity, from the profile
 //! directly) and adds the rest of the response on it; on the fixed grid

@@ -50,9 +50,9 @@ use num_complex::Complex64;
 use std::f64::consts::PI;
 
 /// Rail loss factor (1): the rail's own damping, which keeps the lattice
-/// sums finite at the propagating waves' wavenumbers (Thompson 2009, ch. 3,
-/// uses 0.02).
-pub const RAIL_LOSS_FACTOR: f64 = 0.02;
+/// sums finite at the propagating waves' wavenumbers (the default of
+/// `track.rail_loss_factor`).
+pub use super::track::RAIL_LOSS_FACTOR;
 
 /// Harmonics `|j| <= J` of the lattice sums.
 const LATTICE_TERMS: i64 = 384;
@@ -89,11 +89,11 @@ fn dynamic(k: f64, d: Damping, omega: f64) -> Complex64 {
 }
 
 impl DiscreteTrack {
-    /// The configured track, with [`RAIL_LOSS_FACTOR`].
+    /// The configured track.
     pub fn new(t: &TrackConfig) -> Self {
         DiscreteTrack {
             rail: t.rail,
-            rail_loss_factor: RAIL_LOSS_FACTOR,
+            rail_loss_factor: t.rail_loss_factor,
             spacing: t.sleeper_spacing,
             pad_stiffness: t.pad_stiffness,
             pad_damping: t.pad_damping,

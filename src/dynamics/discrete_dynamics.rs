@@ -100,31 +100,47 @@ impl DiscreteDynamics {
     /// The wheel's distance from the last sleeper, folded into [0, d/2],
     /// as a fractional index into the tabulated positions.
     fn position_index(&self, x: f64) -> f64 {
-        let d = self.track.spacing;
-        let u = (x - self.sleeper_x0).rem_euclid(d);
-        let folded = u.min(d - u);
-        folded / (0.5 * d) * (POSITIONS - 1) as f64
+        half_bay_index(self.track.spacing, self.sleeper_x0, x)
     }
 
     /// The path of a wheel on a smooth rail (m, positive up, zero mean):
-    /// the static deflection under its own mean load, `-alpha_r(x, 0) N0`.
+    /// the static deflection under its own mean load, `-alpha_r(x, 0) N0`
+    /// ([`parametric_path`]).
     pub fn parametric_profile(&self, nodes: usize, dx: f64) -> Vec<f64> {
-        // The static receptance at the tabulated positions (0.1 Hz).
-        let w0 = 2.0 * PI * 0.1;
-        let places: Vec<f64> =
-            (0..POSITIONS).map(|p| self.track.spacing * 0.5 * p as f64 / (POSITIONS - 1) as f64).collect();
-        let statics: Vec<f64> = self.track.receptances(&places, w0).iter().map(|a| a.re).collect();
-        let path: Vec<f64> = (0..nodes)
-            .map(|i| {
-                let s = self.position_index(self.sleeper_x0 + i as f64 * dx);
-                let p = (s.floor() as usize).min(POSITIONS - 2);
-                let t = s - p as f64;
-                -((1.0 - t) * statics[p] + t * statics[p + 1]) * self.mean_load
-            })
-            .collect();
-        let mean = path.iter().sum::<f64>() / nodes.max(1) as f64;
-        path.iter().map(|v| v - mean).collect()
+        parametric_path(&self.track, self.mean_load, self.sleeper_x0, nodes, dx)
     }
+}
+
+/// The path of a wheel of mean load `mean_load` (N) on a smooth rail of
+/// the track `track` (m, positive up, zero mean) at `nodes` samples every
+/// `dx` (m) from a sleeper at `sleeper_x0` (m): the static deflection under
+/// its own load, `-alpha_r(x, 0) N0`, with the static receptance (0.1 Hz)
+/// tabulated at [`POSITIONS`] places over the half bay and interpolated
+/// linearly.
+pub fn parametric_path(track: &DiscreteTrack, mean_load: f64, sleeper_x0: f64, nodes: usize, dx: f64) -> Vec<f64> {
+    let w0 = 2.0 * PI * 0.1;
+    let d = track.spacing;
+    let places: Vec<f64> = (0..POSITIONS).map(|p| d * 0.5 * p as f64 / (POSITIONS - 1) as f64).collect();
+    let statics: Vec<f64> = track.receptances(&places, w0).iter().map(|a| a.re).collect();
+    let path: Vec<f64> = (0..nodes)
+        .map(|i| {
+            let s = half_bay_index(d, sleeper_x0, sleeper_x0 + i as f64 * dx);
+            let p = (s.floor() as usize).min(POSITIONS - 2);
+            let t = s - p as f64;
+            -((1.0 - t) * statics[p] + t * statics[p + 1]) * mean_load
+        })
+        .collect();
+    let mean = path.iter().sum::<f64>() / nodes.max(1) as f64;
+    path.iter().map(|v| v - mean).collect()
+}
+
+/// The distance of `x` (m) from the last sleeper (sleepers every `d` from
+/// `sleeper_x0`), folded into [0, d/2], as a fractional index into the
+/// [`POSITIONS`] places over the half bay.
+fn half_bay_index(d: f64, sleeper_x0: f64, x: f64) -> f64 {
+    let u = (x - sleeper_x0).rem_euclid(d);
+    let folded = u.min(d - u);
+    folded / (0.5 * d) * (POSITIONS - 1) as f64
 }
 
 impl TrackDynamics for DiscreteDynamics {

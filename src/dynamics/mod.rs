@@ -1,5 +1,5 @@
-//! Vehicle-track dynamics for the corrugation growth loop (README:
-//! Growth studies): the dynamic wheel-rail normal force excited by the rail
+//! Vehicle-track dynamics for the corrugation growth loop (book:
+//! docs/src/theory/track.md): the dynamic wheel-rail normal force excited by the rail
 //! profile of the current passage.
 //!
 //! The rail profile `r(X)` over the periodic stretch of length `L` is expanded
@@ -19,15 +19,23 @@
 //! track model (discrete sleepers, Timoshenko rail, moving load) can replace
 //! the [`receptance`] model without touching the loop.
 
+pub mod contact_dynamics;
+pub mod contact_point;
+pub mod continuous3;
 pub mod creep_response;
 pub mod discrete;
+pub mod discrete3;
 pub mod discrete_dynamics;
+pub mod head_response;
 pub mod rail;
 pub mod receptance;
+pub mod section;
 pub mod torsion;
 pub mod track;
 pub mod track_response;
 pub mod vehicle;
+pub mod waves;
+pub mod wheelset;
 
 pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,
@@ -69,6 +77,21 @@ pub trait TrackDynamics {
     /// force of every wheel seeing the same profile, the leading wheel's.
     fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
         vec![self.force_from_profile(&profiles[0], dx, speed)]
+    }
+
+    /// Each wheel's contact variations in every direction the model has
+    /// (the normal force, the longitudinal force and creepages: a model of
+    /// the dynamics in every direction, [`contact_dynamics`]), from the
+    /// profiles as [`Self::wheel_forces`]; None for a vertical model, whose
+    /// normal force is [`Self::wheel_forces`]'s.
+    fn contact_signals(
+        &self,
+        profiles: &[Vec<f64>],
+        dx: f64,
+        speed: f64,
+    ) -> Option<Vec<contact_dynamics::ContactSignals>> {
+        let _ = (profiles, dx, speed);
+        None
     }
 }
 

@@ -2,7 +2,24 @@
 //! engineers give them, and the continuous model's per-length parameters
 //! ([`TrackConfig::smeared`]). Defaults reproduce the track the program had
 //! built in: UIC60 on 200 MN/m pads (loss factor 0.25), 0.6 m spacing,
-//! 140 kg per half sleeper, 100 MN/m ballast (loss factor 1.0).
+//! 140 kg per half sleeper, 100 MN/m ballast (loss factor 1.0), rail loss
+//! factor 0.02.
+//!
+//! The supports in the other directions ([`Supports3`], for the rail
+//! head's receptances in three directions): estimates, to be overridden
+//! with measured values where a track has them. A fastening's lateral and
+//! longitudinal stiffness is a fraction of its vertical one (the pad in
+//! shear, the clips): 50 MN/m each, a quarter of the default pad (Thompson,
+//! *Railway Noise and Vibration*, 2009, ch. 3, gives lateral pad stiffnesses
+//! of 1/10 to 1/2 of the vertical); the ballast's lateral and longitudinal
+//! resistance of a half sleeper 50 MN/m each (Knothe and Grassie, *Veh.
+//! Syst. Dyn.* 22 (1993) 209-262, report lateral ballast stiffnesses below
+//! the vertical); the pad's footprint 0.15 m x 0.15 m (a 60E1 foot is 150
+//! mm wide), whose vertical stiffness spread over it restrains the rail's
+//! roll and pitch, `k_p b^2 / 12` and `k_p l^2 / 12`. The layers' damping
+//! (loss factor or dampers) is the vertical one's in every direction, a
+//! viscous damper scaled with the stiffness (the same loss factor at a
+//! frequency).
 
 use super::rail::RailSection;
 use super::receptance::{
@@ -38,6 +55,46 @@ pub struct TrackConfig {
     pub ballast_stiffness: f64,
     /// Ballast damping.
     pub ballast_damping: Damping,
+    /// Rail loss factor eta_r (1): the rail's own damping, on its bending,
+    /// shear, axial and torsional stiffnesses.
+    pub rail_loss_factor: f64,
+    /// The supports in the other directions.
+    pub supports: Supports3,
+}
+
+/// The supports' stiffnesses in the lateral and longitudinal directions
+/// and the pad's footprint (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Supports3 {
+    /// Pad (fastening) stiffness across the rail, per pad (N/m).
+    pub pad_lateral_stiffness: f64,
+    /// Pad (fastening) stiffness along the rail, per pad (N/m).
+    pub pad_longitudinal_stiffness: f64,
+    /// Pad width across the rail (m): its roll stiffness `k_p b^2 / 12`.
+    pub pad_width: f64,
+    /// Pad length along the rail (m): its pitch stiffness `k_p l^2 / 12`.
+    pub pad_length: f64,
+    /// Ballast stiffness across the track, per sleeper end (N/m).
+    pub ballast_lateral_stiffness: f64,
+    /// Ballast stiffness along the track, per sleeper end (N/m).
+    pub ballast_longitudinal_stiffness: f64,
+}
+
+/// Rail loss factor (1): the rail's own damping (Thompson 2009, ch. 3,
+/// uses 0.02).
+pub const RAIL_LOSS_FACTOR: f64 = 0.02;
+
+impl Default for Supports3 {
+    fn default() -> Self {
+        Supports3 {
+            pad_lateral_stiffness: 50e6,
+            pad_longitudinal_stiffness: 50e6,
+            pad_width: 0.15,
+            pad_length: 0.15,
+            ballast_lateral_stiffness: 50e6,
+            ballast_longitudinal_stiffness: 50e6,
+        }
+    }
 }
 
 impl Default for TrackConfig {
@@ -51,6 +108,8 @@ impl Default for TrackConfig {
             sleeper_mass: HALF_SLEEPER_MASS,
             ballast_stiffness: BALLAST_STIFFNESS_PER_HALF_SLEEPER,
             ballast_damping: Damping::LossFactor(BALLAST_LOSS_FACTOR),
+            rail_loss_factor: RAIL_LOSS_FACTOR,
+            supports: Supports3::default(),
         }
     }
 }

@@ -1,5 +1,5 @@
-//! Long-term corrugation growth on a periodic stretch of rail (README: Growth
-//! studies): the outer loop over wheel passages
+//! Long-term corrugation growth on a periodic stretch of rail (book:
+//! docs/src/theory/growth-loop.md): the outer loop over wheel passages
 //!
 //! ```text
 //! r_n(X, Y) -> N_n(X) = imposed + dynamic(r_n) -> passage -> W_n(X, Y)
@@ -14,6 +14,7 @@
 
 mod hertz_check;
 pub mod mix;
+pub mod record;
 pub mod roughness;
 pub mod spectrum;
 pub mod state;
@@ -316,10 +317,14 @@ fn passage_with(
         };
         seen.push(line);
     }
-    // Each wheel's force when it is at X (one wheel without dynamics).
-    let forces = match dynamics {
-        Some(d) => d.wheel_forces(&seen, grid.dx, spec.speed),
-        None => vec![vec![0.0; grid.nx]],
+    // Each wheel's force when it is at X (one wheel without dynamics), and
+    // where the dynamics has every direction, its creep force's and
+    // creepages' variations.
+    let signals = dynamics.and_then(|d| d.contact_signals(&seen, grid.dx, spec.speed));
+    let forces = match (&signals, dynamics) {
+        (Some(s), _) => s.iter().map(|c| c.normal.clone()).collect(),
+        (None, Some(d)) => d.wheel_forces(&seen, grid.dx, spec.speed),
+        (None, None) => vec![vec![0.0; grid.nx]],
     };
     spec.wear_window = (grid.x_min, grid.x_min + length);
     // Extended grid on the same lattice, wide enough for the largest patch
@@ -344,17 +349,31 @@ fn passage_with(
     for (w, force) in forces.iter().enumerate() {
         spec.loads = loads[w].clone();
         spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: force.clone() });
+        let signal = |values: &Vec<f64>| Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: values.clone() });
+        if let Some(c) = signals.as_ref().map(|s| &s[w]) {
+            // The dynamics in every direction: the creepage's variation
+            // (creepage control), or the force's (force control: the
+            // contact solver finds the creepage), and the lateral creepage's.
+            if spec.creepage_x.is_some() {
+                spec.dynamic_creepage_x = signal(&c.creepage_x);
+            } else {
+                spec.dynamic_longitudinal_force = signal(&c.force_x);
+            }
+            spec.dynamic_creepage_y = signal(&c.creepage_y);
+        }
         // The wheelset's torsion: the creepage's answer to the normal
         // force's variation (the imposed harmonics' and the dynamic force).
-        let torsion = spec.torsion.get(w).or(spec.torsion.first()).filter(|_| dynamics.is_some());
-        spec.dynamic_creepage_x = torsion.map(|t| {
-            let variation: Vec<f64> = grid
-                .xs()
-                .iter()
-                .zip(force)
-                .map(|(x, f)| f + spec.loads.normal_force_at(*x) - spec.loads.normal_force)
-                .collect();
-            PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: t.creepage(&variation, grid.dx, spec.speed) }
+        let torsion = spec.torsion.get(w).or(spec.torsion.first()).filter(|_| dynamics.is_some() && signals.is_none());
+        spec.dynamic_creepage_x = spec.dynamic_creepage_x.take().or_else(|| {
+            torsion.map(|t| {
+                let variation: Vec<f64> = grid
+                    .xs()
+                    .iter()
+                    .zip(force)
+                    .map(|(x, f)| f + spec.loads.normal_force_at(*x) - spec.loads.normal_force)
+                    .collect();
+                PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: t.creepage(&variation, grid.dx, spec.speed) }
+            })
         });
         let mut report = |done: usize, total: usize| progress(w * total + done, wheels * total);
         let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, &mut report)?;

@@ -1,6 +1,7 @@
 //! Initial rail irregularity on the periodic stretch: none, explicit
-//! harmonics, seeded random roughness band-limited in wavelength, or seeded
-//! random roughness with a one-third-octave level spectrum.
+//! harmonics, seeded random roughness band-limited in wavelength, seeded
+//! random roughness with a one-third-octave level spectrum, or a measured
+//! record (its harmonics: [`super::record`]).
 //!
 //! The stretch has length `L = nx dx` and is periodic, so only wavelengths
 //! `L/n` (n integer) exist on it. Random roughness is a sum of all harmonics
@@ -56,6 +57,7 @@ pub fn profile_line(r: &Roughness, x: &[f64], length: f64) -> Vec<f64> {
     let harmonics: Vec<ProfileHarmonic> = match r {
         Roughness::None => Vec::new(),
         Roughness::Harmonics(h) => h.clone(),
+        Roughness::Measured(m) => m.harmonics.clone(),
         Roughness::Random { seed, rms, wavelength_min, wavelength_max } => {
             let mut rng = ChaCha8Rng::seed_from_u64(*seed);
             let ns: Vec<usize> = band(length, *wavelength_min, *wavelength_max).collect();

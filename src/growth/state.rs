@@ -45,6 +45,13 @@ pub struct PassRow {
     /// Growth rate of each harmonic of the contact-filtered profile over this
     /// passage (dB per 1e5 real passages), on the record's `wavelengths`.
     pub growth_rate: Vec<f64>,
+    /// The rail's roughness level in each band after the passage (dB re 1
+    /// um; [`crate::levels`]: the running band's lines, mean-square
+    /// averaged).
+    pub roughness_level: Vec<f64>,
+    /// Growth rate of each band's level over this passage (dB per 1e5 real
+    /// wheel passages).
+    pub level_rate: Vec<f64>,
 }
 
 /// A stored rail state.
@@ -78,4 +85,7 @@ pub struct RunState {
     /// The other wheels' histories of the same stored passages (passage
     /// index, the second wheel's first); only passages with several wheels.
     pub wheel_histories: Vec<(i64, Vec<PatchHistory>)>,
+    /// The rail's roughness level in each band before the first passage
+    /// (dB re 1 um); empty until the study fills it in.
+    pub initial_level: Vec<f64>,
 }

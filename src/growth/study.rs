@@ -1,4 +1,4 @@
-//! The growth loop as a type (README: Growth studies): one simulated
+//! The growth loop as a type (book: docs/src/theory/growth-loop.md): one simulated
 //! passage at a time,
 //!
 //! ```text
@@ -29,6 +29,7 @@ use super::{contact_filtered_line, growth_passage};
 use crate::build::{Derived, build_deposit, build_solver, derive, study_grid, track_dynamics};
 use crate::contact::{ContactError, Elements, TangentialSolver};
 use crate::dynamics::TrackDynamics;
+use crate::levels::{BandLevels, forecast::crossed, level_rates};
 use crate::metrics::{centre_row, rms_corrugation};
 use crate::model_choice::hertz_validity::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::params::{GrowthParams, NormalContact, Scene, StopRule, TrafficClass, TrafficScaling};
@@ -153,6 +154,9 @@ pub struct Study<'a> {
     first: usize,
     stopped: Option<String>,
     state: RunState,
+    /// The band levels of the profile, and each band's limit (dB re 1 um).
+    levels: BandLevels,
+    limit: Vec<f64>,
 }
 
 /// The initial state of a scene: the profile of its roughness (none for a
@@ -166,14 +170,44 @@ pub fn initial_state(scene: &Scene) -> RunState {
         }
         None => Array2::zeros((grid.ny, grid.nx)),
     };
-    RunState { profile, rows: Vec::new(), rail: Vec::new(), histories: Vec::new(), wheel_histories: Vec::new() }
+    RunState {
+        profile,
+        rows: Vec::new(),
+        rail: Vec::new(),
+        histories: Vec::new(),
+        wheel_histories: Vec::new(),
+        initial_level: Vec::new(),
+    }
+}
+
+/// The band levels of a study of `scene` on `grid` whose mean patch has
+/// the lateral semi-axis `b` (m): the lines of its running band.
+fn band_levels(scene: &Scene, grid: &RailGrid, b: f64) -> (BandLevels, Vec<f64>) {
+    let levels = BandLevels::new(scene.levels.bands, grid, b);
+    let limit = scene.levels.limit.on(levels.bands());
+    (levels, limit)
+}
+
+/// Fills in the levels of a state read from a run file written before the
+/// roughness levels existed: each passage's from its centre-line spectrum
+/// (`passes/spectrum`), the rates between them (the first passage's 0), and
+/// the initial levels as the first passage's.
+fn fill_legacy_levels(state: &mut RunState, levels: &BandLevels) {
+    let mut before: Option<Vec<f64>> = None;
+    for row in &mut state.rows {
+        row.roughness_level = levels.levels_of_spectrum(&row.spectrum);
+        let previous = before.take().unwrap_or_else(|| row.roughness_level.clone());
+        row.level_rate = level_rates(&previous, &row.roughness_level, row.traffic_scale);
+        before = Some(row.roughness_level.clone());
+    }
+    state.initial_level = state.rows.first().map_or_else(Vec::new, |r| r.roughness_level.clone());
 }
 
 impl<'a> Study<'a> {
     /// The study of `scene` continuing from `state`. One solver serves every
     /// traffic class: its grid is sized for the largest load of any class,
     /// and the speed and loads come with each step.
-    pub fn new(scene: &'a Scene, state: RunState) -> Self {
+    pub fn new(scene: &'a Scene, mut state: RunState) -> Self {
         let d = derive(scene);
         let solver = build_solver(scene, &d.shape);
         let elements = solver.elements();
@@ -212,9 +246,18 @@ impl<'a> Study<'a> {
                 None => PROFILE_NOISE_AMPLITUDE,
             },
         };
+        // The rail's band levels over the running band of the mean patch.
+        let (levels, limit) = band_levels(scene, &grid, mean_patch.1);
+        if state.initial_level.is_empty() {
+            if state.rows.is_empty() {
+                state.initial_level = levels.levels(&state.profile);
+            } else {
+                fill_legacy_levels(&mut state, &levels);
+            }
+        }
         // A study that stopped (growth.stop) stays stopped when resumed: the
         // rule reads the stored rows.
-        let stopped = stop_reason(growth, &state.rows);
+        let stopped = stop_reason(growth, &state, &levels, &limit, &scene.levels.limit.name);
         Study {
             scene,
             growth,
@@ -235,6 +278,8 @@ impl<'a> Study<'a> {
             stopped,
             state,
             d,
+            levels,
+            limit,
         }
     }
 
@@ -392,7 +437,9 @@ impl<'a> Study<'a> {
             None => amplitudes(&filtered(&state.profile)),
         };
         let traffic = previous.map_or(0.0, |r| r.traffic) + m;
+        let levels_before = previous.map_or_else(|| state.initial_level.clone(), |r| r.roughness_level.clone());
         state.profile.scaled_add(-m, &wear);
+        let roughness_level = self.levels.levels(&state.profile);
         let spectrum = amplitudes(&line(&state.profile));
         let filtered_spectrum = amplitudes(&filtered(&state.profile));
         if let Some(message) = self.hertz_check.check(&self.waves, &filtered_spectrum) {
@@ -418,6 +465,8 @@ impl<'a> Study<'a> {
             growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
             spectrum,
             filtered_spectrum,
+            level_rate: level_rates(&levels_before, &roughness_level, m),
+            roughness_level,
         };
         progress(Event::Passage {
             done: pass + 1,
@@ -440,7 +489,7 @@ impl<'a> Study<'a> {
             }
         }
         state.rows.push(row);
-        self.stopped = stop_reason(growth, &state.rows);
+        self.stopped = stop_reason(growth, state, &self.levels, &self.limit, &scene.levels.limit.name);
         if let Some(reason) = &self.stopped {
             progress(Event::Stopped { pass, reason: reason.clone() });
         }
@@ -538,17 +587,46 @@ impl<'a> Study<'a> {
     pub fn classes(&self) -> &[TrafficClass] {
         &self.classes
     }
+
+    /// The bands of the roughness levels, and each band's limit (dB re 1
+    /// um; inf: none).
+    pub fn bands(&self) -> (&[crate::levels::Band], &[f64]) {
+        (self.levels.bands(), &self.limit)
+    }
 }
 
-/// Why a growth study stops after its last row, by its `growth.stop` rule.
-fn stop_reason(growth: Option<&GrowthParams>, rows: &[PassRow]) -> Option<String> {
-    let StopRule::Saturation { rate } = growth?.stop else {
-        return None;
-    };
+/// Why a growth study stops after the last row of `state`, by its
+/// `growth.stop` rule.
+fn stop_reason(
+    growth: Option<&GrowthParams>,
+    state: &RunState,
+    levels: &BandLevels,
+    limit: &[f64],
+    limit_name: &str,
+) -> Option<String> {
+    let rows = &state.rows;
     let last = rows.last()?;
-    let rms: Vec<f64> = rows.iter().map(|r| r.rms_corrugation).collect();
-    let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
-    super::stop::saturation(&rms, &traffic, last.contact_loss_steps, rate)
+    match growth?.stop {
+        StopRule::Never => None,
+        StopRule::Saturation { rate } => {
+            let rms: Vec<f64> = rows.iter().map(|r| r.rms_corrugation).collect();
+            let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
+            super::stop::saturation(&rms, &traffic, last.contact_loss_steps, rate)
+        }
+        StopRule::Limit => {
+            let before = match rows.len() {
+                1 => &state.initial_level,
+                n => &rows[n - 2].roughness_level,
+            };
+            let &k = crossed(before, &last.roughness_level, limit).first()?;
+            Some(format!(
+                "limit: the {} band reached the {limit_name} limit ({:.1} dB re 1 um) in passage {}",
+                levels.bands()[k].label(),
+                limit[k],
+                rows.len()
+            ))
+        }
+    }
 }
 
 /// `passes/profile_contact` of a passage in the nonlinear profile contact

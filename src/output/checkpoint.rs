@@ -17,6 +17,8 @@ pub struct StateLayout<'a> {
     pub grid_shape: (usize, usize),
     /// Number of spectrum wavelengths.
     pub wavelengths: usize,
+    /// Number of roughness-level bands.
+    pub bands: usize,
     /// Patch elements.
     pub elements: usize,
     /// Whether stored histories carry the patch fields.
@@ -70,6 +72,28 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         Err(_) => Ok(ndarray::Array1::zeros(done)),
     };
     let (loss, profile) = (optional("contact_loss_steps")?, optional("profile_contact")?);
+    // The band levels (files written before them have none: the study
+    // derives them from the spectra, crate::growth::study).
+    let band_table = |name: &str| -> Result<Option<Array2<f64>>, NcError> {
+        let Ok(t) = read_f64(path, "passes", name) else { return Ok(None) };
+        let t = t.into_dimensionality::<Ix2>().map_err(|e| invalid(name, e.to_string()))?;
+        if t.dim() != (done, layout.bands) {
+            return Err(invalid(name, format!("has shape {:?}, not ({done}, {})", t.dim(), layout.bands)));
+        }
+        Ok(Some(t))
+    };
+    let (levels, rates) = (band_table("roughness_level")?, band_table("level_rate")?);
+    let initial_level = match (&levels, read_f64(path, "passes", "initial_level")) {
+        (Some(_), Ok(v)) => {
+            let v = dim(v, "passes/initial_level")?;
+            if v.len() != layout.bands {
+                return Err(invalid("passes/initial_level", format!("has {} bands, not {}", v.len(), layout.bands)));
+            }
+            v.to_vec()
+        }
+        _ => Vec::new(),
+    };
+    let band_row = |t: &Option<Array2<f64>>, k: usize| t.as_ref().map_or_else(Vec::new, |t| t.row(k).to_vec());
     let clipped = optional("clipped_steps")?;
     // Files of a study without classes, or written before the column existed.
     let class = match read_i64(path, "passes", "traffic_class") {
@@ -104,6 +128,8 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             spectrum: spectrum.row(k).to_vec(),
             filtered_spectrum: filtered.row(k).to_vec(),
             growth_rate: rate.row(k).to_vec(),
+            roughness_level: if initial_level.is_empty() { Vec::new() } else { band_row(&levels, k) },
+            level_rate: if initial_level.is_empty() { Vec::new() } else { band_row(&rates, k) },
         })
         .collect();
 
@@ -158,7 +184,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             wheel_histories.push((k as i64, others));
         }
     }
-    Ok(RunState { profile, rows, rail, histories, wheel_histories })
+    Ok(RunState { profile, rows, rail, histories, wheel_histories, initial_level })
 }
 
 fn read_history(path: &Path, group: &str, layout: &StateLayout) -> Result<PatchHistory, NcError> {

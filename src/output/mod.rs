@@ -1,7 +1,8 @@
 //! Output: a generic netCDF-4 compatible HDF5 writer ([`netcdf`]) and the
-//! run-file layout (README: Output) ([`run_file`]).
+//! run-file layout (book: docs/src/reference/run-file.md) ([`run_file`]).
 
 pub mod checkpoint;
+mod field_units;
 mod h5ds;
 pub mod netcdf;
 pub mod run_file;

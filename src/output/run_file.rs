@@ -1,4 +1,4 @@
-//! The run-file layout (README: Output), written atomically (temporary
+//! The run-file layout (book: docs/src/reference/run-file.md), written atomically (temporary
 //! file, fsync, rename) so that a reader never sees a half-written file.
 //!
 //! * root attributes: `title`, `version`, `contact_model`, `config` (the
@@ -8,13 +8,20 @@
 //! * group `rail`: coordinates `x`, `y`, `pass`; `traffic(pass)`,
 //!   `profile(pass, y, x)`, `wear(pass, y, x)`, and `state(y, x)`, the
 //!   profile after the last passage done (what a resumed run starts from);
-//! * group `passes`: one row per simulated passage;
-//! * group `contact/pass_NNNNN`: the patch history of a stored passage.
+//! * group `passes`: one row per simulated passage, with the band levels
+//!   in the field's units ([`super::field_units`]);
+//! * group `contact/pass_NNNNN`: the patch history of a stored passage;
+//! * group `record` (a measured initial roughness): coordinate `position`
+//!   (m), `height(position)` (m), the record as read, before processing;
+//!   attributes `file`, `sha256`, `position_unit`, `height_unit` (the
+//!   file's). A resumed run rebuilds the initial profile from it.
 
 use super::netcdf::{NcError, NcGroup, write_atomically};
 use crate::contact::Elements;
+use crate::growth::record::RecordSamples;
 use crate::growth::state::{PassRow, RailSnapshot, RunState};
-use crate::params::TrafficClass;
+use crate::levels::Band;
+use crate::params::{Operation, TrafficClass};
 use crate::passage::{PatchFields, PatchHistory};
 use crate::rail_grid::RailGrid;
 use ndarray::{Array1, Array2, Array3, ArrayView1};
@@ -46,6 +53,16 @@ pub struct RunRecord<'a> {
     pub stop_reason: Option<&'a str>,
     /// The traffic classes of a growth study (empty for one passage).
     pub classes: &'a [TrafficClass],
+    /// The measured record of the initial roughness, if any.
+    pub record: Option<&'a RecordSamples>,
+    /// The bands of the roughness levels.
+    pub bands: &'a [Band],
+    /// Each band's limit (dB re 1 um; inf: none).
+    pub limit: &'a [f64],
+    /// The limit's name ("ISO 3095").
+    pub limit_name: &'a str,
+    /// The traffic in the operator's units (a growth study's `[traffic]`).
+    pub operation: Option<&'a Operation>,
 }
 
 /// Writes `record` to `path` atomically.
@@ -62,10 +79,17 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         root.attr_str("stop_reason", record.stop_reason.unwrap_or(""))?;
         root.attr_i64("passes_done", done as i64)?;
         root.attr_i64("passes_planned", record.passes_planned as i64)?;
-        write_rail(&root.group("rail")?, record)?;
-        write_passes(&root.group("passes")?, &record.state.rows, record.wavelengths, record.classes)?;
+        let rail = root.group("rail")?;
+        write_rail(&rail, record)?;
+        super::field_units::write_rail(&rail, record)?;
+        let passes = root.group("passes")?;
+        write_passes(&passes, &record.state.rows, record.wavelengths, record.classes)?;
+        super::field_units::write_passes(&passes, record)?;
         if !record.classes.is_empty() {
             write_classes(&root.group("traffic")?, record.classes)?;
+        }
+        if let Some(r) = record.record {
+            write_record(&root.group("record")?, r)?;
         }
         let contact = root.group("contact")?;
         for (index, history) in &record.state.histories {
@@ -121,6 +145,38 @@ fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
         "rail surface height change after the last passage done (the state a resumed run starts from)",
     )?;
     Ok(())
+}
+
+/// Group `record`: the measured record as read.
+fn write_record(g: &NcGroup, r: &RecordSamples) -> Result<(), NcError> {
+    g.attr_str("file", &r.file.display().to_string())?;
+    g.attr_str("sha256", &r.sha256())?;
+    g.attr_str("position_unit", &r.position_unit)?;
+    g.attr_str("height_unit", &r.height_unit)?;
+    g.coord_f64("position", &r.positions, "m", "position along the measured record", false)?;
+    g.var_f64(
+        "height",
+        &["position"],
+        ArrayView1::from(&r.heights).into_dyn(),
+        "m",
+        "measured rail height, as read (before spike removal, curvature processing and detrending)",
+    )
+}
+
+/// Reads group `record` of the run file at `path`, if it has one.
+pub fn read_record(path: &Path) -> Result<Option<RecordSamples>, NcError> {
+    use super::netcdf::Attrs;
+    let Ok(attrs) = Attrs::open(path, "record") else { return Ok(None) };
+    let positions = super::netcdf::read_f64(path, "record", "position")?.iter().copied().collect();
+    let heights = super::netcdf::read_f64(path, "record", "height")?.iter().copied().collect();
+    Ok(Some(RecordSamples {
+        file: attrs.str("file")?.into(),
+        positions,
+        heights,
+        lines: Vec::new(),
+        position_unit: attrs.str("position_unit")?,
+        height_unit: attrs.str("height_unit")?,
+    }))
 }
 
 /// Group `traffic`: one row per class on dimension `class`; the names in

@@ -10,15 +10,35 @@
 //! rail's displacement at the distance ahead of a unit force at the
 //! source), and the continuous model's `continuous_transfer_real(distance,
 //! frequency)` and `continuous_transfer_imag`.
+//!
+//! With the dynamics in every direction (`dynamics.directions = "all"`) the
+//! rail head's receptances in three directions too, on the coordinates
+//! `response` and `force` (`x` along the rail, `y` across to the right,
+//! `z` down; the contact `contact_offset` m right of the centre line, an
+//! attribute): `head_receptance_real(position, frequency, response,
+//! force)` and `_imag` (discrete track), `continuous_head_receptance_real
+//! (frequency, response, force)` and `_imag`, and with several wheels
+//! `head_transfer_real(source, distance, frequency, response, force)`,
+//! `continuous_head_transfer_real(distance, frequency, response, force)`
+//! and their `_imag`.
 
 use super::netcdf::{NcError, write_atomically};
+use crate::dynamics::head_response::HeadResponse;
+use crate::dynamics::section::Mat3;
 use crate::dynamics::track_response::TrackResponse;
-use ndarray::{Array0, Array1, Array2, Array3};
+use ndarray::{Array0, Array1, Array2, Array3, ArrayD, Dimension, IxDyn};
 use std::path::Path;
 
-/// Writes `r` for the track named `rail` and the resolved `config` to `path`
-/// atomically.
-pub fn write_track_file(path: &Path, r: &TrackResponse, rail: &str, config: &str) -> Result<(), NcError> {
+/// Writes `r` (and the head's receptances in three directions `head`, if
+/// given, on the same frequencies, positions, sources and distances) for
+/// the track named `rail` and the resolved `config` to `path` atomically.
+pub fn write_track_file(
+    path: &Path,
+    r: &TrackResponse,
+    head: Option<&HeadResponse>,
+    rail: &str,
+    config: &str,
+) -> Result<(), NcError> {
     write_atomically(path, |root| {
         root.attr_str("title", "track receptances")?;
         root.attr_str("program", "corrugation")?;
@@ -110,6 +130,9 @@ pub fn write_track_file(path: &Path, r: &TrackResponse, rail: &str, config: &str
                 )?;
             }
         }
+        if let Some(h) = head {
+            write_head(&g, r, h)?;
+        }
         let contact = Array0::from_elem((), r.contact);
         g.var_f64(
             "contact_receptance",
@@ -120,4 +143,63 @@ pub fn write_track_file(path: &Path, r: &TrackResponse, rail: &str, config: &str
         )?;
         Ok(())
     })
+}
+
+/// The head's receptances in three directions (see the module's doc).
+fn write_head(g: &super::netcdf::NcGroup, r: &TrackResponse, h: &HeadResponse) -> Result<(), NcError> {
+    let axes: Vec<String> = ["x", "y", "z"].iter().map(|s| s.to_string()).collect();
+    let along = "x along the rail (travel), y across to the right, z down";
+    g.coord_str("response", &axes, "", &format!("direction of the head's displacement: {along}"))?;
+    g.coord_str("force", &axes, "", &format!("direction of the force on the head: {along}"))?;
+    g.attr_f64("contact_offset", h.contact_offset)?;
+    // (outer indices..., frequency) -> the 3 x 3 matrices.
+    let write = |name: &str, dims: &[&str], shape: &[usize], at: &dyn Fn(&[usize]) -> Mat3, long: &str| {
+        let mut full = shape.to_vec();
+        full.extend([3, 3]);
+        for (suffix, part, re) in [("real", "real", true), ("imag", "imaginary", false)] {
+            let a = ArrayD::from_shape_fn(IxDyn(&full), |ix: IxDyn| {
+                let ix: Vec<usize> = (0..ix.ndim()).map(|k| ix[k]).collect();
+                let c = at(&ix[..ix.len() - 2])[(ix[ix.len() - 2], ix[ix.len() - 1])];
+                if re { c.re } else { c.im }
+            });
+            let mut all: Vec<&str> = dims.to_vec();
+            all.extend(["response", "force"]);
+            g.var_f64(&format!("{name}_{suffix}"), &all, a.view(), "m/N", &format!("{part} part of the {long}"))?;
+        }
+        Ok::<(), NcError>(())
+    };
+    let (np, nf) = (r.position.len(), r.frequency.len());
+    write(
+        "head_receptance",
+        &["position", "frequency"],
+        &[np, nf],
+        &|i| h.discrete[i[0]][i[1]],
+        "rail head's point receptance in three directions on discrete supports (exp(+i w t))",
+    )?;
+    write(
+        "continuous_head_receptance",
+        &["frequency"],
+        &[nf],
+        &|i| h.continuous[i[0]],
+        "rail head's point receptance in three directions on continuous supports",
+    )?;
+    if !h.transfer.is_empty() {
+        let nd = r.distance.len();
+        write(
+            "head_transfer",
+            &["source", "distance", "frequency"],
+            &[r.source.len(), nd, nf],
+            &|i| h.transfer[i[0]][i[1]][i[2]],
+            "rail head's transfer receptance in three directions on discrete supports: displacement at the distance \
+             ahead of a unit force at the source",
+        )?;
+        write(
+            "continuous_head_transfer",
+            &["distance", "frequency"],
+            &[nd, nf],
+            &|i| h.continuous_transfer[i[0]][i[1]],
+            "rail head's transfer receptance in three directions on continuous supports",
+        )?;
+    }
+    Ok(())
 }

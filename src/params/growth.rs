@@ -40,6 +40,16 @@ impl std::fmt::Display for DynamicsKind {
 }
 
 impl DynamicsKind {
+    /// The unsprung mass of a track model (kg); None for imposed loads.
+    pub fn unsprung_mass(&self) -> Option<f64> {
+        match self {
+            DynamicsKind::Imposed => None,
+            DynamicsKind::Receptance { unsprung_mass } | DynamicsKind::Discrete { unsprung_mass } => {
+                Some(*unsprung_mass)
+            }
+        }
+    }
+
     /// The same model with another unsprung mass (kg).
     pub fn with_unsprung_mass(self, mass: f64) -> Self {
         match self {
@@ -67,11 +77,63 @@ pub struct GrowthParams {
     pub roughness: Roughness,
     /// Dynamics model.
     pub dynamics: DynamicsKind,
+    /// The directions its track model moves in (`dynamics.directions`).
+    pub directions: Directions,
     /// When the study stops before `passes`.
     pub stop: StopRule,
     /// The traffic classes (`[[traffic.mix]]`, shares summing to 1; one
     /// class of the base config without `[traffic]`).
     pub classes: Vec<TrafficClass>,
+    /// The traffic in the operator's units (`[traffic]`'s axle loads and
+    /// axles per day), where given.
+    pub operation: Operation,
+}
+
+/// The traffic in the operator's units: what converts wheel passages of
+/// the rail into million gross tonnes and days ([`crate::levels::forecast`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Operation {
+    /// Gross mass per axle of each traffic class, in class order (kg);
+    /// None where not given (no tonnes).
+    pub axle_loads: Option<Vec<f64>>,
+    /// Axles over the rail per day, each one wheel passage of the rail
+    /// (1/d); None where not given (no days).
+    pub axles_per_day: Option<f64>,
+}
+
+/// The directions of a growth study's track dynamics (`dynamics.directions`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Directions {
+    /// Vertical: the normal force alone (with `[wheelset]`, the torsional
+    /// feedback on the creepage): the models before the dynamics in every
+    /// direction, bit for bit.
+    Vertical,
+    /// Every direction: the rail head's and the wheel's receptances in three
+    /// directions closed with the creep forces
+    /// ([`crate::dynamics::contact_dynamics`]).
+    All {
+        /// The contact's lateral offset from the rail's centre line, to the
+        /// right looking along the rail (m).
+        contact_offset: f64,
+        /// How the creep forces answer a variation at its own frequency
+        /// (`dynamics.creep_forces`).
+        creep_forces: CreepForces,
+    },
+}
+
+/// The creep forces' answer to the dynamic variations of creepage and
+/// normal force in the dynamics in every direction
+/// (`dynamics.creep_forces`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CreepForces {
+    /// The steady creep curve's slopes (FASTSIM): the force follows the
+    /// creepage without delay.
+    Steady,
+    /// The frequency-dependent creep coefficients measured on the
+    /// passage's own transient contact solver
+    /// ([`crate::dynamics::creep_response`]): the force lags and falls
+    /// where the patch is rolled over in a time comparable to the period.
+    Transient,
 }
 
 /// When a growth study stops before its planned passages (`growth.stop`).
@@ -91,6 +153,9 @@ pub enum StopRule {
         /// saturated (dB per 1e5 real passages).
         rate: f64,
     },
+    /// Stops after the passage at which a band's roughness level reaches
+    /// its limit from below (`levels.limit`; [`crate::levels`]).
+    Limit,
 }
 
 /// How `m`, the real passages one simulated passage stands for, is chosen
@@ -179,6 +244,8 @@ pub enum Roughness {
         /// The bands.
         bands: Vec<LevelBand>,
     },
+    /// A measured record, processed and resampled onto the stretch.
+    Measured(Box<crate::growth::record::MeasuredRoughness>),
 }
 
 /// One one-third-octave band of a roughness level spectrum.

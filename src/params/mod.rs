@@ -13,7 +13,8 @@ mod growth;
 
 pub use choice::{AutoChoice, Candidate};
 pub use growth::{
-    DynamicsKind, GrowthParams, LevelBand, ProfileHarmonic, Roughness, StopRule, TrafficClass, TrafficScaling,
+    CreepForces, Directions, DynamicsKind, GrowthParams, LevelBand, Operation, ProfileHarmonic, Roughness, StopRule,
+    TrafficClass, TrafficScaling,
 };
 
 /// Tangential contact model.
@@ -344,8 +345,10 @@ impl VehicleParams {
     }
 }
 
-/// The wheelset's torsion (`[wheelset]`; [`crate::dynamics::torsion`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The wheelset (`[wheelset]`): its torsion ([`crate::dynamics::torsion`])
+/// and, with `model = "modal"`, the flexible rotating wheelset
+/// ([`crate::dynamics::wheelset`]).
+#[derive(Debug, Clone, PartialEq)]
 pub struct WheelsetParams {
     /// Axle torsional stiffness between the wheels (N m/rad).
     pub stiffness: f64,
@@ -353,6 +356,51 @@ pub struct WheelsetParams {
     pub inertia: f64,
     /// Loss factor of the axle's torsion (1).
     pub loss_factor: f64,
+    /// The modal model (`model = "modal"`); None: the torsional mode alone
+    /// (`model = "torsion"`, the default).
+    pub modal: Option<ModalWheelsetParams>,
+}
+
+/// The modal wheelset's keys (`[wheelset] model = "modal"`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModalWheelsetParams {
+    /// Mass of the wheelset with its axle boxes (kg).
+    pub mass: f64,
+    /// Roll moment of inertia about the longitudinal axis (kg m^2).
+    pub roll_inertia: f64,
+    /// Yaw moment of inertia about the vertical axis (kg m^2).
+    pub yaw_inertia: f64,
+    /// Primary suspension stiffness per axle box, longitudinal, lateral,
+    /// vertical (N/m).
+    pub suspension_stiffness: [f64; 3],
+    /// Loss factor of the primary suspension (1).
+    pub suspension_loss_factor: f64,
+    /// Distance between the axle boxes (m).
+    pub axle_box_spacing: f64,
+    /// Distance between the two wheels' contact points (m).
+    pub contact_spacing: f64,
+    /// The flexible modes.
+    pub modes: WheelsetModes,
+}
+
+/// Where the modal wheelset's flexible modes come from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum WheelsetModes {
+    /// The documented default ([`crate::dynamics::wheelset::standard`]),
+    /// with the damping ratios of its bending and its wheel modes (1).
+    Default {
+        /// Damping ratio of the bending modes (1).
+        bending_damping: f64,
+        /// Damping ratio of the wheel's modes (1).
+        wheel_damping: f64,
+    },
+    /// A user's table ([`crate::dynamics::wheelset::table`]) read from `path`.
+    Table {
+        /// The file (absolute).
+        path: String,
+        /// Its modes.
+        table: crate::dynamics::wheelset::table::ModalTable,
+    },
 }
 
 /// Output options.
@@ -362,6 +410,22 @@ pub struct OutputParams {
     pub store_fields: bool,
     /// Title written to the run file.
     pub title: String,
+}
+
+/// The roughness levels the run reports (`[levels]`): their bands and the
+/// limit they are held against ([`crate::levels`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LevelParams {
+    /// The bands.
+    pub bands: crate::levels::BandSet,
+    /// The limit curve.
+    pub limit: crate::levels::limit::LimitCurve,
+}
+
+impl Default for LevelParams {
+    fn default() -> Self {
+        LevelParams { bands: crate::levels::BandSet::ThirdOctave, limit: crate::levels::limit::LimitCurve::iso3095() }
+    }
 }
 
 /// A whole validated scene.
@@ -398,13 +462,15 @@ pub struct Scene {
     pub rail: RailParams,
     /// Output.
     pub output: OutputParams,
+    /// The roughness levels reported and their limit (`[levels]`).
+    pub levels: LevelParams,
     /// Growth study (None: a single passage).
     pub growth: Option<GrowthParams>,
     /// The track under the wheel (`[track]`).
     pub track: crate::dynamics::track::TrackConfig,
     /// The vehicle's wheels on the rail (`[vehicle]`; one by default).
     pub vehicle: VehicleParams,
-    /// The wheelset's torsional mode (`[wheelset]`), if modelled.
+    /// The wheelset (`[wheelset]`), if modelled.
     pub wheelset: Option<WheelsetParams>,
 }
 

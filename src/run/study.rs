@@ -1,4 +1,4 @@
-//! The pass loop (README: Growth studies), with checkpoints and resume:
+//! The pass loop (book: docs/src/guide/checkpoints.md), with checkpoints and resume:
 //!
 //! ```text
 //! for each simulated passage n:
@@ -17,14 +17,14 @@
 //! run computes bit for bit what the uninterrupted run would have.
 
 use crate::build::study_grid;
-use crate::config::{ConfigErrors, Resolved, load_str};
+use crate::config::{ConfigErrors, RecordSource, Resolved, load_str_with};
 use crate::growth::spectrum::wavelengths;
 pub use crate::growth::state::RunState;
 pub use crate::growth::study::Event;
 use crate::growth::study::{PassageFailed, Study, initial_state};
 use crate::output::checkpoint::{StateLayout, read_run_state};
 use crate::output::netcdf::{NcError, read_attr_str, read_f64};
-use crate::output::run_file::{RunRecord, write_run_file};
+use crate::output::run_file::{RunRecord, read_record, write_run_file};
 use std::path::{Path, PathBuf};
 
 /// The largest `growth.passes` the config accepts.
@@ -59,6 +59,14 @@ pub enum ResumeError {
         path: PathBuf,
         /// Cause.
         source: NcError,
+    },
+    /// The file is not an HDF5 file (a TOML config, say).
+    #[error("cannot resume from {path}: it is not a run file (HDF5){hint}")]
+    NotRunFile {
+        /// The file.
+        path: PathBuf,
+        /// What it looks like instead.
+        hint: String,
     },
     /// The config stored in the file is not valid (any more).
     #[error("cannot resume from {path}: its stored config is not valid:\n{source}")]
@@ -125,6 +133,9 @@ pub struct RunSummary {
     pub update_bound: f64,
     /// Why the study stopped before its planned passages (`growth.stop`).
     pub stop_reason: Option<String>,
+    /// Where the rail stands against the roughness limit, in words
+    /// ([`crate::levels::forecast::outlook`]; empty for one passage).
+    pub outlook: Vec<String>,
 }
 
 /// Runs the scene (one passage, or a growth study over `growth.passes`
@@ -148,11 +159,28 @@ pub fn resume(
     if let Err(source) = std::fs::File::open(path) {
         return Err(ResumeError::Open { path: path.to_owned(), source });
     }
+    if !crate::config::is_hdf5(path) {
+        let toml = std::fs::read_to_string(path).is_ok_and(|t| t.parse::<toml::Table>().is_ok());
+        let hint = if toml {
+            format!(
+                "; it is a TOML file, a config: `corrugation run {}` runs it (resume continues the run file a run wrote)",
+                path.display()
+            )
+        } else {
+            String::new()
+        };
+        return Err(ResumeError::NotRunFile { path: path.to_owned(), hint });
+    }
     let read = |source| ResumeError::Read { path: path.to_owned(), source };
     let toml = read_attr_str(path, "", "config").map_err(read)?;
     let source = format!("stored in {}", path.display());
     let config_err = |source| ResumeError::Config { path: path.to_owned(), source };
-    let mut resolved = load_str(&toml, &source, &[]).map_err(config_err)?;
+    // A measured initial roughness comes from the file's own copy.
+    let records = match read_record(path).map_err(read)? {
+        Some(r) => RecordSource::Stored(r),
+        None => RecordSource::Dir(".".into()),
+    };
+    let mut resolved = load_str_with(&toml, &source, &[], &records).map_err(config_err)?;
     if resolved.scene.growth.is_none() {
         return Err(ResumeError::NotGrowth { path: path.to_owned() });
     }
@@ -161,7 +189,8 @@ pub fn resume(
         if done + more > MAX_PASSES {
             return Err(ResumeError::TooMany { path: path.to_owned(), done, more });
         }
-        resolved = load_str(&toml, &source, &[format!("growth.passes={}", done + more)]).map_err(config_err)?;
+        let set = [format!("growth.passes={}", done + more)];
+        resolved = load_str_with(&toml, &source, &set, &records).map_err(config_err)?;
     }
     let scene = &resolved.scene;
     let Some(growth) = &scene.growth else {
@@ -172,6 +201,7 @@ pub fn resume(
     let layout = StateLayout {
         grid_shape: (grid.ny, grid.nx),
         wavelengths: wavelengths(grid.nx, grid.dx).len(),
+        bands: crate::levels::resolved_bands(scene.levels.bands, grid.nx, grid.dx).len(),
         elements,
         fields: scene.output.store_fields,
         history_passes: &growth.contact_history,
@@ -228,6 +258,14 @@ fn continue_run(
             passes_planned: study.passes(),
             stop_reason: study.stopped(),
             classes: study.classes(),
+            record: match scene.growth.as_ref().map(|g| &g.roughness) {
+                Some(crate::params::Roughness::Measured(m)) => Some(&m.samples),
+                _ => None,
+            },
+            bands: study.bands().0,
+            limit: study.bands().1,
+            limit_name: &scene.levels.limit.name,
+            operation: scene.growth.as_ref().map(|g| &g.operation),
         };
         write_run_file(out, &record)
     };
@@ -249,6 +287,26 @@ fn continue_run(
     progress(Event::Writing { done: study.state().rows.len() });
     write(&study)?;
     let rows = &study.state().rows;
+    let outlook = match &scene.growth {
+        Some(g) => {
+            let (bands, limit) = study.bands();
+            let levels: Vec<Vec<f64>> = rows.iter().map(|r| r.roughness_level.clone()).collect();
+            let rates: Vec<Vec<f64>> = rows.iter().map(|r| r.level_rate.clone()).collect();
+            let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
+            let shares: Vec<f64> = study.classes().iter().map(|c| c.share).collect();
+            crate::levels::forecast::outlook(&crate::levels::forecast::Standing {
+                bands,
+                limit,
+                limit_name: &scene.levels.limit.name,
+                initial: &study.state().initial_level,
+                levels: &levels,
+                rates: &rates,
+                traffic: &traffic,
+                units: crate::levels::forecast::Units::new(&g.operation, &shares),
+            })
+        }
+        None => Vec::new(),
+    };
     Ok(RunSummary {
         passes: rows.len(),
         computed: rows.len() - study.first(),
@@ -266,5 +324,6 @@ fn continue_run(
             .fold((0.0, 0), |a, b| if b.0 > a.0 { b } else { a }),
         update_bound: study.update_bound(),
         stop_reason: study.stopped().map(str::to_owned),
+        outlook,
     })
 }

@@ -22,7 +22,7 @@
 //! are numbered row-major over the dimensions (the last varies fastest),
 //! and member `i` writes `member_<i>.h5` in the output directory.
 
-use crate::config::{ConfigErrors, Resolved, load_str};
+use crate::config::{ConfigErrors, RecordSource, Resolved, load_str_with};
 use std::fmt;
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
@@ -141,10 +141,37 @@ impl SweepSpec {
     pub fn load(path: &Path) -> Result<SweepSpec, SpecErrors> {
         let fail = |errors: Vec<SpecError>| SpecErrors { path: path.to_owned(), errors };
         let err = |key: &str, message: String| SpecError { key: key.into(), message };
+        if crate::config::is_hdf5(path) {
+            return Err(fail(vec![err(
+                "file",
+                format!(
+                    "is an HDF5 file (a run file or a collected sweep), not a sweep spec (TOML); \
+                     `corrugation resume {}` continues a run file",
+                    path.display()
+                ),
+            )]));
+        }
         let text = std::fs::read_to_string(path).map_err(|e| fail(vec![err("file", format!("cannot read: {e}"))]))?;
         let mut root: Table = text.parse().map_err(|e: toml::de::Error| {
             fail(vec![err("TOML syntax", e.to_string().trim().replace('\n', "\n    "))])
         })?;
+        // A scene config given where a sweep spec belongs: say so, not the
+        // spec keys it lacks.
+        if !root.contains_key("base") && !root.contains_key("axis") {
+            let scene: Vec<&str> = crate::config::SECTIONS.iter().copied().filter(|k| root.contains_key(*k)).collect();
+            if !scene.is_empty() {
+                return Err(fail(vec![err(
+                    "file",
+                    format!(
+                        "is a run config (it has [{}]), not a sweep spec: run it with `corrugation run {}`; a sweep \
+                         spec names its base config (base = \"...\"), its output folder (output = \"...\") and its \
+                         axes ([[axis]]), see the sweep guide",
+                        scene.join("], ["),
+                        path.display()
+                    ),
+                )]));
+            }
+        }
         let mut errors = Vec::new();
         let folder = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
         let string = |root: &mut Table, key: &str, errors: &mut Vec<SpecError>| match root.remove(key) {
@@ -283,7 +310,8 @@ impl SweepSpec {
     pub fn resolve(&self, index: usize) -> Result<Resolved, ConfigErrors> {
         let member = self.member(index);
         let source = format!("{} (member {index}: {})", self.base.display(), member.overrides.join(", "));
-        load_str(&self.base_text, &source, &self.overrides(&member))
+        let dir = self.base.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        load_str_with(&self.base_text, &source, &self.overrides(&member), &RecordSource::Dir(dir.to_path_buf()))
     }
 
     /// Every member's validated config, or every member's errors at once:

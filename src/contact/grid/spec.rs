@@ -9,7 +9,7 @@ use crate::hertz::{Curvatures, Elastic};
 /// Default tolerance on the kinematic residual of a step, in units of eps:
 /// 1e-7 m/s at eps = 1e-5 m/s. Tighter tolerances change the steady
 /// creepage and wear integral by less than 1e-6 relative on the paper's
-/// scene (README, fixed grid) and cost a third more sweeps.
+/// scene (book: docs/src/theory/fixed-grid.md) and cost a third more sweeps.
 pub const GRID_TOLERANCE: f64 = 1e-2;
 
 /// Default tolerance on the force residual |F - F_x| / (mu N).

@@ -1,0 +1,149 @@
+//! The rail on discrete supports, moving in every direction: the
+//! periodic-structure (Floquet) method of [`super::discrete`] with the
+//! section's six freedoms ([`super::section`]) in place of the vertical
+//! displacement alone, so that the rail head's receptances in three
+//! directions, and their cross terms, vary across the sleeper bay.
+//!
+//! # Equations
+//! With the lattice sums `T(kappa, x)` of the free rail (6 x 6, in closed
+//! form: [`super::waves`] eq. 2) and one support's stiffness `K_s`
+//! ([`super::section`] eq. 2), the supports' displacements under a unit
+//! load at `x0` have the Floquet transform `(d I + T(kappa, 0) K_s)^-1
+//! T(kappa, -x0)`, and the section's response at `x1`
+//! ```text
+//! G(x1; x0) = G_free(x1 - x0) - 1/(2 pi) int_{-pi/d}^{pi/d} T(kappa, x1) K_s (d I + T(kappa, 0) K_s)^-1 T(kappa, -x0) d kappa   (1)
+//! ```
+//! (the scalar eq. 4 of [`super::discrete`] with matrices, the free term
+//! integrated in closed form: the free rail's response less what the
+//! supports take back). `G(x0; x1) = G(x1; x0)^T` (reciprocity). The
+//! integrand peaks where the supported rail's Bloch waves travel with
+//! little damping (the rail's longitudinal, lateral and torsional waves
+//! above their cut-on carry only the rail's loss factor): the integral is
+//! adaptive ([`crate::quadrature`], to [`TOLERANCE`] of the head's largest
+//! receptance). The head's receptance is `B^T G B`.
+
+use super::section::{Map63, Mat3, Mat6, Section};
+use super::track::TrackConfig;
+use super::waves::{RootsError, Waves};
+use crate::quadrature::{QuadratureError, integrate};
+use nalgebra::SMatrix;
+use num_complex::Complex64;
+use std::f64::consts::PI;
+
+/// Relative tolerance of the zone integral (of the largest entry of the
+/// heads' receptances integrated together).
+pub const TOLERANCE: f64 = 1e-5;
+
+/// The most integrand evaluations per frequency.
+const MAX_EVALUATIONS: usize = 200_000;
+
+/// Why the discrete track's receptance was not computed.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum Discrete3Error {
+    /// The free rail's waves.
+    #[error(transparent)]
+    Roots(#[from] RootsError),
+    /// The zone integral did not converge.
+    #[error("the discrete track's Floquet integral at {frequency} Hz: {source}")]
+    Quadrature {
+        /// Frequency (Hz).
+        frequency: f64,
+        /// Why.
+        source: QuadratureError,
+    },
+}
+
+/// The head's 3 x 6 projections.
+type Map36 = SMatrix<Complex64, 3, 6>;
+
+/// A place's factors in the lattice sums (eq. 2 of [`super::waves`]):
+/// `x = cells d + xr`, `exp(i lambda_m xr)` and `exp(i lambda_m (d - xr))`.
+struct Place {
+    cells: f64,
+    ahead: [Complex64; 6],
+    behind: [Complex64; 6],
+}
+
+impl Place {
+    fn new(waves: &Waves, x: f64, d: f64) -> Place {
+        let cells = (x / d).floor();
+        let xr = (x - cells * d).clamp(0.0, d);
+        let e = |l: f64| -> [Complex64; 6] { std::array::from_fn(|m| (Complex64::i() * waves.lambda[m] * l).exp()) };
+        Place { cells, ahead: e(xr), behind: e(d - xr) }
+    }
+}
+
+/// The rail on discrete supports, and the contact on its head.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Discrete3 {
+    /// The rail, its supports and the contact's offset.
+    pub section: Section,
+}
+
+impl Discrete3 {
+    /// The configured track, the contact `contact_offset` (m) right of the
+    /// centre line.
+    pub fn new(track: &TrackConfig, contact_offset: f64) -> Self {
+        Discrete3 { section: Section::new(track, contact_offset) }
+    }
+
+    /// The free rail's waves at `omega` (rad/s).
+    pub fn free_waves(&self, omega: f64) -> Result<Waves, RootsError> {
+        let (a2, a1, a0) = self.section.free_polynomial(omega);
+        Waves::new(&a2, &a1, &a0, omega)
+    }
+
+    /// The head's receptances `B^T G(x1; x0) B` (m/N; x along, y across, z
+    /// down; eq. 1) for each pair `(x0, x1)` of `pairs` (m from a support:
+    /// the load's place and the watched place) at angular frequency
+    /// `omega` (rad/s): the head's displacement at `x1` per unit force on
+    /// the head at `x0`.
+    pub fn head_receptances(&self, pairs: &[(f64, f64)], omega: f64) -> Result<Vec<Mat3>, Discrete3Error> {
+        let s = &self.section;
+        let d = s.track.sleeper_spacing;
+        let waves = self.free_waves(omega)?;
+        let ks = s.support(omega);
+        let b = s.head_map();
+        let bt = b.transpose();
+        let identity_d = SMatrix::<Complex64, 6, 6>::identity() * Complex64::new(d, 0.0);
+        // The head's projections of the waves' residues, P_m = B^T M_m and
+        // Q_m = M_m B (B^T M_m^T = Q_m^T, M_m^T B = P_m^T), and each place's
+        // factors of eq. 2 of [`super::waves`], which do not depend on kappa.
+        let p: Vec<Map36> = waves.modes.iter().map(|m| bt * m).collect();
+        let q: Vec<Map63> = waves.modes.iter().map(|m| m * b).collect();
+        let watched: Vec<Place> = pairs.iter().map(|&(_, x1)| Place::new(&waves, x1, d)).collect();
+        let loads: Vec<Place> = pairs.iter().map(|&(x0, _)| Place::new(&waves, -x0, d)).collect();
+        let z: [Complex64; 6] = std::array::from_fn(|m| (Complex64::i() * waves.lambda[m] * d).exp());
+        let integrand = |kappa: f64| -> Vec<Mat3> {
+            let zeta = Complex64::from_polar(1.0, kappa * d);
+            let alpha: [Complex64; 6] = std::array::from_fn(|m| 1.0 / (1.0 - z[m] / zeta));
+            let beta: [Complex64; 6] = std::array::from_fn(|m| zeta / (1.0 - z[m] * zeta));
+            let mut t0 = Mat6::zeros();
+            for (m, modes) in waves.modes.iter().enumerate() {
+                t0 += modes * (alpha[m] * d) + modes.transpose() * (beta[m] * z[m] * d);
+            }
+            let reaction = ks * (identity_d + t0 * ks).lu().solve(&Mat6::identity()).expect("regular supports");
+            watched
+                .iter()
+                .zip(&loads)
+                .map(|(w, l)| {
+                    let mut tp = Map36::zeros();
+                    let mut tm = Map63::zeros();
+                    for m in 0..6 {
+                        tp += p[m] * (alpha[m] * w.ahead[m]) + q[m].transpose() * (beta[m] * w.behind[m]);
+                        tm += q[m] * (alpha[m] * l.ahead[m]) + p[m].transpose() * (beta[m] * l.behind[m]);
+                    }
+                    let phase = Complex64::from_polar(d * d, kappa * d * (w.cells + l.cells));
+                    tp * reaction * tm * phase
+                })
+                .collect()
+        };
+        let taken = integrate(integrand, -PI / d, PI / d, 16, TOLERANCE, MAX_EVALUATIONS)
+            .map_err(|source| Discrete3Error::Quadrature { frequency: omega / (2.0 * PI), source })?;
+        Ok(pairs
+            .iter()
+            .zip(taken)
+            .map(|(&(x0, x1), t)| s.head(&waves.green(x1 - x0)) - t / Complex64::new(2.0 * PI, 0.0))
+            .collect())
+    }
+}

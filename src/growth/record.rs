@@ -1,0 +1,442 @@
+//! A measured roughness record as the rail's initial profile: the EN 15610
+//! pre-processing steps a user asks for, a window of the stretch's length,
+//! and its periodic, band-limited resampling onto the rail grid.
+//!
+//! * Spike removal (EN 15610 sec. 7, which leaves the detection rule open;
+//!   Schwitzer et al., Proc. IMechE F 237 (2023), doi 10.1177/09544097221086487,
+//!   compare implementations): sample i is part of a spike or pit where its
+//!   second difference `c_i = h_{i-1} - 2 h_i + h_{i+1}` departs from the
+//!   record's median second difference by more than `k` robust standard
+//!   deviations (`sigma = 1.4826 MAD(c)`); each run of such samples is
+//!   replaced by the straight line between its kept neighbours.
+//! * Curvature processing (EN 15610 sec. 7.3): the height of the lowest
+//!   point of a rigid wheel of radius `R` resting on the record above each
+//!   sample, `y_i = max_j [h_j - (R - sqrt(R^2 - (x_j - x_i)^2))]`: dips
+//!   narrower than the wheel can enter are bridged, crests kept.
+//! * Detrending: the least-squares straight line through the window is
+//!   removed.
+//! * Resampling: the window's `M` samples, `L / M` apart on the periodic
+//!   stretch of length `L`, are one period of a trigonometric polynomial;
+//!   its harmonics `n` with `L/n` in `[wavelength_min, wavelength_max]`
+//!   (and below the record's Nyquist number `M/2`) are the profile,
+//!   `h(X) = sum_n A_n sin(2 pi n (X - x_min) / L + phi_n)`, exact at the
+//!   rail nodes for a record that holds only those harmonics. The mean
+//!   (n = 0) is dropped, as for every other roughness kind.
+
+use crate::params::ProfileHarmonic;
+use std::f64::consts::PI;
+use std::path::PathBuf;
+
+/// A record as read: positions and heights in SI.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordSamples {
+    /// The file it was read from (as resolved).
+    pub file: PathBuf,
+    /// Positions along the rail (m), increasing evenly.
+    pub positions: Vec<f64>,
+    /// Heights (m, up positive).
+    pub heights: Vec<f64>,
+    /// The 1-based line of each sample in the file (empty where the
+    /// samples did not come from a file: a run file's stored record).
+    pub lines: Vec<usize>,
+    /// The position unit of the file ("m" or "mm").
+    pub position_unit: String,
+    /// The height unit of the file ("um", "mm" or "m").
+    pub height_unit: String,
+}
+
+impl RecordSamples {
+    /// The record's spacing (m): its length over its intervals.
+    pub fn spacing(&self) -> f64 {
+        let n = self.positions.len();
+        (self.positions[n - 1] - self.positions[0]) / (n - 1) as f64
+    }
+
+    /// `file:line` of sample `i` (the file alone where lines are unknown).
+    pub fn at(&self, i: usize) -> String {
+        match self.lines.get(i) {
+            Some(l) => format!("{}:{l}", self.file.display()),
+            None => self.file.display().to_string(),
+        }
+    }
+
+    /// SHA-256 of the samples (positions then heights, little-endian f64
+    /// bits), in hex: the record's fingerprint in the resolved config.
+    pub fn sha256(&self) -> String {
+        use sha2::{Digest, Sha256};
+        let mut h = Sha256::new();
+        for v in self.positions.iter().chain(&self.heights) {
+            h.update(v.to_le_bytes());
+        }
+        h.finalize().iter().map(|b| format!("{b:02x}")).collect()
+    }
+}
+
+/// The pre-processing and the window (the config's `roughness` keys).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Processing {
+    /// Spike removal threshold `k` (robust standard deviations of the
+    /// second difference); None: no spike removal.
+    pub spike_threshold: Option<f64>,
+    /// Wheel radius of the curvature processing (m); None: none.
+    pub curvature_radius: Option<f64>,
+    /// Remove the window's least-squares line.
+    pub detrend: bool,
+    /// The window's first position in the record (m); None: the record's
+    /// first sample.
+    pub window_start: Option<f64>,
+    /// Shortest wavelength kept (m).
+    pub wavelength_min: f64,
+    /// Longest wavelength kept (m).
+    pub wavelength_max: f64,
+}
+
+/// A removed spike (or pit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spike {
+    /// The sample of the run that departed most from the line that replaced it.
+    pub index: usize,
+    /// Samples replaced.
+    pub width: usize,
+    /// Its height above the replacing line (m; negative for a pit).
+    pub height: f64,
+}
+
+/// What the processing did, for the terminal and the run file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordReport {
+    /// Spikes removed: (position in the record (m), height (m), samples).
+    pub spikes: Vec<(f64, f64, usize)>,
+    /// Curvature processing: the deepest fill (m) and the samples raised.
+    pub filled: Option<(f64, usize)>,
+    /// Detrending: the slope removed (1).
+    pub slope: Option<f64>,
+    /// The window: first sample's index and position (m), samples `M`.
+    pub window: (usize, f64, usize),
+    /// Whole windows the record holds.
+    pub windows: usize,
+    /// The step at the seam of the periodic stretch, first sample minus
+    /// last of the window (m), and the rms step between neighbouring
+    /// samples inside it (m).
+    pub seam: (f64, f64),
+    /// rms of the processed window about its mean (m), and of the
+    /// harmonics kept (m).
+    pub rms: (f64, f64),
+}
+
+/// A measured record made the rail's initial irregularity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeasuredRoughness {
+    /// The record as read (stored in the run file: a resumed run rebuilds
+    /// the profile from it).
+    pub samples: RecordSamples,
+    /// The processing asked for.
+    pub processing: Processing,
+    /// The profile's harmonics, phases for absolute X.
+    pub harmonics: Vec<ProfileHarmonic>,
+    /// What the processing did.
+    pub report: RecordReport,
+}
+
+/// Removes spikes and pits from `h` (see the module doc); returns them.
+pub fn remove_spikes(h: &mut [f64], threshold: f64) -> Vec<Spike> {
+    let n = h.len();
+    if n < 3 {
+        return Vec::new();
+    }
+    let c: Vec<f64> = (1..n - 1).map(|i| h[i - 1] - 2.0 * h[i] + h[i + 1]).collect();
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let centre = median(&mut c.clone());
+    let sigma = 1.4826 * median(&mut c.iter().map(|x| (x - centre).abs()).collect());
+    let scale = h.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let limit = threshold * sigma.max(64.0 * f64::EPSILON * scale);
+    let flagged: Vec<bool> = (0..n).map(|i| i > 0 && i < n - 1 && (c[i - 1] - centre).abs() > limit).collect();
+    let mut spikes = Vec::new();
+    let mut i = 1;
+    while i < n - 1 {
+        if !flagged[i] {
+            i += 1;
+            continue;
+        }
+        let a = i;
+        while i < n - 1 && flagged[i] {
+            i += 1;
+        }
+        let b = i - 1;
+        // Replace a..=b by the line from h[a-1] to h[b+1].
+        let (h0, h1) = (h[a - 1], h[b + 1]);
+        let span = (b + 2 - a) as f64;
+        let mut worst = (a, 0.0f64);
+        for (k, v) in h.iter_mut().enumerate().take(b + 1).skip(a) {
+            let line = h0 + (h1 - h0) * (k + 1 - a) as f64 / span;
+            if (*v - line).abs() > worst.1.abs() {
+                worst = (k, *v - line);
+            }
+            *v = line;
+        }
+        spikes.push(Spike { index: worst.0, width: b + 1 - a, height: worst.1 });
+    }
+    spikes
+}
+
+/// Curvature processing of `h` (samples `spacing` apart) with a wheel of
+/// radius `radius` (see the module doc).
+pub fn curvature_process(h: &[f64], spacing: f64, radius: f64) -> Vec<f64> {
+    let n = h.len();
+    let (lo, hi) = h.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, u), x| (l.min(*x), u.max(*x)));
+    // Beyond this reach the wheel's sag exceeds the record's whole range.
+    let reach = (2.0 * radius * (hi - lo)).sqrt().min(radius);
+    let w = ((reach / spacing).ceil() as usize + 1).min(n);
+    let sag: Vec<f64> = (0..=w)
+        .map(|k| {
+            let u = k as f64 * spacing;
+            if u >= radius { f64::INFINITY } else { radius - (radius * radius - u * u).sqrt() }
+        })
+        .collect();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (i.saturating_sub(w), (i + w).min(n - 1));
+            (a..=b).map(|j| h[j] - sag[i.abs_diff(j)]).fold(f64::NEG_INFINITY, f64::max)
+        })
+        .collect()
+}
+
+/// Removes the least-squares line through `h` (samples `spacing` apart);
+/// returns its slope (1).
+pub fn detrend(h: &mut [f64], spacing: f64) -> f64 {
+    let n = h.len() as f64;
+    let mean_k = (n - 1.0) / 2.0;
+    let mean_h = h.iter().sum::<f64>() / n;
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for (k, v) in h.iter().enumerate() {
+        let dk = k as f64 - mean_k;
+        sxy += dk * (v - mean_h);
+        sxx += dk * dk;
+    }
+    let b = if sxx > 0.0 { sxy / sxx } else { 0.0 };
+    for (k, v) in h.iter_mut().enumerate() {
+        *v -= mean_h + b * (k as f64 - mean_k);
+    }
+    b / spacing
+}
+
+/// The harmonics of one period `h` (M samples) of the stretch of length
+/// `length` starting at `x_min`, with wavelength in `[lo, hi]` (see the
+/// module doc). A direct DFT (deterministic on every machine).
+pub fn window_harmonics(h: &[f64], length: f64, x_min: f64, lo: f64, hi: f64) -> Vec<ProfileHarmonic> {
+    let m = h.len();
+    let mut out = Vec::new();
+    for n in 1..m.div_ceil(2) {
+        let wavelength = length / n as f64;
+        if wavelength < lo * (1.0 - 1e-9) || wavelength > hi * (1.0 + 1e-9) {
+            continue;
+        }
+        let (mut a, mut b) = (0.0, 0.0);
+        for (k, v) in h.iter().enumerate() {
+            let angle = 2.0 * PI * ((n * k) % m) as f64 / m as f64;
+            a += v * angle.cos();
+            b += v * angle.sin();
+        }
+        let (a, b) = (2.0 * a / m as f64, 2.0 * b / m as f64);
+        let amplitude = a.hypot(b);
+        if amplitude == 0.0 {
+            continue;
+        }
+        let shift = 2.0 * PI * (n as f64 * x_min / length).fract();
+        out.push(ProfileHarmonic { amplitude, wavelength, phase: a.atan2(b) - shift });
+    }
+    out
+}
+
+/// The rail's initial irregularity from `samples` on the periodic stretch
+/// `[x_min, x_min + length)`. Errors: (the config key to name, message).
+pub fn measured_roughness(
+    samples: RecordSamples,
+    p: Processing,
+    x_min: f64,
+    length: f64,
+) -> Result<MeasuredRoughness, (&'static str, String)> {
+    let d = samples.spacing();
+    let n = samples.positions.len();
+    let x0 = samples.positions[0];
+    let last = samples.positions[n - 1];
+    if 2.0 * d >= p.wavelength_min * (1.0 - 1e-9) {
+        return Err((
+            "roughness.file",
+            format!(
+                "{}: the record's spacing {:.4} mm resolves wavelengths down to {:.4} mm (two samples a wavelength); \
+                 the study needs them down to roughness.wavelength_min = {:.4} mm: the sampling is too coarse. Use a \
+                 record sampled finer than {:.4} mm, or a larger roughness.wavelength_min",
+                samples.at(1),
+                d * 1e3,
+                2.0 * d * 1e3,
+                p.wavelength_min * 1e3,
+                p.wavelength_min * 1e3 / 2.0
+            ),
+        ));
+    }
+    let m_real = length / d;
+    let m = m_real.round() as usize;
+    if (m_real - m as f64).abs() > 0.01 || m < 4 {
+        return Err((
+            "roughness.file",
+            format!(
+                "{}: the stretch rail.x_max - rail.x_min = {length} m is {m_real:.3} record spacings ({d} m): it must \
+                 be a whole number of them (e.g. {} m or {} m)",
+                samples.file.display(),
+                m_real.floor().max(1.0) * d,
+                m_real.ceil() * d
+            ),
+        ));
+    }
+    let start = p.window_start.unwrap_or(x0);
+    let k0 = ((start - x0) / d).round();
+    if k0 < 0.0 || k0 as usize >= n {
+        return Err((
+            "roughness.window_start",
+            format!("= {start} m lies outside the record {} ({x0} .. {last} m)", samples.file.display()),
+        ));
+    }
+    let k0 = k0 as usize;
+    if k0 + m > n {
+        return Err((
+            "roughness.file",
+            format!(
+                "{}: the record is too short for the stretch: from the window's start {} m it holds {} samples \
+                 ({:.4} m) to its last line, the stretch rail.x_max - rail.x_min = {length} m needs {m} at its \
+                 spacing {d} m{}",
+                samples.at(n - 1),
+                samples.positions[k0],
+                n - k0,
+                (n - k0) as f64 * d,
+                if k0 > 0 { "; an earlier roughness.window_start may fit" } else { "" }
+            ),
+        ));
+    }
+    let mut h = samples.heights.clone();
+    let spikes = match p.spike_threshold {
+        Some(k) => remove_spikes(&mut h, k),
+        None => Vec::new(),
+    };
+    let filled = p.curvature_radius.map(|r| {
+        let y = curvature_process(&h, d, r);
+        let deepest = y.iter().zip(&h).map(|(a, b)| a - b).fold(0.0, f64::max);
+        let raised = y.iter().zip(&h).filter(|(a, b)| a > b).count();
+        h = y;
+        (deepest, raised)
+    });
+    let mut window = h[k0..k0 + m].to_vec();
+    let slope = p.detrend.then(|| detrend(&mut window, d));
+    let mean = window.iter().sum::<f64>() / m as f64;
+    let rms = (window.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / m as f64).sqrt();
+    let steps = (window.windows(2).map(|w| (w[1] - w[0]).powi(2)).sum::<f64>() / (m - 1) as f64).sqrt();
+    let seam = window[0] - window[m - 1];
+    let harmonics = window_harmonics(&window, length, x_min, p.wavelength_min, p.wavelength_max);
+    let kept = (harmonics.iter().map(|h| h.amplitude.powi(2) / 2.0).sum::<f64>()).sqrt();
+    let report = RecordReport {
+        spikes: spikes.iter().map(|s| (samples.positions[s.index], s.height, s.width)).collect(),
+        filled,
+        slope,
+        window: (k0, samples.positions[k0], m),
+        windows: n / m,
+        seam: (seam, steps),
+        rms: (rms, kept),
+    };
+    Ok(MeasuredRoughness { samples, processing: p, harmonics, report })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sine(n: usize, amplitude: f64, period: f64, phase: f64) -> Vec<f64> {
+        (0..n).map(|k| amplitude * (2.0 * PI * k as f64 / period + phase).sin()).collect()
+    }
+
+    #[test]
+    fn a_spike_and_a_pit_are_removed_and_reported() {
+        // A 2 um sine of 40 samples' wavelength, a 30 um spike at 50 and a
+        // 20 um pit two samples wide at 120.
+        let clean = sine(200, 2e-6, 40.0, 0.3);
+        let mut h = clean.clone();
+        h[50] += 30e-6;
+        h[120] -= 20e-6;
+        h[121] -= 20e-6;
+        let spikes = remove_spikes(&mut h, 5.0);
+        assert_eq!(spikes.len(), 2, "{spikes:?}");
+        assert_eq!(spikes[0].index, 50);
+        assert!((spikes[0].height - 30e-6).abs() < 1e-6, "{spikes:?}");
+        assert!(spikes[1].index == 120 || spikes[1].index == 121);
+        assert!((spikes[1].height + 20e-6).abs() < 1.5e-6, "{spikes:?}");
+        // The line through the neighbours of a spike on a smooth sine: the
+        // sine's curvature over the replaced span, here below 0.2 um.
+        let worst = h.iter().zip(&clean).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+        assert!(worst < 0.2e-6, "{worst}");
+        // A clean record loses nothing.
+        let mut c = clean.clone();
+        assert!(remove_spikes(&mut c, 5.0).is_empty());
+        assert_eq!(c, clean);
+    }
+
+    #[test]
+    fn the_wheel_bridges_a_pit_and_follows_a_gentle_sine() {
+        // A pit 10 um deep, one sample wide at 1 mm spacing, under a 0.5 m
+        // wheel: the wheel rests on the neighbours, its lowest point
+        // R - sqrt(R^2 - d^2) = 1.000001 um below them.
+        let (d, r) = (1e-3, 0.5);
+        let mut h = vec![0.0; 21];
+        h[10] = -10e-6;
+        let y = curvature_process(&h, d, r);
+        let sag = r - (r * r - d * d).sqrt();
+        assert!((y[10] + sag).abs() < 1e-18, "{}", y[10]);
+        assert!(y.iter().enumerate().all(|(i, v)| i == 10 || *v == 0.0));
+        // A sine whose curvature A k^2 stays below 1/R: 10 um at 100 mm
+        // (A k^2 R = 0.02). On the samples the wheel rests on a neighbour
+        // instead only where the profile rises by more than the wheel's sag
+        // over one sample, a slope above d / (2 R) = 1e-3; this sine's
+        // steepest slope is A k = 6.3e-4: it is kept as it is.
+        let h = sine(400, 10e-6, 100.0, 0.0);
+        let y = curvature_process(&h, d, r);
+        assert_eq!(y, h);
+        assert_eq!(y[25], h[25], "a crest");
+        // 50 um at 10 mm (A k^2 R = 9.9): troughs filled, crests kept.
+        let h = sine(100, 50e-6, 10.0, 0.0);
+        let y = curvature_process(&h, d, r);
+        assert!(y.iter().zip(&h).all(|(a, b)| a >= b));
+        assert_eq!(y[52], h[52], "a crest");
+        assert!(y[57] - h[57] > 40e-6, "the trough: {} {}", y[57], h[57]);
+    }
+
+    #[test]
+    fn detrend_removes_a_line() {
+        let mut h: Vec<f64> = (0..50).map(|k| 3e-6 + 2e-7 * k as f64).collect();
+        let slope = detrend(&mut h, 1e-3);
+        assert!((slope - 2e-4).abs() < 1e-15, "{slope}");
+        assert!(h.iter().all(|v| v.abs() < 1e-18), "{h:?}");
+    }
+
+    #[test]
+    fn harmonics_of_a_window_are_exact() {
+        // 120 samples over L = 0.12 m: harmonics 3 (40 mm) and 10 (12 mm)
+        // and 50 (2.4 mm, filtered out by wavelength_min = 5 mm).
+        let (m, length) = (120, 0.12);
+        let h: Vec<f64> = (0..m)
+            .map(|k| {
+                let u = k as f64 / m as f64;
+                2e-6 * (2.0 * PI * 3.0 * u + 0.4).sin()
+                    + 1e-6 * (2.0 * PI * 10.0 * u - 1.0).sin()
+                    + 3e-6 * (2.0 * PI * 50.0 * u).sin()
+            })
+            .collect();
+        let hs = window_harmonics(&h, length, 0.0, 0.005, f64::INFINITY);
+        let big: Vec<&ProfileHarmonic> = hs.iter().filter(|h| h.amplitude > 1e-18).collect();
+        assert_eq!(big.len(), 2, "{hs:?}");
+        assert!((big[0].wavelength - 0.04).abs() < 1e-15 && (big[0].amplitude - 2e-6).abs() < 1e-18);
+        assert!((big[0].phase - 0.4).abs() < 1e-12);
+        assert!((big[1].wavelength - 0.012).abs() < 1e-15 && (big[1].amplitude - 1e-6).abs() < 1e-18);
+        assert!((big[1].phase + 1.0).abs() < 1e-12);
+    }
+}

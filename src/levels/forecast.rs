@@ -1,0 +1,304 @@
+//! When a band reaches its limit: the wheel passages from a passage until
+//! the band's level, growing at its current rate, reaches the limit, and
+//! the same traffic in the operator's units (million gross tonnes, days).
+//!
+//! ```text
+//! N = (L_lim - L) / r * 1e5     (r > 0, L < L_lim)
+//! N = 0                         (L >= L_lim: already there)
+//! N = inf                       (r <= 0: the band does not grow)
+//! ```
+//!
+//! `L` the band level (dB re 1 um), `r` its rate (dB per 1e5 wheel
+//! passages). A level grows linearly in dB while the corrugation grows
+//! exponentially (the linear regime), so this is the linear regime's
+//! forecast; a saturating band reaches its limit later than it says.
+//!
+//! Traffic: one wheel passage of the rail is one axle passage of the
+//! track, so `MGT = sum of axle loads (t) / 1e6` and `days = passages /
+//! axles per day`.
+
+use super::Band;
+use crate::params::Operation;
+
+/// Wheel passages from a band at `level` growing at `rate` until it
+/// reaches `limit` (see the module doc).
+pub fn passages_to_limit(level: f64, rate: f64, limit: f64) -> f64 {
+    if level >= limit {
+        0.0
+    } else if rate > 0.0 {
+        (limit - level) / rate * 1e5
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The bands that reached their limit between the levels `before` and
+/// `after` (dB): below it before, at or above it after.
+pub fn crossed(before: &[f64], after: &[f64], limit: &[f64]) -> Vec<usize> {
+    (0..limit.len()).filter(|&k| before[k] < limit[k] && after[k] >= limit[k]).collect()
+}
+
+/// Converts wheel passages of the rail into the operator's units.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Units {
+    /// Mean gross mass per wheel passage (t), where the axle loads are given.
+    pub tonnes_per_passage: Option<f64>,
+    /// Axles (wheel passages of the rail) per day, where given.
+    pub axles_per_day: Option<f64>,
+}
+
+impl Units {
+    /// The units of `operation` with the traffic classes' `shares` (1,
+    /// summing to 1; the mean axle load weighs the classes by them).
+    pub fn new(operation: &Operation, shares: &[f64]) -> Self {
+        let tonnes =
+            operation.axle_loads.as_ref().map(|a| a.iter().zip(shares).map(|(m, s)| m * s).sum::<f64>() * 1e-3);
+        Units { tonnes_per_passage: tonnes, axles_per_day: operation.axles_per_day }
+    }
+
+    /// Million gross tonnes of `passages` wheel passages.
+    pub fn mgt(&self, passages: f64) -> Option<f64> {
+        self.tonnes_per_passage.map(|t| passages * t * 1e-6)
+    }
+
+    /// Days of `passages` wheel passages.
+    pub fn days(&self, passages: f64) -> Option<f64> {
+        self.axles_per_day.map(|a| passages / a)
+    }
+
+    /// `passages` in words: "2.1 MGT, 140 days at 4000 axles per day (3.4e6
+    /// wheel passages)".
+    pub fn describe(&self, passages: f64) -> String {
+        let mut parts = Vec::new();
+        if let Some(m) = self.mgt(passages) {
+            parts.push(format!("{} MGT", short(m)));
+        }
+        if let (Some(d), Some(a)) = (self.days(passages), self.axles_per_day) {
+            let years = if d >= 365.25 { format!(" ({} years)", short(d / 365.25)) } else { String::new() };
+            parts.push(format!("{} days{years} at {} axles per day", short(d), short(a)));
+        }
+        let count = format!("{passages:.2e} wheel passages");
+        if parts.is_empty() { count } else { format!("{} ({count})", parts.join(", ")) }
+    }
+}
+
+/// Cumulative million gross tonnes after each passage of `rows` ((class,
+/// real passages it stood for)), with each class's axle load (kg).
+pub fn cumulative_mgt(rows: &[(usize, f64)], axle_loads: &[f64]) -> Vec<f64> {
+    let mut total = 0.0;
+    rows.iter()
+        .map(|(class, m)| {
+            total += m * axle_loads.get(*class).copied().unwrap_or(0.0) * 1e-9;
+            total
+        })
+        .collect()
+}
+
+/// A number as a person writes it: two significant digits below 100,
+/// whole above.
+fn short(x: f64) -> String {
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    if x.abs() >= 100.0 {
+        return format!("{x:.0}");
+    }
+    let digits = if x == 0.0 { 0 } else { (1 - x.abs().log10().floor() as i32).max(0) as usize };
+    format!("{x:.digits$}")
+}
+
+/// Where a run stands against the limit after its last passage.
+#[derive(Debug, Clone)]
+pub struct Standing<'a> {
+    /// The bands.
+    pub bands: &'a [Band],
+    /// Each band's limit (dB re 1 um; inf: none).
+    pub limit: &'a [f64],
+    /// The limit's name ("ISO 3095").
+    pub limit_name: &'a str,
+    /// Levels before the first passage (dB re 1 um).
+    pub initial: &'a [f64],
+    /// Levels after each passage (dB re 1 um).
+    pub levels: &'a [Vec<f64>],
+    /// Rates of each passage (dB per 1e5 wheel passages).
+    pub rates: &'a [Vec<f64>],
+    /// Real wheel passages represented after each passage.
+    pub traffic: &'a [f64],
+    /// The operator's units.
+    pub units: Units,
+}
+
+/// The run's last lines about the limit: where a band first reached it,
+/// which band reaches it next at the last passage's rates and when, and
+/// which bands are above it.
+pub fn outlook(s: &Standing) -> Vec<String> {
+    let mut lines = Vec::new();
+    let (Some(last), Some(rates), Some(&so_far)) = (s.levels.last(), s.rates.last(), s.traffic.last()) else {
+        return lines;
+    };
+    if s.bands.is_empty() {
+        return vec![
+            "no one-third-octave band is resolved on this stretch (a band needs a quarter of its length)".into(),
+        ];
+    }
+    let name = s.limit_name;
+    let finite = s.limit.iter().any(|l| l.is_finite());
+    if !finite {
+        return lines;
+    }
+    // The first crossing during the run.
+    let mut before = s.initial;
+    for (p, after) in s.levels.iter().enumerate() {
+        if let Some(&k) = crossed(before, after, s.limit).first() {
+            lines.push(format!(
+                "the {} band reached the {name} limit ({:.1} dB re 1 um) in passage {}, after {}",
+                s.bands[k].label(),
+                s.limit[k],
+                p + 1,
+                s.units.describe(s.traffic[p])
+            ));
+            break;
+        }
+        before = after;
+    }
+    let pass = s.levels.len();
+    let to_limit: Vec<f64> = (0..s.bands.len()).map(|k| passages_to_limit(last[k], rates[k], s.limit[k])).collect();
+    let next = (0..s.bands.len())
+        .filter(|&k| to_limit[k] > 0.0 && to_limit[k].is_finite())
+        .min_by(|&a, &b| to_limit[a].total_cmp(&to_limit[b]));
+    match next {
+        Some(k) => {
+            let column: Vec<f64> = s.levels.iter().map(|l| l[k]).collect();
+            let slower = power_law(&column, s.traffic, rates[k]).map_or_else(String::new, |p| {
+                format!(
+                    "; but its amplitude has grown as traffic^{p:.2} (not exponentially): at that pace it reaches the \
+                     limit after {}",
+                    s.units.describe(so_far * 10f64.powf((s.limit[k] - last[k]) / (20.0 * p)))
+                )
+            });
+            lines.push(format!(
+                "the {} band reaches the {name} limit ({:.1} dB re 1 um) after {} from the start, at passage \
+                 {pass}'s rate ({:+.2} dB per 1e5 wheel passages from {:.1} dB){slower}",
+                s.bands[k].label(),
+                s.limit[k],
+                s.units.describe(so_far + to_limit[k]),
+                rates[k],
+                last[k],
+            ))
+        }
+        None => lines.push(format!("at passage {pass}'s rates no band below the {name} limit grows towards it")),
+    }
+    let above: Vec<usize> = (0..s.bands.len()).filter(|&k| to_limit[k] == 0.0).collect();
+    if !above.is_empty() {
+        let list: Vec<String> =
+            above.iter().map(|&k| format!("{} (by {:.1} dB)", s.bands[k].label(), last[k] - s.limit[k])).collect();
+        lines.push(format!("above the {name} limit after passage {pass}: {}", list.join(", ")));
+    }
+    if s.units.tonnes_per_passage.is_none() || s.units.axles_per_day.is_none() {
+        lines.push("(traffic.axle_load and traffic.axles_per_day give these in million gross tonnes and days)".into());
+    }
+    lines
+}
+
+/// The exponent `p` of a band whose amplitude has grown as a power of the
+/// traffic, `A ~ T^p` (its level as `20 p lg T`: wear that adds to the
+/// profile without feeding back, `p = 1`, rather than the exponential
+/// growth of the linear regime), if it has: over the second half of the
+/// run in traffic (from the last passage at most half the final traffic)
+/// the level rose by `20 p lg(T_n / T_h)` with `p` in [0.5, 2], and the last
+/// rate agrees, `rate = 20 p / (ln 10 T_n) 1e5`, within 20 %. An
+/// exponential growth fails the test: its rate is `x ln x / (x - 1)`
+/// (1.39 at `x = T_n/T_h = 2`) times the power law's.
+pub fn power_law(levels: &[f64], traffic: &[f64], rate: f64) -> Option<f64> {
+    let (&t_n, &l_n) = (traffic.last()?, levels.last()?);
+    let h = traffic.iter().rposition(|t| *t <= 0.5 * t_n)?;
+    let (t_h, l_h) = (traffic[h], levels[h]);
+    if !(t_h > 0.0 && l_h > super::LEVEL_FLOOR) {
+        return None;
+    }
+    let p = (l_n - l_h) / (20.0 * (t_n / t_h).log10());
+    let p_rate = rate * t_n / 1e5 * std::f64::consts::LN_10 / 20.0;
+    ((0.5..=2.0).contains(&p) && (p_rate / p - 1.0).abs() < 0.2).then_some(p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn passages_to_limit_follows_the_level_and_rate() {
+        // 5 dB below, 0.5 dB per 1e5: 1e6 passages.
+        assert_eq!(passages_to_limit(10.0, 0.5, 15.0), 1e6);
+        assert_eq!(passages_to_limit(15.0, 0.5, 15.0), 0.0);
+        assert_eq!(passages_to_limit(16.0, -0.5, 15.0), 0.0);
+        assert_eq!(passages_to_limit(10.0, 0.0, 15.0), f64::INFINITY);
+        assert_eq!(passages_to_limit(10.0, -1.0, 15.0), f64::INFINITY);
+        assert_eq!(passages_to_limit(10.0, 1.0, f64::INFINITY), f64::INFINITY);
+        // Consistent: the level at the forecast traffic is the limit.
+        let (l, r, lim) = (-3.7, 0.83, 2.9);
+        let n = passages_to_limit(l, r, lim);
+        assert!((l + r * n / 1e5 - lim).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_power_law_is_told_from_exponential_growth() {
+        // Amplitude proportional to traffic: L = 20 lg T + c, rate 20/(ln 10 T) 1e5.
+        let traffic: Vec<f64> = (1..=20).map(|k| 1e4 * k as f64).collect();
+        let linear: Vec<f64> = traffic.iter().map(|t| 20.0 * t.log10() - 100.0).collect();
+        let rate = 20.0 / (std::f64::consts::LN_10 * 2e5) * 1e5;
+        assert!((power_law(&linear, &traffic, rate).unwrap() - 1.0).abs() < 1e-9);
+        // Exponential growth at 1 dB per 1e5: not a power law.
+        let exponential: Vec<f64> = traffic.iter().map(|t| -30.0 + t / 1e5).collect();
+        assert_eq!(power_law(&exponential, &traffic, 1.0), None);
+        assert_eq!(power_law(&linear[..1], &traffic[..1], rate), None);
+    }
+
+    #[test]
+    fn traffic_in_tonnes_and_days() {
+        // 22.5 t and 17.5 t axles, 3 : 1; 4000 axles a day.
+        let op = Operation { axle_loads: Some(vec![22.5e3, 17.5e3]), axles_per_day: Some(4000.0) };
+        let u = Units::new(&op, &[0.75, 0.25]);
+        assert!((u.tonnes_per_passage.unwrap() - 21.25).abs() < 1e-12);
+        assert!((u.mgt(1e5).unwrap() - 2.125).abs() < 1e-12);
+        assert_eq!(u.days(1e5), Some(25.0));
+        assert_eq!(u.describe(1e5), "2.1 MGT, 25 days at 4000 axles per day (1.00e5 wheel passages)");
+        assert_eq!(Units::default().describe(3.4e6), "3.40e6 wheel passages");
+        let long = Units { tonnes_per_passage: None, axles_per_day: Some(100.0) };
+        assert_eq!(long.describe(1e5), "1000 days (2.7 years) at 100 axles per day (1.00e5 wheel passages)");
+        let mgt = cumulative_mgt(&[(0, 1e4), (1, 2e4), (0, 1e4)], &[20e3, 10e3]);
+        assert_eq!(mgt, vec![0.2, 0.4, 0.6000000000000001]);
+    }
+
+    #[test]
+    fn the_outlook_names_the_crossing_and_the_next_band() {
+        let bands = [Band::third_octave(15), Band::third_octave(16)];
+        let limit = [15.0, 13.0];
+        let levels = vec![vec![14.0, 9.0], vec![15.5, 10.0]];
+        let rates = vec![vec![1.0, 0.5], vec![1.5, 1.0]];
+        let units = Units { tonnes_per_passage: Some(20.0), axles_per_day: Some(1e4) };
+        let s = Standing {
+            bands: &bands,
+            limit: &limit,
+            limit_name: "ISO 3095",
+            initial: &[13.0, 8.5],
+            levels: &levels,
+            rates: &rates,
+            traffic: &[1e5, 2e5],
+            units,
+        };
+        let lines = outlook(&s);
+        assert_eq!(lines.len(), 3, "{lines:?}");
+        assert!(lines[0].starts_with("the 31.5 mm band reached the ISO 3095 limit (15.0 dB re 1 um) in passage 2"));
+        assert!(lines[0].ends_with("after 4.0 MGT, 20 days at 10000 axles per day (2.00e5 wheel passages)"));
+        // 25 mm: 3 dB at 1 dB per 1e5: 3e5 more, 5e5 from the start.
+        assert!(
+            lines[1].starts_with("the 25 mm band reaches the ISO 3095 limit (13.0 dB re 1 um) after 10 MGT, 50 days")
+        );
+        assert!(
+            lines[1].ends_with("at passage 2's rate (+1.00 dB per 1e5 wheel passages from 10.0 dB)"),
+            "{}",
+            lines[1]
+        );
+        assert!(lines[2].contains("31.5 mm (by 0.5 dB)"));
+    }
+}
