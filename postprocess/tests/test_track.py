@@ -63,7 +63,8 @@ def test_track_file_and_figure(tmp_path):
     assert bad.returncode == 2 and "does not exist" in bad.stderr
     # A bogie: the transfer receptance between its wheels, and its figure.
     bogie = tmp_path / "bogie.h5"
-    done = subprocess.run([BIN, "track", cfg, "-o", str(bogie), "--set", "vehicle.wheels=[0.0, 2.5]"],
+    done = subprocess.run([BIN, "track", cfg, "-o", str(bogie), "--set", "vehicle.wheels=[0.0, 2.5]",
+                           "--set", "dynamics.directions=vertical"],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     b = xr.open_dataset(bogie, engine="h5netcdf", group="track")

@@ -22,7 +22,8 @@ def test_second_wheel_history(tmp_path):
     out = tmp_path / "bogie.h5"
     cfg = str(REPO / "configs" / "growth_fastsim.toml")
     done = subprocess.run([BIN, "run", cfg, "-o", str(out), "--set", "growth.passes=1",
-                           "--set", "vehicle.wheels=[0.0, 2.5]", "--set", "growth.contact_history=[0]"],
+                           "--set", "vehicle.wheels=[0.0, 2.5]", "--set", "growth.contact_history=[0]",
+                           "--set", "dynamics.directions=vertical"],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     lead = xr.open_dataset(out, engine="h5netcdf", group="contact/pass_00000")
