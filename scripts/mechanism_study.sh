@@ -1,16 +1,23 @@
 #!/usr/bin/env bash
-# Why corrugation grows (issue 24): growth-rate spectra with the consistent
-# chain (configs/growth_discrete.toml: UIC60 on discrete sleepers, one 0.6 m
-# bay, random roughness 10-120 mm, the exact model on the 0.4 mm fixed grid
-# with the rail's corrugation in the normal contact) at 60, 100 and 140
-# km/h for each mechanism:
+# Why corrugation grows (issues 24 and 34): growth-rate spectra with the
+# consistent chain (configs/growth_discrete.toml: UIC60 on discrete
+# sleepers, one 0.6 m bay, random roughness 10-120 mm, the exact model on
+# the 0.4 mm fixed grid with the rail's corrugation in the normal contact)
+# at 60, 100 and 140 km/h for each mechanism, with the dynamics in every
+# direction (the default: the rail head and the wheel in three directions,
+# the creep forces' frequency response; DIRECTIONS=vertical runs the
+# vertical models instead, as before issue 34):
 #   single  one wheel, the longitudinal force prescribed (20 kN; today's scene)
+#   braked  the same wheel braked: -20 kN
 #   torsion one wheel, creepage-controlled (-1.26e-3, the exact model's
 #           steady creepage at 20 kN) with the wheelset's torsional mode
-#           ([wheelset] defaults: 71 Hz), the creepage varying with the
-#           dynamic normal force
+#           ([wheelset] defaults: 71 Hz): a driven wheelset
+#   modal   the driven wheelset as a flexible rotating body ([wheelset]
+#           model = "modal": the rigid wheelset on its primary suspension,
+#           torsion, bending and wheel modes, gyroscopic coupling)
 #   bogie   two wheels 2.5 m apart on the rail, coupled through its
-#           transfer receptances (vehicle.wheels = [0.0, 2.5])
+#           transfer receptances (vehicle.wheels = [0.0, 2.5]; vertical
+#           dynamics: several wheels in every direction are not built yet)
 #   curve   the leading wheelset in a curve: lateral creepage 5e-3 and spin
 #           0.5 1/m, no longitudinal force (the lateral force saturates)
 #   rutting the curve with the wheelset's torsional mode and a longitudinal
@@ -21,12 +28,15 @@
 # each study's peak wavelength, frequency and rate) and `corrugation-post
 # mechanisms`: all of them side by side (mechanisms.png,
 # mechanisms_summary.csv).
-# Output in out/mechanism_study/. About 45 minutes on 2 cores with the
-# config's 40 passages; PASSES=N runs N passages per study; CASES="single
-# bogie" picks mechanisms.
+# Output in out/mechanism_study/ (out/mechanism_study_vertical/ with
+# DIRECTIONS=vertical). About 45 minutes on 2 cores with the config's 40
+# passages; PASSES=N runs N passages per study; CASES="single bogie" picks
+# mechanisms.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+directions=${DIRECTIONS:-all}
 out=out/mechanism_study
+[ "$directions" = all ] || out=out/mechanism_study_$directions
 bash scripts/setup.sh
 cargo build --release --quiet
 mkdir -p "$out"
@@ -35,7 +45,7 @@ short=()
 if [ -n "${PASSES:-}" ]; then
   short=(--set "growth.passes=$PASSES" --set "growth.store_every=$PASSES" --set "growth.checkpoint_every=$PASSES")
 fi
-"$bin" track --overwrite configs/growth_discrete.toml -o "$out/track.h5" --set 'vehicle.wheels=[0.0, 2.5]'
+"$bin" track --overwrite configs/growth_discrete.toml -o "$out/track.h5" --set "dynamics.directions=$directions"
 # Creepage control needs the config without its longitudinal force.
 grep -v '^longitudinal_force' configs/growth_discrete.toml > "$out/creepage.toml"
 printf '\n[wheelset]\n' >> "$out/creepage.toml"
@@ -46,7 +56,7 @@ mechanism() {
   for case in "60 16.67" "100 27.78" "140 38.89"; do
     local f="$out/${name}_v${case% *}.h5"
     echo "running $name at ${case% *} km/h"
-    "$bin" run --overwrite "$config" -o "$f" --set "rolling.speed=${case#* }" \
+    "$bin" run --overwrite "$config" -o "$f" --set "rolling.speed=${case#* }" --set "dynamics.directions=$directions" \
       --set 'growth.contact_history=[]' --set "output.title=\"$name, ${case% *} km/h\"" "$@" "${short[@]}" \
       2> "${f%.h5}.log"
     grep -E "^(wrote|warning)" "${f%.h5}.log" || true
@@ -54,17 +64,21 @@ mechanism() {
   done
   .venv/bin/corrugation-post speeds "${made[@]}" --track "$out/track.h5" --out "$out/$name"
 }
-cases=${CASES:-single torsion bogie curve rutting}
+cases=${CASES:-single braked torsion modal bogie curve rutting}
 base=configs/growth_discrete.toml
 for name in $cases; do
   case $name in
     single) mechanism single $base ;;
+    braked) mechanism braked $base --set load.longitudinal_force=-2e4 ;;
     torsion) mechanism torsion "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-1.26e-3 ;;
-    bogie) mechanism bogie $base --set 'vehicle.wheels=[0.0, 2.5]' ;;
+    modal) mechanism modal "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-1.26e-3 \
+      --set wheelset.model=modal ;;
+    # Several wheels: the vertical dynamics (the later --set wins).
+    bogie) mechanism bogie $base --set 'vehicle.wheels=[0.0, 2.5]' --set dynamics.directions=vertical ;;
     curve) mechanism curve $base --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 --set load.longitudinal_force=0 ;;
     rutting) mechanism rutting "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-2e-3 \
       --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 ;;
-    *) echo "unknown mechanism $name (single, torsion, bogie, curve, rutting)" >&2; exit 2 ;;
+    *) echo "unknown mechanism $name (single, braked, torsion, modal, bogie, curve, rutting)" >&2; exit 2 ;;
   esac
 done
 # The mechanisms side by side: mechanisms.png, mechanisms_summary.csv (per
