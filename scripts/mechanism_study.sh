@@ -16,8 +16,7 @@
 #           model = "modal": the rigid wheelset on its primary suspension,
 #           torsion, bending and wheel modes, gyroscopic coupling)
 #   bogie   two wheels 2.5 m apart on the rail, coupled through its
-#           transfer receptances (vehicle.wheels = [0.0, 2.5]; vertical
-#           dynamics: several wheels in every direction are not built yet)
+#           transfer receptances (vehicle.wheels = [0.0, 2.5])
 #   curve   the leading wheelset in a curve: lateral creepage 5e-3 and spin
 #           0.5 1/m, no longitudinal force (the lateral force saturates)
 #   rutting the curve with the wheelset's torsional mode and a longitudinal
@@ -73,8 +72,7 @@ for name in $cases; do
     torsion) mechanism torsion "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-1.26e-3 ;;
     modal) mechanism modal "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-1.26e-3 \
       --set wheelset.model=modal ;;
-    # Several wheels: the vertical dynamics (the later --set wins).
-    bogie) mechanism bogie $base --set 'vehicle.wheels=[0.0, 2.5]' --set dynamics.directions=vertical ;;
+    bogie) mechanism bogie $base --set 'vehicle.wheels=[0.0, 2.5]' ;;
     curve) mechanism curve $base --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 --set load.longitudinal_force=0 ;;
     rutting) mechanism rutting "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-2e-3 \
       --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 ;;

@@ -13,11 +13,14 @@ use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::TrackDynamics;
 use crate::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
 use crate::dynamics::contact_point::ContactLaw;
+use crate::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
 use crate::dynamics::continuous3::Continuous3;
 use crate::dynamics::creep_response;
+use crate::dynamics::creep_response::CreepResponse;
 use crate::dynamics::discrete::DiscreteTrack;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
 use crate::dynamics::discrete3::Discrete3;
+use crate::dynamics::discrete3::Discrete3Error;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
 use crate::dynamics::torsion::{TorsionFeedback, WHEEL_POLAR_INERTIA, WheelsetTorsion};
 use crate::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
@@ -425,26 +428,33 @@ fn contact_dynamics(
     contact_offset: f64,
     creep_forces: CreepForces,
 ) -> Box<dyn TrackDynamics> {
-    let loads = scene.vehicle.wheel_loads(0, &scene.loads);
-    let law = steady_contact_law(scene, &d.shape, loads.normal_force, loads.longitudinal_force);
-    // The dynamics loop needs the creepages' and the normal force's columns.
-    let response = match creep_forces {
-        CreepForces::Steady => None,
-        CreepForces::Transient => Some(
-            creep_response::scene::default_response(
-                scene,
-                loads.normal_force,
-                loads.longitudinal_force,
-                [true, true, false, true],
-            )
-            .unwrap_or_else(|e| {
-                panic!(
-                    "the creep forces' frequency response could not be measured on the passage's contact solver: \
-                     {e}; dynamics.creep_forces = \"steady\" closes the loop with FASTSIM's steady slopes instead"
-                )
-            }),
-        ),
-    };
+    let v = &scene.vehicle;
+    // Each distinct load's law and creep response (measured once).
+    let mut laws: Vec<((f64, f64), ContactLaw, Option<CreepResponse>)> = Vec::new();
+    for i in 0..v.wheels.len() {
+        let loads = v.wheel_loads(i, &scene.loads);
+        let key = (loads.normal_force, loads.longitudinal_force);
+        if laws.iter().any(|(k, ..)| *k == key) {
+            continue;
+        }
+        let law = steady_contact_law(scene, &d.shape, key.0, key.1);
+        // The dynamics loop needs the creepages' and the normal force's columns.
+        let response = match creep_forces {
+            CreepForces::Steady => None,
+            CreepForces::Transient => Some(
+                creep_response::scene::default_response(scene, key.0, key.1, [true, true, false, true]).unwrap_or_else(
+                    |e| {
+                        panic!(
+                            "the creep forces' frequency response could not be measured on the passage's contact \
+                             solver: {e}; dynamics.creep_forces = \"steady\" closes the loop with FASTSIM's steady \
+                             slopes instead"
+                        )
+                    },
+                ),
+            ),
+        };
+        laws.push((key, law, response));
+    }
     let grid = periodic_grid(scene);
     let rail = match scene.growth.as_ref().map(|g| g.dynamics) {
         Some(DynamicsKind::Discrete { .. }) => Rail3::Discrete {
@@ -455,23 +465,46 @@ fn contact_dynamics(
         _ => Rail3::Continuous(Continuous3::new(&scene.track, contact_offset)),
     };
     let modal = scene.wheelset.as_ref().is_some_and(|w| w.modal.is_some());
-    let wheel = Wheel3 {
-        mass,
-        radius: scene.geometry.wheel_radius,
-        polar_inertia: scene.wheelset.as_ref().map_or(WHEEL_POLAR_INERTIA, |w| w.inertia),
-        torsion: scene.wheelset.as_ref().map(|w| WheelsetTorsion {
-            stiffness: w.stiffness,
-            loss_factor: w.loss_factor,
-            inertia: w.inertia,
+    let side = |mass: f64| {
+        let wheel = Wheel3 {
+            mass,
             radius: scene.geometry.wheel_radius,
-        }),
+            polar_inertia: scene.wheelset.as_ref().map_or(WHEEL_POLAR_INERTIA, |w| w.inertia),
+            torsion: scene.wheelset.as_ref().map(|w| WheelsetTorsion {
+                stiffness: w.stiffness,
+                loss_factor: w.loss_factor,
+                inertia: w.inertia,
+                radius: scene.geometry.wheel_radius,
+            }),
+        };
+        match wheelset_model(scene).filter(|_| modal) {
+            Some(model) => WheelSide::Modal { model, spin: scene.speed / scene.geometry.wheel_radius },
+            None => WheelSide::Rigid(wheel),
+        }
     };
-    let wheel = match wheelset_model(scene).filter(|_| modal) {
-        Some(model) => WheelSide::Modal { model, spin: scene.speed / scene.geometry.wheel_radius },
-        None => WheelSide::Rigid(wheel),
-    };
-    let model = ContactDynamics::new(rail, wheel, law, response, loads.normal_force, grid.nx, grid.dx, scene.speed)
-        .unwrap_or_else(|e| panic!("the track's receptances in three directions could not be computed: {e}"));
+    let fail =
+        |e: Discrete3Error| -> ! { panic!("the track's receptances in three directions could not be computed: {e}") };
+    let wheels: Vec<VehicleWheel3> = (0..v.wheels.len())
+        .map(|i| {
+            let loads = v.wheel_loads(i, &scene.loads);
+            let key = (loads.normal_force, loads.longitudinal_force);
+            let (_, law, response) = laws.iter().find(|(k, ..)| *k == key).expect("a law per load").clone();
+            VehicleWheel3 {
+                behind: v.wheels[i],
+                side: side(v.wheel_mass(i, mass)),
+                law,
+                response,
+                mean_load: loads.normal_force,
+            }
+        })
+        .collect();
+    if wheels.len() > 1 {
+        let model = ContactVehicle::new(rail, wheels, grid.nx, grid.dx, scene.speed).unwrap_or_else(|e| fail(e));
+        return Box::new(model);
+    }
+    let w = wheels.into_iter().next().expect("one wheel");
+    let model = ContactDynamics::new(rail, w.side, w.law, w.response, w.mean_load, grid.nx, grid.dx, scene.speed)
+        .unwrap_or_else(|e| fail(e));
     Box::new(model)
 }
 
@@ -498,13 +531,11 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamic
             .collect()
     };
     let growth = scene.growth.as_ref()?;
-    // Several wheels: the vertical models (the config refuses them in
-    // every direction).
+    // The dynamics in every direction, of one wheel or several.
     if let (Directions::All { contact_offset, creep_forces }, Some(mass)) =
         (growth.directions, growth.dynamics.unsprung_mass())
-        && v.wheels.len() == 1
     {
-        return Some(contact_dynamics(scene, d, v.wheel_mass(0, mass), contact_offset, creep_forces));
+        return Some(contact_dynamics(scene, d, mass, contact_offset, creep_forces));
     }
     match growth.dynamics {
         DynamicsKind::Imposed => None,

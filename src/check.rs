@@ -8,12 +8,13 @@ use corrugation::config::quantity::engineering;
 use corrugation::config::units::key_units;
 use corrugation::contact::grid::GRID_MARGIN;
 use corrugation::contact::grid::convolution::smooth_padding;
+use corrugation::cost::CostEstimate;
 use corrugation::growth::record::MeasuredRoughness;
 use corrugation::model_choice::{AccuracyMap, SAFETY, departures};
 use corrugation::params::Roughness;
 use corrugation::params::TrafficScaling;
 use corrugation::params::{AutoChoice, Candidate};
-use corrugation::params::{DynamicsKind, NormalContact};
+use corrugation::params::{CreepForces, Directions, DynamicsKind, NormalContact};
 use std::f64::consts::PI;
 
 /// What contact.model = "auto" chose and why.
@@ -289,9 +290,13 @@ pub fn print_check(r: &Resolved) {
                 discrete.pinned_pinned_frequency()
             );
         }
+        print_directions(s, g, &cost);
         // (The discrete model tabulates its receptances for seconds: its
-        // pinned-pinned resonance is printed above.)
-        if let Some(t) = track_dynamics(s, &d).filter(|_| matches!(g.dynamics, DynamicsKind::Receptance { .. })) {
+        // pinned-pinned resonance is printed above; the dynamics in every
+        // direction measures its creep response first.)
+        if let Some(t) = track_dynamics(s, &d)
+            .filter(|_| matches!(g.dynamics, DynamicsKind::Receptance { .. }) && g.directions == Directions::Vertical)
+        {
             for (label, f) in t.describe_resonances() {
                 println!("resonance          {f:8.1} Hz  {label}");
             }
@@ -299,7 +304,8 @@ pub fn print_check(r: &Resolved) {
     }
     let setup_text = if cost.setup > 0.0 {
         format!(
-            " plus {:.1} s to set up the discrete track (its receptances, and a passage over the smooth rail per traffic class)",
+            " plus {:.1} s to set up the dynamics (the track's receptance tables, the creep response, and on the discrete \
+             track a passage over the smooth rail per traffic class)",
             cost.setup
         )
     } else {
@@ -436,6 +442,56 @@ fn number(v: &toml::Value) -> Option<f64> {
 }
 
 /// What the normal contact of a growth study sees of the rail.
+/// What the growth loop's dynamics closes, direction by direction, and what
+/// the dynamics in every direction costs before the first passage.
+fn print_directions(s: &corrugation::params::Scene, g: &corrugation::params::GrowthParams, cost: &CostEstimate) {
+    if g.dynamics == DynamicsKind::Imposed {
+        return;
+    }
+    let Directions::All { contact_offset, creep_forces } = g.directions else {
+        println!(
+            "directions         vertical: the normal force's dynamics{} (dynamics.directions = \"all\" adds the \
+             longitudinal and lateral directions)",
+            if s.wheelset.is_some() { ", and the torsional feedback on the creepage" } else { "" }
+        );
+        return;
+    };
+    let track = if matches!(g.dynamics, DynamicsKind::Discrete { .. }) {
+        "discrete supports, 17 places of the bay"
+    } else {
+        "continuous supports"
+    };
+    let wheel = match &s.wheelset {
+        Some(w) if w.modal.is_some() => "the modal wheelset's wheel 0",
+        Some(_) => "rigid, its rotation through the wheelset's torsion",
+        None => "rigid, free above the suspension, spinning",
+    };
+    let creep = match creep_forces {
+        CreepForces::Transient => "their frequency response on the passage's own contact solver",
+        CreepForces::Steady => "FASTSIM's steady slopes",
+    };
+    println!(
+        "directions         every direction: the rail head along, across and vertically ({track}; the contact {:.1} mm \
+         right of the centre line), the wheel {wheel}; creep forces from {creep}",
+        contact_offset * 1e3
+    );
+    if let Some(c) = cost.directions {
+        println!(
+            "directions cost    {:.1} s for the receptances in three directions, {:.1} s for the creep response, once \
+             per traffic class before the first passage ({:.1} % of the study; vertical only: \
+             dynamics.directions = \"vertical\"{})",
+            c.tables,
+            c.creep_response,
+            100.0 * (c.tables + c.creep_response) / cost.total().max(1e-9),
+            if creep_forces == CreepForces::Transient {
+                ", steady creep slopes: dynamics.creep_forces = \"steady\""
+            } else {
+                ""
+            }
+        );
+    }
+}
+
 /// The modal wheelset's modes (`[wheelset] model = "modal"`), at rest and
 /// as the scene's spin `V / r` moves the coupled ones.
 fn print_wheelset_modes(s: &corrugation::params::Scene) {

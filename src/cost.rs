@@ -8,7 +8,10 @@ use crate::build::{derive, fixed_grid_spec, periodic_grid};
 use crate::contact::grid::GridSolver;
 use crate::contact::transient::StepSolver;
 use crate::loads::LoadQuantity;
-use crate::params::{ContactGrid, ContactModel, ContactModelKind, DynamicsKind, FixedGridParams, NormalContact, Scene};
+use crate::params::{
+    ContactGrid, ContactModel, ContactModelKind, CreepForces, Directions, DynamicsKind, FixedGridParams, NormalContact,
+    Scene,
+};
 
 /// What a scene is expected to cost.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -18,11 +21,34 @@ pub struct CostEstimate {
     /// Passages planned.
     pub passes: usize,
     /// Time before the first passage: the discrete track's receptance
-    /// tables, one per traffic class (s).
+    /// tables, one per traffic class (s), the dynamics in every direction's
+    /// included.
     pub setup: f64,
+    /// What the dynamics in every direction adds to `setup`, where the
+    /// study has it.
+    pub directions: Option<DirectionsCost>,
     /// Peak memory (bytes).
     pub memory: f64,
 }
+
+/// What the dynamics in every direction costs before the first passage
+/// (s, 2 cores), summed over the traffic classes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DirectionsCost {
+    /// The rail head's and the wheel's receptances in three directions per
+    /// harmonic (at 17 places of the bay on the discrete track).
+    pub tables: f64,
+    /// The creep forces' frequency response measured on the passage's own
+    /// contact solver (`dynamics.creep_forces = "transient"`).
+    pub creep_response: f64,
+}
+
+/// CPU seconds per harmonic of the discrete track's head receptances at
+/// the 17 places of the bay (the Floquet integral in three directions; one
+/// core, release build).
+const DISCRETE3_PER_HARMONIC: f64 = 0.08;
+/// The same on the continuous track (a 12 x 12 eigenproblem).
+const CONTINUOUS3_PER_HARMONIC: f64 = 2e-4;
 
 impl CostEstimate {
     /// The whole run (s).
@@ -196,12 +222,54 @@ pub fn estimate(s: &Scene) -> CostEstimate {
             .sum(),
         _ => 0.0,
     };
+    let directions = directions_cost(s, &g, contact + deposit, &d);
+    let setup = setup + directions.map_or(0.0, |c| c.tables + c.creep_response);
     CostEstimate {
         per_passage,
         passes,
         setup,
+        directions,
         memory: memory(s, &g, p.n_steps(), fixed.as_ref().map(|(_, f)| f.grid().len())),
     }
+}
+
+/// The dynamics in every direction's tables and creep response (one wheel;
+/// `step` the contact's cost per step of the passage, s): the tables per
+/// harmonic on 2 cores; the creep response's runs (each input two runs of
+/// opposite sign, the longitudinal and lateral creepage and the normal
+/// force; 10 patch lengths each with the creepage's run-in, the lateral
+/// runs twice the others: they break the symmetry the fixed grid folds)
+/// two at a time on 2 cores.
+fn directions_cost(
+    s: &Scene,
+    g: &crate::rail_grid::RailGrid,
+    step: f64,
+    d: &crate::build::Derived,
+) -> Option<DirectionsCost> {
+    let gr = s.growth.as_ref()?;
+    let (Directions::All { creep_forces, .. }, Some(_)) = (gr.directions, gr.dynamics.unsprung_mass()) else {
+        return None;
+    };
+    let per_harmonic = match gr.dynamics {
+        DynamicsKind::Discrete { .. } => DISCRETE3_PER_HARMONIC,
+        _ => CONTINUOUS3_PER_HARMONIC,
+    };
+    let classes = gr.classes.len().max(1) as f64;
+    let tables: f64 = gr
+        .classes
+        .iter()
+        .map(|c| crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64 * per_harmonic / 2.0)
+        .sum();
+    let creep_response = match creep_forces {
+        CreepForces::Steady => 0.0,
+        CreepForces::Transient => {
+            let step_length = s.contact.model.fixed_grid().map_or(s.step_length, |f| f.dx);
+            let steps = 10.0 * 2.0 * d.patch_mean.a / step_length;
+            // 2 + 2 + 2 x 2 run-equivalents, two at a time.
+            classes * 8.0 * steps * step / 2.0
+        }
+    };
+    Some(DirectionsCost { tables, creep_response })
 }
 
 /// Peak memory (bytes): a base of 30 MB (program, HDF5, buffers; 20 MB

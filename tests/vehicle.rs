@@ -394,7 +394,6 @@ fn several_wheels_need_a_track_model_and_room() {
     let vertical = "dynamics.directions=vertical";
     for (text, set, expected) in [
         (single, vec!["vehicle.wheels=[0.0, 2.5]"], "a single passage rolls one wheel"),
-        (growth, vec!["vehicle.wheels=[0.0, 2.5]"], "closes one wheel's contact so far"),
         (growth, vec!["vehicle.wheels=[0.0, 2.5]", "dynamics.model=imposed"], "dynamics.model = \"imposed\""),
         (
             growth,

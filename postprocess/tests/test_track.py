@@ -36,8 +36,10 @@ def test_track_file_and_figure(tmp_path):
     assert abs(peak - ds.attrs["span_frequency_hz"]) < 0.03 * ds.attrs["span_frequency_hz"]
     # The rail head in three directions (dynamics.directions = "all"): its
     # receptance matrices are reciprocal and passive, and the vertical one
-    # is the vertical model's except about pinned-pinned, which the pads'
-    # pitch restraint (absent from the vertical model) moves up.
+    # is the vertical model's within 2 % (1.2 % measured) except about the
+    # first and second pinned-pinned resonances (1.07 and 2.9 kHz), which
+    # the pads' pitch restraint (absent from the vertical model) moves up
+    # (19 % and 2.7 % there).
     h = ds["head_receptance_real"] + 1j * ds["head_receptance_imag"]
     assert h.dims == ("position", "frequency", "response", "force")
     assert list(ds["response"].values) == ["x", "y", "z"] and ds["head_receptance_real"].attrs["units"] == "m/N"
@@ -47,14 +49,15 @@ def test_track_file_and_figure(tmp_path):
         assert (ds["head_receptance_imag"].sel(response=d, force=d).values <= 0).all()
     zz = h.sel(response="z", force="z").values
     vertical = (ds["receptance_real"] + 1j * ds["receptance_imag"]).values
-    away = (f < 700) | (f > 1500)
+    away = (f < 900) | ((f > 1300) & (f < 2600)) | (f > 3200)
     assert (np.abs(zz - vertical) / np.abs(vertical))[:, away].max() < 0.02
     assert ds["continuous_head_receptance_real"].dims == ("frequency", "response", "force")
     assert (tmp_path / "fig").exists() is False
     assert figure(out, tmp_path / "fig")[0].stat().st_size > 1000
     # Softer pads lower the rail-on-pad resonance by the square root.
     soft = tmp_path / "soft.h5"
-    done = subprocess.run([BIN, "track", cfg, "-o", str(soft), "--set", "track.pad_stiffness=50e6"],
+    done = subprocess.run([BIN, "track", cfg, "-o", str(soft), "--set", "track.pad_stiffness=50e6",
+                           "--set", "dynamics.directions=vertical"],
                           capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     ratio = ds.attrs["rail_on_pad_hz"] / xr.open_dataset(soft, engine="h5netcdf", group="track").attrs["rail_on_pad_hz"]

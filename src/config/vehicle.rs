@@ -3,7 +3,7 @@
 
 use super::ConfigError;
 use super::reader::{Range, Section};
-use crate::params::{Directions, DynamicsKind, Scene, VehicleParams};
+use crate::params::{DynamicsKind, Scene, VehicleParams};
 use toml::{Table, Value};
 
 /// Most wheels on one rail (a four-axle car).
@@ -100,16 +100,6 @@ fn check_wheels(key: &str, wheels: &[f64], scene: &Scene, errors: &mut Vec<Confi
                  or \"discrete\", or vehicle.wheels = [0.0]"
             ),
         )),
-        Some(_) if matches!(scene.growth.as_ref().map(|g| g.directions), Some(Directions::All { .. })) => {
-            errors.push(ConfigError::new(
-                key,
-                format!(
-                    "= {wheels:?} m with dynamics.directions = \"all\": the dynamics in every direction closes one \
-                     wheel's contact so far; several wheels are coupled through the rail's vertical receptances: set \
-                     dynamics.directions = \"vertical\", or vehicle.wheels = [0.0]"
-                ),
-            ))
-        }
         Some(_) => {}
     }
     let diameter = 2.0 * scene.geometry.wheel_radius;

@@ -21,6 +21,7 @@
 
 pub mod contact_dynamics;
 pub mod contact_point;
+pub mod contact_vehicle;
 pub mod continuous3;
 pub mod creep_response;
 pub mod discrete;

@@ -213,7 +213,6 @@ impl DiscreteVehicle {
         speed: f64,
     ) -> Self {
         assert!(speed > 0.0, "the vehicle runs forwards (speed = {speed} m/s)");
-        let n = wheels.len();
         let length = nodes as f64 * dx;
         let leaders = bay_places(track.spacing);
         let offsets: Vec<f64> = wheels.iter().map(|w| -w.behind).collect();
@@ -225,11 +224,8 @@ impl DiscreteVehicle {
                 track.vehicle_receptances(&leaders, &offsets, w).iter().map(|a| inverse(a, &own)).collect()
             })
             .collect();
-        let statics = track
-            .vehicle_receptances(&leaders, &offsets, 2.0 * PI * 0.1)
-            .iter()
-            .map(|a| DMatrix::from_fn(n, n, |i, j| a[i * n + j].re))
-            .collect();
+        let behind: Vec<f64> = wheels.iter().map(|w| w.behind).collect();
+        let statics = static_receptances(&track, &behind);
         DiscreteVehicle { track, wheels, sleeper_x0, key: (speed, nodes, dx), table, statics }
     }
 
@@ -237,31 +233,70 @@ impl DiscreteVehicle {
     /// tabulated place before it, the one after (periodic over
     /// [`BAY_PLACES`]) and the weight of the one after.
     fn place(&self, x: f64) -> (usize, usize, f64) {
-        let d = self.track.spacing;
-        let u = (x - self.sleeper_x0).rem_euclid(d) / d * BAY_PLACES as f64;
-        let p = (u.floor() as usize).min(BAY_PLACES - 1);
-        (p, (p + 1) % BAY_PLACES, u - p as f64)
+        bay_place(self.track.spacing, self.sleeper_x0, x)
     }
 
     /// The path of each wheel on a smooth rail (m, positive up, zero mean)
     /// at its own positions `x_min + i dx`: the static deflection under
     /// all the wheels' mean loads, `-sum_l A_jl(x, 0) N0_l`.
     pub fn parametric_profiles(&self, nodes: usize, dx: f64) -> Vec<Vec<f64>> {
-        let n = self.wheels.len();
-        (0..n)
-            .map(|j| {
-                let path: Vec<f64> = (0..nodes)
-                    .map(|i| {
-                        let (p, q, t) = self.place(self.sleeper_x0 + i as f64 * dx + self.wheels[j].behind);
-                        let row = |m: &DMatrix<f64>| (0..n).map(|l| m[(j, l)] * self.wheels[l].mean_load).sum::<f64>();
-                        -((1.0 - t) * row(&self.statics[p]) + t * row(&self.statics[q]))
-                    })
-                    .collect();
-                let mean = path.iter().sum::<f64>() / nodes.max(1) as f64;
-                path.iter().map(|v| v - mean).collect()
-            })
-            .collect()
+        let behind: Vec<f64> = self.wheels.iter().map(|w| w.behind).collect();
+        let loads: Vec<f64> = self.wheels.iter().map(|w| w.mean_load).collect();
+        parametric_paths(&self.statics, self.track.spacing, &behind, &loads, self.sleeper_x0, nodes, dx)
     }
+}
+
+/// The static receptance matrices (m/N, the real part at 0.1 Hz) of wheels
+/// `behind` (m) the leading one, at the leading wheel's [`BAY_PLACES`]
+/// places across a bay of `track`.
+pub fn static_receptances(track: &DiscreteTrack, behind: &[f64]) -> Vec<DMatrix<f64>> {
+    let n = behind.len();
+    let offsets: Vec<f64> = behind.iter().map(|b| -b).collect();
+    track
+        .vehicle_receptances(&bay_places(track.spacing), &offsets, 2.0 * PI * 0.1)
+        .iter()
+        .map(|a| DMatrix::from_fn(n, n, |i, j| a[i * n + j].re))
+        .collect()
+}
+
+/// The leading wheel's place in a bay of `spacing` (m) whose first sleeper
+/// is at `sleeper_x0` (m) when it is at `x` (m): the tabulated place before
+/// it, the one after (periodic over [`BAY_PLACES`]) and the weight of the
+/// one after.
+pub fn bay_place(spacing: f64, sleeper_x0: f64, x: f64) -> (usize, usize, f64) {
+    let u = (x - sleeper_x0).rem_euclid(spacing) / spacing * BAY_PLACES as f64;
+    let p = (u.floor() as usize).min(BAY_PLACES - 1);
+    (p, (p + 1) % BAY_PLACES, u - p as f64)
+}
+
+/// The path of each wheel (`behind` the leading one, m; mean loads
+/// `loads`, N) on a smooth rail (m, positive up, zero mean) at its own
+/// positions `x_min + i dx`, `nodes` of them: the static deflection under
+/// all the wheels' mean loads, `-sum_l A_jl(x, 0) N0_l`, from `statics`
+/// ([`static_receptances`]).
+pub fn parametric_paths(
+    statics: &[DMatrix<f64>],
+    spacing: f64,
+    behind: &[f64],
+    loads: &[f64],
+    sleeper_x0: f64,
+    nodes: usize,
+    dx: f64,
+) -> Vec<Vec<f64>> {
+    let n = behind.len();
+    (0..n)
+        .map(|j| {
+            let path: Vec<f64> = (0..nodes)
+                .map(|i| {
+                    let (p, q, t) = bay_place(spacing, sleeper_x0, sleeper_x0 + i as f64 * dx + behind[j]);
+                    let row = |m: &DMatrix<f64>| (0..n).map(|l| m[(j, l)] * loads[l]).sum::<f64>();
+                    -((1.0 - t) * row(&statics[p]) + t * row(&statics[q]))
+                })
+                .collect();
+            let mean = path.iter().sum::<f64>() / nodes.max(1) as f64;
+            path.iter().map(|v| v - mean).collect()
+        })
+        .collect()
 }
 
 /// The leading wheel's tabulated places across a bay of `spacing` (m).

@@ -1,0 +1,287 @@
+//! Several wheels of a vehicle on one rail in every direction
+//! (`vehicle.wheels` with `dynamics.directions = "all"`): each wheel's
+//! contact closed in three directions per harmonic as
+//! [`super::contact_point`], the wheels coupled through the rail head's
+//! transfer receptances in three directions (the multiple-wheel
+//! moving-irregularity model of [`super::vehicle`], Wu and Thompson 2005,
+//! Nielsen 2003, extended to the tangential directions).
+//!
+//! # Equations
+//! Wheel `j` runs `s_j` behind the leading one. Unknowns: the forces on
+//! the wheels at their contacts `f_j = (F_x, F_y, -N)_j`; the contact
+//! points' relative displacement at wheel `j` is
+//! ```text
+//! d_j = A_w,j f_j + sum_l A_r(x_j; x_l) f_l,                             (1)
+//! ```
+//! `A_r(x_j; x_l)` the head's displacement at wheel `j`'s place per unit
+//! force at wheel `l`'s (the point receptance for `l = j`), `x_j = x - s_j`
+//! for the leading wheel at `x`. Each wheel's contact law
+//! ([`super::contact_point`] eq. 1, its own mean loads): `N_j = k_H,j (r_j +
+//! d_j,z)`, `xi_j = (i w / V) d_j,xy`, `(F_x, F_y)_j = C_N,j N_j + C_xi,j
+//! xi_j`: a `3n x 3n` linear system per harmonic and place, solved for a
+//! unit input `r_j` at each wheel. A profile harmonic reaches wheel `j` as
+//! wheel `i` meets it times `exp(i k (s_i - s_j))`, as in
+//! [`super::vehicle`] eq. 1, and each wheel sees the profile through its
+//! own patch and its own parametric path (the static deflection under all
+//! the wheels' loads, [`super::vehicle::parametric_paths`]).
+//!
+//! Limits: far apart (`A_r(x_j; x_l) -> 0`) each wheel is the single
+//! wheel's [`super::contact_dynamics::ContactDynamics`]; without creep
+//! slopes the normal forces are the vertical coupled model's with the
+//! head's vertical receptances.
+
+use super::TrackDynamics;
+use super::contact_dynamics::{ContactSignals, Rail3, WheelSide};
+use super::contact_point::ContactLaw;
+use super::creep_response::CreepResponse;
+use super::discrete_dynamics::harmonics;
+use super::discrete3::Discrete3Error;
+use super::section::Mat3;
+use super::vehicle::{BAY_PLACES, bay_place, parametric_paths, static_receptances};
+use nalgebra::DMatrix;
+use num_complex::Complex64;
+use rayon::prelude::*;
+use rustfft::FftPlanner;
+use std::f64::consts::PI;
+
+/// One wheel of the vehicle in every direction.
+#[derive(Debug, Clone)]
+pub struct VehicleWheel3 {
+    /// Distance behind the leading wheel (m).
+    pub behind: f64,
+    /// The wheel's receptance at its contact.
+    pub side: WheelSide,
+    /// Its contact at its mean loads (the steady slopes).
+    pub law: ContactLaw,
+    /// The creep forces' frequency response replacing the steady slopes,
+    /// if any.
+    pub response: Option<CreepResponse>,
+    /// Mean normal force (N), for the parametric excitation.
+    pub mean_load: f64,
+}
+
+/// The channels of [`ContactSignals`], in the table's order.
+const CHANNELS: usize = 4;
+
+/// Several wheels' contact dynamics at one speed over one periodic
+/// stretch, tabulated.
+#[derive(Debug, Clone)]
+pub struct ContactVehicle {
+    rail: Rail3,
+    wheels: Vec<VehicleWheel3>,
+    /// Speed (m/s) and stretch (nodes, spacing) of the table.
+    key: (f64, usize, f64),
+    /// Per harmonic `n = 1..=n_max` (outer) and place of the leading wheel
+    /// (inner: [`BAY_PLACES`] over a bay on the discrete track, one on the
+    /// continuous), the responses: row `CHANNELS i + c` (channel `c` of
+    /// wheel `i`: normal force, longitudinal force, longitudinal and
+    /// lateral creepage) per unit input at wheel `j` (column).
+    table: Vec<Vec<DMatrix<Complex64>>>,
+    /// Each wheel's parametric path on the discrete track (m), at its own
+    /// positions of the stretch.
+    paths: Vec<Vec<f64>>,
+}
+
+impl ContactVehicle {
+    /// Tabulates the responses of `wheels` (the first the leading one,
+    /// `behind` 0) for a stretch of `nodes` samples every `dx` (m) at
+    /// `speed` (m/s, > 0) in parallel over the harmonics.
+    pub fn new(
+        rail: Rail3,
+        wheels: Vec<VehicleWheel3>,
+        nodes: usize,
+        dx: f64,
+        speed: f64,
+    ) -> Result<Self, Discrete3Error> {
+        assert!(speed > 0.0, "the vehicle runs forwards (speed = {speed} m/s)");
+        let length = nodes as f64 * dx;
+        let n = wheels.len();
+        let table = (1..=harmonics(nodes, dx, speed))
+            .into_par_iter()
+            .map(|h| {
+                let w = 2.0 * PI * h as f64 * speed / length;
+                let own: Vec<Mat3> = wheels.iter().map(|c| c.side.receptance(w, speed)).collect();
+                let laws: Vec<ContactLaw> = wheels
+                    .iter()
+                    .map(|c| c.response.as_ref().map_or(c.law, |r| c.law.at_frequency(&r.at(w / (2.0 * PI)))))
+                    .collect();
+                // Per place, the rail's [j][l] blocks.
+                let rails: Vec<Vec<Mat3>> = match &rail {
+                    Rail3::Continuous(model) => {
+                        // The head's displacement at x_j = -s_j under a force
+                        // at x_l = -s_l: distance s_l - s_j.
+                        let distances: Vec<f64> =
+                            (0..n * n).map(|p| wheels[p % n].behind - wheels[p / n].behind).collect();
+                        vec![model.head_receptances(w, &distances)?]
+                    }
+                    Rail3::Discrete { model, .. } => {
+                        let d = model.section.track.sleeper_spacing;
+                        let pairs: Vec<(f64, f64)> = (0..BAY_PLACES)
+                            .flat_map(|p| {
+                                let x = d * p as f64 / BAY_PLACES as f64;
+                                let wheels = &wheels;
+                                (0..n * n).map(move |q| (x - wheels[q % n].behind, x - wheels[q / n].behind))
+                            })
+                            .collect();
+                        model.head_receptances(&pairs, w)?.chunks(n * n).map(|c| c.to_vec()).collect()
+                    }
+                };
+                Ok(rails.iter().map(|a_r| solve(&own, a_r, &laws, w, speed)).collect())
+            })
+            .collect::<Result<Vec<_>, Discrete3Error>>()?;
+        let paths = match &rail {
+            Rail3::Discrete { vertical, sleeper_x0, .. } => {
+                let behind: Vec<f64> = wheels.iter().map(|c| c.behind).collect();
+                let loads: Vec<f64> = wheels.iter().map(|c| c.mean_load).collect();
+                let statics = static_receptances(vertical, &behind);
+                parametric_paths(&statics, vertical.spacing, &behind, &loads, *sleeper_x0, nodes, dx)
+            }
+            Rail3::Continuous(_) => vec![vec![0.0; nodes]; n],
+        };
+        Ok(ContactVehicle { rail, wheels, key: (speed, nodes, dx), table, paths })
+    }
+
+    /// Each wheel's contact variations along one period of the profile it
+    /// sees (`profiles[wheel]`, m, rail top up, sampled every `dx`), eq. 1,
+    /// with the parametric excitation on the discrete track.
+    pub fn signals(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactSignals> {
+        let nodes = profiles[0].len();
+        assert_eq!(
+            (speed, nodes, dx),
+            self.key,
+            "the contact dynamics is tabulated for one speed and stretch (built with the growth study's)"
+        );
+        let n = self.wheels.len();
+        let length = nodes as f64 * dx;
+        let fft = FftPlanner::<f64>::new().plan_fft_forward(nodes);
+        let inputs: Vec<Vec<Complex64>> = profiles
+            .iter()
+            .zip(&self.paths)
+            .map(|(profile, path)| {
+                let mut buf: Vec<Complex64> =
+                    profile.iter().zip(path).map(|(r, p)| Complex64::new(r + p, 0.0)).collect();
+                fft.process(&mut buf);
+                buf
+            })
+            .collect();
+        let s: Vec<f64> = self.wheels.iter().map(|w| w.behind).collect();
+        (0..n)
+            .map(|i| {
+                // The inputs as wheel i meets them: r_j exp(i k (s_i - s_j)).
+                let seen: Vec<Vec<Complex64>> = (1..=self.table.len())
+                    .map(|h| {
+                        let k = 2.0 * PI * h as f64 / length;
+                        (0..n).map(|j| inputs[j][h] * Complex64::from_polar(1.0, k * (s[i] - s[j]))).collect()
+                    })
+                    .collect();
+                let mut out = [vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes]];
+                for m in 0..nodes {
+                    let x = m as f64 * dx;
+                    let (p, q, t) = match &self.rail {
+                        Rail3::Discrete { vertical, sleeper_x0, .. } => {
+                            bay_place(vertical.spacing, *sleeper_x0, sleeper_x0 + x + s[i])
+                        }
+                        Rail3::Continuous(_) => (0, 0, 0.0),
+                    };
+                    for (h, (row, r)) in self.table.iter().zip(&seen).enumerate() {
+                        let h = h + 1;
+                        let phase = Complex64::from_polar(1.0, 2.0 * PI * h as f64 * x / length);
+                        let weight = if 2 * h == nodes { 1.0 } else { 2.0 } / nodes as f64;
+                        for (c, channel) in out.iter_mut().enumerate() {
+                            let mut sum = Complex64::new(0.0, 0.0);
+                            for (j, rj) in r.iter().enumerate() {
+                                let a = row[p][(CHANNELS * i + c, j)];
+                                let b = row[q][(CHANNELS * i + c, j)];
+                                sum += ((1.0 - t) * a + t * b) * rj;
+                            }
+                            channel[m] += weight * (sum * phase).re;
+                        }
+                    }
+                }
+                let [normal, force_x, creepage_x, creepage_y] = out;
+                ContactSignals { normal, force_x, creepage_x, creepage_y }
+            })
+            .collect()
+    }
+}
+
+/// Eq. 1 for unit inputs at each wheel: the responses (rows `CHANNELS i +
+/// c`, columns the input's wheel) with the wheels' receptances `own`, the
+/// rail's blocks `a_r[j n + l]` (at wheel `j` under a force at wheel `l`)
+/// and the wheels' laws at angular frequency `omega` (rad/s) and speed
+/// `speed` (m/s).
+fn solve(own: &[Mat3], a_r: &[Mat3], laws: &[ContactLaw], omega: f64, speed: f64) -> DMatrix<Complex64> {
+    let n = own.len();
+    let iwv = Complex64::new(0.0, omega / speed);
+    let one = Complex64::new(1.0, 0.0);
+    // The relative displacements per force, A (3n x 3n).
+    let a = DMatrix::from_fn(3 * n, 3 * n, |r, c| {
+        let (j, l) = (r / 3, c / 3);
+        let block = a_r[j * n + l] + if j == l { own[j] } else { Mat3::zeros() };
+        block[(r % 3, c % 3)]
+    });
+    let mut m = DMatrix::<Complex64>::zeros(3 * n, 3 * n);
+    let mut rhs = DMatrix::<Complex64>::zeros(3 * n, n);
+    for (j, law) in laws.iter().enumerate() {
+        // Rows 3j, 3j+1: F - C_N N - C_xi (i w / V) (A f)_xy = 0, N = -f_z.
+        for e in 0..2 {
+            let row = 3 * j + e;
+            m[(row, row)] += one;
+            m[(row, 3 * j + 2)] += law.force_per_normal[e];
+            for l in 0..2 {
+                let c = law.force_per_creepage[e][l] * iwv;
+                for col in 0..3 * n {
+                    m[(row, col)] -= c * a[(3 * j + l, col)];
+                }
+            }
+        }
+        // Row 3j+2: (A f)_z + f_z / k_H = -r_j.
+        let row = 3 * j + 2;
+        for col in 0..3 * n {
+            m[(row, col)] = a[(row, col)];
+        }
+        m[(row, row)] += Complex64::new(1.0 / law.stiffness, 0.0);
+        rhs[(row, j)] = -one;
+    }
+    let f = m.lu().solve(&rhs).expect("the contacts' system is regular for passive wheels and track");
+    let d = &a * &f;
+    DMatrix::from_fn(CHANNELS * n, n, |r, j| {
+        let (i, c) = (r / CHANNELS, r % CHANNELS);
+        match c {
+            0 => -f[(3 * i + 2, j)],
+            1 => f[(3 * i, j)],
+            2 => iwv * d[(3 * i, j)],
+            _ => iwv * d[(3 * i + 1, j)],
+        }
+    })
+}
+
+impl TrackDynamics for ContactVehicle {
+    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
+        self.signals(&vec![profile.to_vec(); self.wheels.len()], dx, speed).swap_remove(0).normal
+    }
+
+    fn describe_resonances(&self) -> Vec<(String, f64)> {
+        let mut out = Vec::new();
+        if let Rail3::Discrete { vertical, .. } = &self.rail {
+            out.push(("pinned-pinned: the rail between two sleepers".into(), vertical.pinned_pinned_frequency()));
+        }
+        out
+    }
+
+    fn forces_smooth_rail(&self) -> bool {
+        matches!(self.rail, Rail3::Discrete { .. })
+    }
+
+    fn wheels(&self) -> usize {
+        self.wheels.len()
+    }
+
+    fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+        self.signals(profiles, dx, speed).into_iter().map(|s| s.normal).collect()
+    }
+
+    fn contact_signals(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Option<Vec<ContactSignals>> {
+        Some(self.signals(profiles, dx, speed))
+    }
+}
