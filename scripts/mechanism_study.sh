@@ -37,9 +37,11 @@ directions=${DIRECTIONS:-all}
 out=out/mechanism_study
 [ "$directions" = all ] || out=out/mechanism_study_$directions
 bash scripts/setup.sh
-cargo build --release --quiet
 mkdir -p "$out"
-bin=./target/release/corrugation
+# CORRUGATION_BIN: a binary of its own (a build beside the study then
+# leaves it alone).
+bin=${CORRUGATION_BIN:-./target/release/corrugation}
+[ -n "${CORRUGATION_BIN:-}" ] || cargo build --release --quiet
 short=()
 if [ -n "${PASSES:-}" ]; then
   short=(--set "growth.passes=$PASSES" --set "growth.store_every=$PASSES" --set "growth.checkpoint_every=$PASSES")

@@ -2,7 +2,7 @@
 # Installs what corrugation needs on a Debian machine that has a Rust
 # toolchain, gcc and python3: HDF5 (libhdf5-dev, pkg-config) from Debian,
 # a Python venv (.venv) with the post-processing package (postprocess/,
-# its dependencies from PyPI), and mdbook for the book (docs/): Debian's
+# its dependencies from PyPI), and, with SETUP_BOOK=1 (the test command), mdbook for the book (docs/): Debian's
 # package where the release has one, else from crates.io at a pinned
 # version (Debian 12 has none; cargo install takes a few minutes, once).
 # Idempotent: does nothing that is already done.
@@ -41,11 +41,13 @@ if [ "$(cat "$stamp" 2>/dev/null)" != "$want" ]; then
 fi
 
 # mdbook builds the book (docs/); scripts/test.sh builds it and checks its
-# links. Without its serve and watch features (a local web server and a
+# links (and asks for it with SETUP_BOOK=1; the main command does not). Without its serve and watch features (a local web server and a
 # file watcher, which the build does not need) it compiles in about half
 # the time.
 MDBOOK_VERSION=0.5.4
-if ! command -v mdbook >/dev/null && [ ! -x "${CARGO_HOME:-$HOME/.cargo}/bin/mdbook" ]; then
+# Only the test command builds the book: it sets SETUP_BOOK=1.
+if [ "${SETUP_BOOK:-0}" = 1 ] && ! command -v mdbook >/dev/null \
+  && [ ! -x "${CARGO_HOME:-$HOME/.cargo}/bin/mdbook" ]; then
   if [ "$apt_updated" -eq 0 ]; then as_root apt-get update -qq; apt_updated=1; fi
   if [ -n "$(apt-cache policy mdbook 2>/dev/null | sed -n 's/^ *Candidate: *//p' | grep -v '(none)')" ]; then
     echo "setup: installing mdbook from Debian" >&2

@@ -97,6 +97,16 @@ fn a_number_far_outside_its_usual_range_is_noted_with_the_likely_unit() {
     assert!(r.warnings.iter().any(|w| w.contains("rolling.speed") && w.contains("\"70km/h\"")), "{:?}", r.warnings);
     let r = load_str(FASTSIM, "f", &["track.pad_stiffness=20".into()]).unwrap();
     assert!(r.warnings.iter().any(|w| w.contains("\"20MN/m\"")), "{:?}", r.warnings);
+    // A key the file writes with its unit, overridden without one, is
+    // noted too.
+    let with_unit = STEADY.replace("speed = 27.78", "speed = \"100km/h\"");
+    assert!(with_unit.contains("100km/h"), "the scene's speed line");
+    let r = load_str(&with_unit, "s", &["rolling.speed=70".into()]).unwrap();
+    assert!(r.warnings.iter().any(|w| w.contains("rolling.speed") && w.contains("\"70km/h\"")), "{:?}", r.warnings);
+    // An axle load in tonnes written as a number.
+    let traffic = format!("{FASTSIM}\n[traffic]\naxle_load = 22.5\naxles_per_day = 2000\n");
+    let r = load_str(&traffic, "f", &[]).unwrap();
+    assert!(r.warnings.iter().any(|w| w.contains("traffic.axle_load") && w.contains("\"22.5t\"")), "{:?}", r.warnings);
     // Written with the unit, or a usual value: no note; the shipped configs
     // have none.
     assert!(load_str(STEADY, "s", &["rolling.speed=70km/h".into()]).unwrap().warnings.is_empty());

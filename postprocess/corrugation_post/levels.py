@@ -116,10 +116,16 @@ def crossings(traffic: np.ndarray, initial: np.ndarray | None, level: np.ndarray
     return out
 
 
+#: The level (dB re 1 µm) below which a band counts as absent from the
+#: initial roughness (src/levels/forecast.rs, HELD_LEVEL).
+HELD_LEVEL = -60.0
+
+
 def level_growth(run: Run, out_dir: Path, bands: int = 6) -> Path | None:
-    """Level against traffic for the ``bands`` bands nearest their limit, the
-    crossing marked (filled: during the run; hollow: forecast from the last
-    passage's rate)."""
+    """Level against traffic for the ``bands`` bands nearest their limit (the
+    band the run's last lines forecast first; bands absent from the initial
+    roughness left out), the crossing marked (filled: during the run;
+    hollow: forecast from the last passage's rate)."""
     if not has_levels(run):
         return None
     with run.pass_table() as ps:
@@ -135,8 +141,20 @@ def level_growth(run: Run, out_dir: Path, bands: int = 6) -> Path | None:
     finite = np.isfinite(limit)
     if not finite.any():
         return None
-    margin = np.where(finite, limit - np.nanmax(level, axis=0), np.inf)
+    # Bands absent from the initial roughness (below HELD_LEVEL before the
+    # first passage) grow from nothing by the wear: no forecast, not drawn.
+    held = initial > HELD_LEVEL if initial is not None else np.ones(limit.shape, bool)
+    margin = np.where(finite & held, limit - np.nanmax(level, axis=0), np.inf)
     order = [int(k) for k in np.argsort(margin) if np.isfinite(margin[k])][:bands]
+    # The band the run's last lines forecast comes first (as the terminal:
+    # the fewest passages to the limit among the growing held bands).
+    if to_limit is not None:
+        last = np.where(held & finite & (to_limit[-1] > 0), to_limit[-1], np.inf)
+        if np.isfinite(last).any():
+            k = int(np.argmin(last))
+            order = [k] + [o for o in order if o != k][: bands - 1]
+    if not order:
+        return None
     cross = crossings(x, initial, level, limit)
     t = np.r_[0.0, x] if initial is not None else x
     fig = Figure(figsize=(9, 5), layout="constrained")

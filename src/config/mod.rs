@@ -189,7 +189,8 @@ pub fn load_str_with(
 }
 
 /// Notes on the numbers of `table` (at dotted `prefix`) written without a
-/// unit that lie outside their key's usual range ([`quantity::plausibility`]).
+/// unit (bare, or as a string without one) that lie outside their key's
+/// usual range ([`quantity::plausibility`]).
 fn plausibility(table: &Table, prefix: &str, out: &mut Vec<String>) {
     for (k, v) in table {
         let key = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
@@ -205,6 +206,13 @@ fn plausibility(table: &Table, prefix: &str, out: &mut Vec<String>) {
             Value::Float(_) | Value::Integer(_) => {
                 let x = v.as_float().or(v.as_integer().map(|i| i as f64)).unwrap_or(0.0);
                 out.extend(quantity::plausibility(&key, x));
+            }
+            // A number without its unit in a string: a key the file writes
+            // with its unit ("100km/h") and `--set` overrides without one.
+            Value::String(text) => {
+                if let Ok(x) = text.trim().parse::<f64>() {
+                    out.extend(quantity::plausibility(&key, x));
+                }
             }
             _ => {}
         }

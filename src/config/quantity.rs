@@ -224,6 +224,8 @@ const PLAUSIBLE: &[Plausible] = &[
     ("track.rail_mass", 20.0, 100.0, &[]),
     ("track.sleeper_mass", 20.0, 600.0, &[]),
     ("dynamics.unsprung_mass", 50.0, 5000.0, &[("t", 1e3)]),
+    ("traffic.axle_load", 5e3, 4e4, &[("t", 1e3)]),
+    ("traffic.mix.axle_load", 5e3, 4e4, &[("t", 1e3)]),
     ("traffic.mix.unsprung_mass", 50.0, 5000.0, &[("t", 1e3)]),
     ("roughness.rms", 1e-9, 1e-3, &[("um", 1e-6), ("mm", 1e-3)]),
     ("roughness.harmonics.amplitude", 1e-9, 1e-3, &[("um", 1e-6), ("mm", 1e-3)]),
@@ -311,6 +313,9 @@ mod tests {
         assert!(plausibility("rolling.speed", 27.78).is_none());
         assert!(plausibility("track.pad_stiffness", 1.2e8).is_none());
         assert!(plausibility("traffic.mix[1].speed", 30.0).is_none());
+        let n = plausibility("traffic.axle_load", 22.5).unwrap();
+        assert!(n.contains("\"22.5t\""), "{n}");
+        assert!(plausibility("traffic.axle_load", 22.5e3).is_none());
         assert!(plausibility("geometry.wheel_profile_radius", f64::INFINITY).is_none());
     }
 }

@@ -107,6 +107,10 @@ fn short(x: f64) -> String {
     format!("{x:.digits$}")
 }
 
+/// The level (dB re 1 um, 1 nm rms) below which a band counts as absent
+/// from the initial roughness (the level of an empty band is -120 dB).
+pub const HELD_LEVEL: f64 = -60.0;
+
 /// Where a run stands against the limit after its last passage.
 #[derive(Debug, Clone)]
 pub struct Standing<'a> {
@@ -163,9 +167,17 @@ pub fn outlook(s: &Standing) -> Vec<String> {
     }
     let pass = s.levels.len();
     let to_limit: Vec<f64> = (0..s.bands.len()).map(|k| passages_to_limit(last[k], rates[k], s.limit[k])).collect();
-    let next = (0..s.bands.len())
-        .filter(|&k| to_limit[k] > 0.0 && to_limit[k].is_finite())
-        .min_by(|&a, &b| to_limit[a].total_cmp(&to_limit[b]));
+    // A band the initial roughness does not hold grows from nothing by the
+    // wear the other bands drive: its rate in dB is not an exponential
+    // growth's, and no forecast.
+    let held = |k: usize| s.initial.get(k).is_none_or(|l| *l > HELD_LEVEL);
+    let growing = |k: &usize| to_limit[*k] > 0.0 && to_limit[*k].is_finite();
+    let next =
+        (0..s.bands.len()).filter(growing).filter(|&k| held(k)).min_by(|&a, &b| to_limit[a].total_cmp(&to_limit[b]));
+    let unheld: Vec<usize> = (0..s.bands.len())
+        .filter(growing)
+        .filter(|&k| !held(k) && next.is_none_or(|n| to_limit[k] < to_limit[n]))
+        .collect();
     match next {
         Some(k) => {
             let column: Vec<f64> = s.levels.iter().map(|l| l[k]).collect();
@@ -187,6 +199,14 @@ pub fn outlook(s: &Standing) -> Vec<String> {
             ))
         }
         None => lines.push(format!("at passage {pass}'s rates no band below the {name} limit grows towards it")),
+    }
+    if !unheld.is_empty() {
+        let list: Vec<String> = unheld.iter().map(|&k| s.bands[k].label()).collect();
+        lines.push(format!(
+            "left out of the forecast: {} (below {HELD_LEVEL} dB re 1 um before the first passage, outside the initial \
+             roughness: they grow from nothing by the wear, not at an exponential rate)",
+            list.join(", ")
+        ));
     }
     let above: Vec<usize> = (0..s.bands.len()).filter(|&k| to_limit[k] == 0.0).collect();
     if !above.is_empty() {
@@ -300,5 +320,22 @@ mod tests {
             lines[1]
         );
         assert!(lines[2].contains("31.5 mm (by 0.5 dB)"));
+        // A band absent from the initial roughness that grows fastest
+        // towards the limit is left out of the forecast, and said so.
+        let bands = [Band::third_octave(15), Band::third_octave(16), Band::third_octave(22)];
+        let limit = [15.0, 13.0, 5.0];
+        let levels = vec![vec![14.0, 9.0, -60.0], vec![14.2, 10.0, -50.0]];
+        let rates = vec![vec![0.2, 0.5, 60.0], vec![0.2, 1.0, 70.0]];
+        let s = Standing {
+            bands: &bands,
+            limit: &limit,
+            levels: &levels,
+            rates: &rates,
+            initial: &[13.0, 8.5, -120.0],
+            ..s
+        };
+        let lines = outlook(&s);
+        assert!(lines[0].starts_with("the 25 mm band reaches"), "{lines:?}");
+        assert!(lines[1].starts_with("left out of the forecast: 6.3 mm (below -60 dB"), "{lines:?}");
     }
 }
