@@ -43,6 +43,13 @@ pub fn parse_quantity(text: &str, si_unit: &str) -> Result<f64, String> {
             if si_unit == "1" { "dimensionless".to_string() } else { format!("in {si_unit}") }
         ));
     }
+    // What a unit is written with; rink's lexer is not asked about anything
+    // else (a backslash escape made it panic).
+    if let Some(c) =
+        unit.chars().find(|c| !(c.is_alphanumeric() || " ./*^()-+_%'\"".contains(*c) || "²³µ°·".contains(*c)))
+    {
+        return Err(format!("`{text}`: `{c}` is not part of a unit (such as {})", example(si_unit)));
+    }
     let value_expr = format!("{number} {}", ascii_powers(unit));
     let ratio = eval(&format!("({value_expr}) / ({})", ascii_powers(si_unit)))?;
     match ratio {
@@ -263,6 +270,13 @@ pub fn plausibility(key: &str, value: f64) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn characters_no_unit_has_are_refused_before_rink_reads_them() {
+        let e = parse_quantity("0\\u", "m/s").unwrap_err();
+        assert!(e.contains("is not part of a unit"), "{e}");
+        assert!(parse_quantity("1.5 m/s²", "m/s2").is_ok());
+    }
 
     #[test]
     fn values_with_units_convert_to_si() {
