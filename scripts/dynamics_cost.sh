@@ -12,8 +12,8 @@
 # out/dynamics_cost/summary.csv.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cargo build --release --quiet
-bin=./target/release/corrugation
+bin=${CORRUGATION_BIN:-./target/release/corrugation}
+[ -n "${CORRUGATION_BIN:-}" ] || cargo build --release --quiet
 out=out/dynamics_cost
 mkdir -p "$out"
 runs=${RUNS:-3}
