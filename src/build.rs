@@ -441,7 +441,7 @@ fn contact_dynamics(
     mass: f64,
     contact_offset: f64,
     creep_forces: CreepForces,
-) -> Box<dyn TrackDynamics> {
+) -> Result<Box<dyn TrackDynamics>, DynamicsError> {
     let v = &scene.vehicle;
     // Each distinct load's law and creep response (measured once).
     let mut laws: Vec<((f64, f64), ContactLaw, Option<CreepResponse>)> = Vec::new();
@@ -456,15 +456,8 @@ fn contact_dynamics(
         let response = match creep_forces {
             CreepForces::Steady => None,
             CreepForces::Transient => Some(
-                creep_response::scene::default_response(scene, key.0, key.1, [true, true, false, true]).unwrap_or_else(
-                    |e| {
-                        panic!(
-                            "the creep forces' frequency response could not be measured on the passage's contact \
-                             solver: {e}; dynamics.creep_forces = \"steady\" closes the loop with FASTSIM's steady \
-                             slopes instead"
-                        )
-                    },
-                ),
+                creep_response::scene::default_response(scene, key.0, key.1, [true, true, false, true])
+                    .map_err(|e| DynamicsError::CreepResponse(e.to_string()))?,
             ),
         };
         laws.push((key, law, response));
@@ -496,8 +489,7 @@ fn contact_dynamics(
             None => WheelSide::Rigid(wheel),
         }
     };
-    let fail =
-        |e: Discrete3Error| -> ! { panic!("the track's receptances in three directions could not be computed: {e}") };
+    let fail = |e: Discrete3Error| DynamicsError::Receptances(e.to_string());
     let wheels: Vec<VehicleWheel3> = (0..v.wheels.len())
         .map(|i| {
             let loads = v.wheel_loads(i, &scene.loads);
@@ -513,13 +505,32 @@ fn contact_dynamics(
         })
         .collect();
     if wheels.len() > 1 {
-        let model = ContactVehicle::new(rail, wheels, grid.nx, grid.dx, scene.speed).unwrap_or_else(|e| fail(e));
-        return Box::new(model);
+        let model = ContactVehicle::new(rail, wheels, grid.nx, grid.dx, scene.speed).map_err(fail)?;
+        return Ok(Box::new(model));
     }
     let w = wheels.into_iter().next().expect("one wheel");
     let model = ContactDynamics::new(rail, w.side, w.law, w.response, w.mean_load, grid.nx, grid.dx, scene.speed)
-        .unwrap_or_else(|e| fail(e));
-    Box::new(model)
+        .map_err(fail)?;
+    Ok(Box::new(model))
+}
+
+/// Why the dynamics in every direction could not be set up before the
+/// first passage.
+#[derive(Debug, thiserror::Error)]
+pub enum DynamicsError {
+    /// The creep forces' frequency response (`dynamics.creep_forces =
+    /// "transient"`).
+    #[error(
+        "the creep forces' frequency response could not be measured on the passage's contact solver: {0}; \
+         dynamics.creep_forces = \"steady\" closes the loop with FASTSIM's steady slopes instead"
+    )]
+    CreepResponse(String),
+    /// The rail head's receptances in three directions.
+    #[error(
+        "the rail head's receptances in three directions could not be computed: {0}; dynamics.directions = \
+         \"vertical\" uses the vertical models"
+    )]
+    Receptances(String),
 }
 
 /// The track model of a growth study, if it has one. The discrete model
@@ -527,7 +538,7 @@ fn contact_dynamics(
 /// (the first rail node is above a sleeper). Several wheels
 /// (`vehicle.wheels`) are coupled through the rail
 /// ([`crate::dynamics::vehicle`]).
-pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamics>> {
+pub fn track_dynamics(scene: &Scene, d: &Derived) -> Result<Option<Box<dyn TrackDynamics>>, DynamicsError> {
     let v = &scene.vehicle;
     // Each wheel's mass, and its contact spring at its mean load.
     let coupled = |mass: f64| -> Vec<CoupledWheel> {
@@ -544,14 +555,16 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamic
             })
             .collect()
     };
-    let growth = scene.growth.as_ref()?;
+    let Some(growth) = scene.growth.as_ref() else {
+        return Ok(None);
+    };
     // The dynamics in every direction, of one wheel or several.
     if let (Directions::All { contact_offset, creep_forces }, Some(mass)) =
         (growth.directions, growth.dynamics.unsprung_mass())
     {
-        return Some(contact_dynamics(scene, d, mass, contact_offset, creep_forces));
+        return contact_dynamics(scene, d, mass, contact_offset, creep_forces).map(Some);
     }
-    match growth.dynamics {
+    Ok(match growth.dynamics {
         DynamicsKind::Imposed => None,
         DynamicsKind::Receptance { unsprung_mass } => {
             let wheels = coupled(unsprung_mass);
@@ -559,7 +572,7 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamic
             let model = ReceptanceModel::new(scene.track.smeared(), lead.wheel, lead.contact_stiffness)
                 .expect("validated parameters");
             if wheels.len() > 1 {
-                return Some(Box::new(CoupledReceptance { model, wheels }));
+                return Ok(Some(Box::new(CoupledReceptance { model, wheels })));
             }
             Some(Box::new(model))
         }
@@ -568,7 +581,14 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamic
             let wheels = coupled(unsprung_mass);
             let track = DiscreteTrack::new(&scene.track);
             if wheels.len() > 1 {
-                return Some(Box::new(DiscreteVehicle::new(track, wheels, grid.x_min, grid.nx, grid.dx, scene.speed)));
+                return Ok(Some(Box::new(DiscreteVehicle::new(
+                    track,
+                    wheels,
+                    grid.x_min,
+                    grid.nx,
+                    grid.dx,
+                    scene.speed,
+                ))));
             }
             let lead = wheels[0];
             Some(Box::new(DiscreteDynamics::new(
@@ -582,5 +602,5 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Option<Box<dyn TrackDynamic
                 scene.speed,
             )))
         }
-    }
+    })
 }

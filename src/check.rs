@@ -295,6 +295,8 @@ pub fn print_check(r: &Resolved) {
         // pinned-pinned resonance is printed above; the dynamics in every
         // direction measures its creep response first.)
         if let Some(t) = track_dynamics(s, &d)
+            .ok()
+            .flatten()
             .filter(|_| matches!(g.dynamics, DynamicsKind::Receptance { .. }) && g.directions == Directions::Vertical)
         {
             for (label, f) in t.describe_resonances() {

@@ -26,7 +26,7 @@ use super::spectrum::{amplitudes, growth_rates, wavelengths};
 use super::state::{PassRow, RailSnapshot, RunState};
 use super::traffic::change_rate;
 use super::{contact_filtered_line, growth_passage};
-use crate::build::{Derived, build_deposit, build_solver, derive, study_grid, track_dynamics};
+use crate::build::{Derived, DynamicsError, build_deposit, build_solver, derive, study_grid, track_dynamics};
 use crate::contact::{ContactError, Elements, TangentialSolver};
 use crate::dynamics::TrackDynamics;
 use crate::levels::{BandLevels, forecast::crossed, level_rates};
@@ -206,8 +206,9 @@ fn fill_legacy_levels(state: &mut RunState, levels: &BandLevels) {
 impl<'a> Study<'a> {
     /// The study of `scene` continuing from `state`. One solver serves every
     /// traffic class: its grid is sized for the largest load of any class,
-    /// and the speed and loads come with each step.
-    pub fn new(scene: &'a Scene, mut state: RunState) -> Self {
+    /// and the speed and loads come with each step. Fails where the
+    /// dynamics in every direction cannot be set up (before any passage).
+    pub fn new(scene: &'a Scene, mut state: RunState) -> Result<Self, DynamicsError> {
         let d = derive(scene);
         let solver = build_solver(scene, &d.shape);
         let elements = solver.elements();
@@ -220,10 +221,10 @@ impl<'a> Study<'a> {
             .map(|c| {
                 let cs = scene.for_class(c);
                 let cd = derive(&cs);
-                let dynamics = track_dynamics(&cs, &cd);
-                ClassModel { passage: cd.passage, dynamics, forced: None }
+                let dynamics = track_dynamics(&cs, &cd)?;
+                Ok(ClassModel { passage: cd.passage, dynamics, forced: None })
             })
-            .collect();
+            .collect::<Result<_, DynamicsError>>()?;
         let has_dynamics = models.iter().any(|m| m.dynamics.is_some());
         // What the wheel sees: the profile weighted across the mean patch
         // width. The mean patch: of the mean load, or under mixed traffic
@@ -258,7 +259,7 @@ impl<'a> Study<'a> {
         // A study that stopped (growth.stop) stays stopped when resumed: the
         // rule reads the stored rows.
         let stopped = stop_reason(growth, &state, &levels, &limit, &scene.levels.limit.name);
-        Study {
+        Ok(Study {
             scene,
             growth,
             solver,
@@ -280,7 +281,7 @@ impl<'a> Study<'a> {
             d,
             levels,
             limit,
-        }
+        })
     }
 
     /// The passage `advance` computes next, if the study goes on.

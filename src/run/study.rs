@@ -39,6 +39,10 @@ pub enum RunError {
     /// Writing the run file failed.
     #[error("{0}")]
     Output(#[from] NcError),
+    /// The dynamics could not be set up (before the first passage; nothing
+    /// is written).
+    #[error("{0}")]
+    Dynamics(#[from] crate::build::DynamicsError),
 }
 
 /// Why a run could not be resumed.
@@ -243,7 +247,7 @@ fn continue_run(
     progress: &mut dyn FnMut(Event),
 ) -> Result<RunSummary, RunError> {
     let scene = &resolved.scene;
-    let mut study = Study::new(scene, state);
+    let mut study = Study::new(scene, state)?;
     let write = |study: &Study| {
         let title = if scene.output.title.is_empty() { "corrugation run" } else { scene.output.title.as_str() };
         let record = RunRecord {
