@@ -37,11 +37,10 @@ use super::creep_response::CreepResponse;
 use super::discrete_dynamics::harmonics;
 use super::discrete3::Discrete3Error;
 use super::section::Mat3;
-use super::vehicle::{BAY_PLACES, bay_place, parametric_paths, static_receptances};
+use super::vehicle::{BAY_PLACES, bay_place, inputs_as_met, parametric_paths, static_receptances};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rayon::prelude::*;
-use rustfft::FftPlanner;
 use std::f64::consts::PI;
 
 /// One wheel of the vehicle in every direction.
@@ -151,29 +150,12 @@ impl ContactVehicle {
             self.key,
             "the contact dynamics is tabulated for one speed and stretch (built with the growth study's)"
         );
-        let n = self.wheels.len();
         let length = nodes as f64 * dx;
-        let fft = FftPlanner::<f64>::new().plan_fft_forward(nodes);
-        let inputs: Vec<Vec<Complex64>> = profiles
-            .iter()
-            .zip(&self.paths)
-            .map(|(profile, path)| {
-                let mut buf: Vec<Complex64> =
-                    profile.iter().zip(path).map(|(r, p)| Complex64::new(r + p, 0.0)).collect();
-                fft.process(&mut buf);
-                buf
-            })
-            .collect();
         let s: Vec<f64> = self.wheels.iter().map(|w| w.behind).collect();
-        (0..n)
-            .map(|i| {
-                // The inputs as wheel i meets them: r_j exp(i k (s_i - s_j)).
-                let seen: Vec<Vec<Complex64>> = (1..=self.table.len())
-                    .map(|h| {
-                        let k = 2.0 * PI * h as f64 / length;
-                        (0..n).map(|j| inputs[j][h] * Complex64::from_polar(1.0, k * (s[i] - s[j]))).collect()
-                    })
-                    .collect();
+        let met = inputs_as_met(profiles, &self.paths, &s, self.table.len(), length);
+        met.iter()
+            .enumerate()
+            .map(|(i, seen)| {
                 let mut out = [vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes]];
                 for m in 0..nodes {
                     let x = m as f64 * dx;
@@ -183,7 +165,7 @@ impl ContactVehicle {
                         }
                         Rail3::Continuous(_) => (0, 0, 0.0),
                     };
-                    for (h, (row, r)) in self.table.iter().zip(&seen).enumerate() {
+                    for (h, (row, r)) in self.table.iter().zip(seen).enumerate() {
                         let h = h + 1;
                         let phase = Complex64::from_polar(1.0, 2.0 * PI * h as f64 * x / length);
                         let weight = if 2 * h == nodes { 1.0 } else { 2.0 } / nodes as f64;

@@ -246,6 +246,41 @@ impl DiscreteVehicle {
     }
 }
 
+/// Each wheel's input (the profile it sees plus its parametric path,
+/// `profiles[j] + paths[j]`, transformed) as wheel `i` meets it, for the
+/// harmonics `h = 1..=harmonics` of a stretch of `length` (m): `[i][h -
+/// 1][j] = r_j,h exp(i k_h (s_i - s_j))`, `s` the wheels' distances
+/// behind the leading one (m; eq. 1).
+pub fn inputs_as_met(
+    profiles: &[Vec<f64>],
+    paths: &[Vec<f64>],
+    behind: &[f64],
+    harmonics: usize,
+    length: f64,
+) -> Vec<Vec<Vec<Complex64>>> {
+    let n = behind.len();
+    let fft = FftPlanner::<f64>::new().plan_fft_forward(profiles[0].len());
+    let inputs: Vec<Vec<Complex64>> = paths
+        .iter()
+        .zip(profiles)
+        .map(|(path, profile)| {
+            let mut buf: Vec<Complex64> = profile.iter().zip(path).map(|(r, p)| Complex64::new(r + p, 0.0)).collect();
+            fft.process(&mut buf);
+            buf
+        })
+        .collect();
+    (0..n)
+        .map(|i| {
+            (1..=harmonics)
+                .map(|h| {
+                    let k = 2.0 * PI * h as f64 / length;
+                    (0..n).map(|j| inputs[j][h] * Complex64::from_polar(1.0, k * (behind[i] - behind[j]))).collect()
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// The static receptance matrices (m/N, the real part at 0.1 Hz) of wheels
 /// `behind` (m) the leading one, at the leading wheel's [`BAY_PLACES`]
 /// places across a bay of `track`.
@@ -328,37 +363,18 @@ impl TrackDynamics for DiscreteVehicle {
             self.key,
             "the discrete vehicle is tabulated for one speed and stretch (built with the growth study's)"
         );
-        let n = self.wheels.len();
         let length = nodes as f64 * dx;
-        // Each wheel's input: the profile it sees plus its parametric path.
-        let fft = FftPlanner::<f64>::new().plan_fft_forward(nodes);
-        let inputs: Vec<Vec<Complex64>> = self
-            .parametric_profiles(nodes, dx)
-            .iter()
-            .zip(profiles)
-            .map(|(path, profile)| {
-                let mut buf: Vec<Complex64> =
-                    profile.iter().zip(path).map(|(r, p)| Complex64::new(r + p, 0.0)).collect();
-                fft.process(&mut buf);
-                buf
-            })
-            .collect();
         let s: Vec<f64> = self.wheels.iter().map(|w| w.behind).collect();
-        (0..n)
-            .map(|i| {
-                // The inputs as wheel i meets them: r_j exp(i k (s_i - s_j)).
-                let seen: Vec<Vec<Complex64>> = (1..=self.table.len())
-                    .map(|h| {
-                        let k = 2.0 * PI * h as f64 / length;
-                        (0..n).map(|j| inputs[j][h] * Complex64::from_polar(1.0, k * (s[i] - s[j]))).collect()
-                    })
-                    .collect();
+        let met = inputs_as_met(profiles, &self.parametric_profiles(nodes, dx), &s, self.table.len(), length);
+        met.iter()
+            .enumerate()
+            .map(|(i, seen)| {
                 (0..nodes)
                     .map(|m| {
                         let x = m as f64 * dx;
                         let (p, q, t) = self.place(self.sleeper_x0 + x + s[i]);
                         let mut force = 0.0;
-                        for (h, (row, r)) in self.table.iter().zip(&seen).enumerate() {
+                        for (h, (row, r)) in self.table.iter().zip(seen).enumerate() {
                             let h = h + 1;
                             let mut sum = Complex64::new(0.0, 0.0);
                             for (j, rj) in r.iter().enumerate() {
