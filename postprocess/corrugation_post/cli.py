@@ -37,7 +37,7 @@ def _parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True)
 
     fig = sub.add_parser("figures", help="wear map, centre-line wear, loads, traction snapshots, growth, "
-                         "roughness levels against the limit")
+                         "roughness levels against the limit (both rails of a two-rail file)")
     fig.add_argument("run", help="run file (.h5)")
     fig.add_argument("--out", required=True, help="output folder (created if needed)")
     fig.add_argument("--pass", dest="pass_index", type=int, default=None,

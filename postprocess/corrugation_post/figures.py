@@ -4,7 +4,11 @@
 
 Every figure function takes a ``Run``, a stored passage index (the ``pass``
 coordinate, from 0) and an output folder, writes one PNG and returns its
-path.  Titles number passages from 1, as the terminal does; lengths are in
+path.  In a file of two rails the figures of one passage's wear and contact
+(and the profile snapshots) are drawn per rail, titled with the rail's name,
+the second rail's files ending in ``_second_rail``; the growth figures
+(spectrum, rms, spectrogram, levels) draw both rails in one figure, lines
+labelled by rail name (``BOTH_RAILS``).  Titles number passages from 1, as the terminal does; lengths are in
 mm, roughness in µm or dB re 1 µm.  Figures are built on
 ``matplotlib.figure.Figure`` objects (no pyplot, no display needed).
 """
@@ -26,8 +30,19 @@ from .units import depth_unit, values_in
 DPI = 150
 
 
-def _title(run: Run, what: str, pass_index: int, note: str = "") -> str:
-    return f"{what}, passage {pass_index + 1}{note}\ncontact model: {run.contact_model}"
+def _rail_prefix(run: Run) -> str:
+    """The rail a figure of one rail of a two-rail file shows ("" in a one-rail file)."""
+    return f"{run.rail_name}: " if run.rail_name else ""
+
+
+def _rail_label(run: Run) -> dict:
+    """A line's label naming its rail, in a two-rail file."""
+    return {"label": run.rail_name} if run.rail_name else {}
+
+
+def _title(run: Run, what: str, pass_index: int, note: str = "", rail: bool = True) -> str:
+    named = _rail_prefix(run) if rail else ""
+    return f"{named}{what}, passage {pass_index + 1}{note}\ncontact model: {run.contact_model}"
 
 
 def _save(fig: Figure, out_dir: Path, name: str) -> Path:
@@ -49,7 +64,7 @@ def _traffic_note(rail, pass_index: int) -> str:
 def _wear_title(run: Run, pass_index: int, note: str) -> str:
     # One line per statement: the figure is 9 inches wide.
     seen = f"\n{note.strip(' ()')}" if note else ""
-    return (f"Wear depth of passage {pass_index + 1} alone: one wheel passage, unscaled{seen}\n"
+    return (f"{_rail_prefix(run)}Wear depth of passage {pass_index + 1} alone: one wheel passage, unscaled{seen}\n"
             f"contact model: {run.contact_model}")
 
 
@@ -66,7 +81,7 @@ def wear_map(run: Run, pass_index: int, out_dir: Path) -> Path:
     fig.colorbar(mesh, ax=ax, label=f"wear depth ({label})")
     ax.set(xlabel="x along rail (mm)", ylabel="y lateral (mm)",
            title=_wear_title(run, pass_index, note))
-    return _save(fig, out_dir, "wear_map.png")
+    return _save(fig, out_dir, f"wear_map{run.suffix}.png")
 
 
 def wear_centreline(run: Run, pass_index: int, out_dir: Path) -> Path:
@@ -86,7 +101,7 @@ def wear_centreline(run: Run, pass_index: int, out_dir: Path) -> Path:
            title=_wear_title(run, pass_index, note))
     ax.grid(alpha=0.3)
     ax.legend()
-    return _save(fig, out_dir, "wear_centreline.png")
+    return _save(fig, out_dir, f"wear_centreline{run.suffix}.png")
 
 
 def contact_mask(ct) -> np.ndarray:
@@ -152,7 +167,7 @@ def loads(run: Run, pass_index: int, out_dir: Path) -> Path:
             ax.set_ylim(mid - 0.05 * abs(mid) - 1e-12, mid + 0.05 * abs(mid) + 1e-12)
     axes[-1].set_xlabel("patch centre x_c (mm)")
     fig.suptitle(_title(run, "Contact loads", pass_index))
-    return _save(fig, out_dir, "loads.png")
+    return _save(fig, out_dir, f"loads{run.suffix}.png")
 
 
 def snapshot_steps(xc: np.ndarray, contact: np.ndarray, count: int = 4) -> np.ndarray:
@@ -199,7 +214,7 @@ def traction_snapshots(run: Run, pass_index: int, out_dir: Path, count: int = 4)
     p0 = values_in(ct["max_pressure"], "Pa")[steps]
     if not any(v in ct for v in FIELDS):
         raise FigureSkipped("the run stored no contact fields (output.store_fields = false): "
-                            "traction_snapshots.png skipped")
+                            f"traction_snapshots{run.suffix}.png skipped")
     qx = values_in(ct["traction_x"], "Pa")[steps]
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = qx / (mu * p0[:, None])
@@ -226,7 +241,7 @@ def traction_snapshots(run: Run, pass_index: int, out_dir: Path, count: int = 4)
             ax.set_ylabel("η = y/b")
     fig.colorbar(art, ax=fig.axes[1:], label=f"traction_x / (μ p0),  μ = {mu:g}", shrink=0.8)
     fig.suptitle(_title(run, "Longitudinal traction (black: stick/slip boundary)", pass_index))
-    return _save(fig, out_dir, "traction_snapshots.png")
+    return _save(fig, out_dir, f"traction_snapshots{run.suffix}.png")
 
 
 # ---------------------------------------------------------------- optional figures
@@ -243,69 +258,110 @@ def _find_spectrum(run: Run, names=("spectrum",)):
     return None
 
 
-def spectrum(run: Run, pass_index: int, out_dir: Path) -> Path | None:
-    """spectrum(pass, wavelength) of the chosen passage, if the run file has one."""
+def _passage_spectrum(run: Run, pass_index: int):
+    """The rail's spectrum(pass, wavelength) at ``pass_index``, or None."""
     spec = _find_spectrum(run)
     if spec is None or pass_index not in spec["pass"].values:
         return None
-    spec = spec.sel({"pass": pass_index})
+    return spec.sel({"pass": pass_index})
+
+
+def _plot_spectrum(ax, spec, label: dict) -> tuple[str, str]:
+    """One rail's spectrum on ``ax``; returns the axis labels (x, y).
+    Amplitudes in µm, wavelengths in mm (the units of the other figures); a
+    spectrum in other units (a PSD) is drawn as stored."""
     wl = spec[spec.dims[0]]
-    fig = Figure(figsize=(8, 4), layout="constrained")
-    ax = fig.add_subplot()
-    # Amplitudes in µm, wavelengths in mm (the units of the other figures);
-    # a spectrum in other units (a PSD) is drawn as stored.
     try:
         y, ylabel = values_in(spec, "um"), "amplitude (µm)"
     except ValueError:
         y, ylabel = spec.values, f"{spec.attrs.get('long_name', 'spectrum')} ({spec.attrs.get('units', '?')})"
     try:
-        ax.semilogx(values_in(wl, "mm"), y, "o-", ms=2)
-        ax.set_xlabel(f"{wl.name} (mm)")
+        ax.semilogx(values_in(wl, "mm"), y, "o-", ms=2, **label)
+        return f"{wl.name} (mm)", ylabel
     except ValueError:
-        ax.semilogx(wl.values, y, "o-", ms=2)
-        ax.set_xlabel(f"{wl.name} ({wl.attrs.get('units', '?')})")
+        ax.semilogx(wl.values, y, "o-", ms=2, **label)
+        return f"{wl.name} ({wl.attrs.get('units', '?')})", ylabel
+
+
+def spectrum(run: Run, pass_index: int, out_dir: Path) -> Path | None:
+    """spectrum(pass, wavelength) of the chosen passage, if the run file has
+    one; every rail's on the same axes."""
+    found = [(r, sp) for r in run.rails() if (sp := _passage_spectrum(r, pass_index)) is not None]
+    if not found:
+        return None
+    fig = Figure(figsize=(8, 4), layout="constrained")
+    ax = fig.add_subplot()
+    for r, spec in found:
+        xlabel, ylabel = _plot_spectrum(ax, spec, _rail_label(r))
+    ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3, which="both")
-    ax.set_title(_title(run, "Centre-line corrugation amplitude spectrum", pass_index))
+    if run.two_rails:
+        ax.legend(fontsize=8)
+    ax.set_title(_title(run, "Centre-line corrugation amplitude spectrum", pass_index, rail=False))
     return _save(fig, out_dir, "spectrum.png")
 
 
-def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
-    """RMS corrugation vs traffic, when more than one passage is recorded; with
-    the traffic scale m and the update ratio (its stability criterion) below
-    when the run file has them."""
+def _rms_series(run: Run) -> dict | None:
+    """The rail's traffic, rms corrugation (µm) and, when the file has them,
+    traffic scale and update ratio; None with fewer than two passages."""
     with run.pass_table() as ps:
         if "rms_corrugation" not in ps or ps.sizes.get("pass", 0) < 2:
             return None
-        traffic = ps["traffic"].values if "traffic" in ps else ps["pass"].values
-        rms = values_in(ps["rms_corrugation"], "um")
-        scaling = "traffic_scale" in ps and "update_ratio" in ps
-        if scaling:
-            scale, ratio = ps["traffic_scale"].values, ps["update_ratio"].values
-    fig = Figure(figsize=(8, 6 if scaling else 4), layout="constrained")
+        series = {"traffic": ps["traffic"].values if "traffic" in ps else ps["pass"].values,
+                  "rms": values_in(ps["rms_corrugation"], "um")}
+        if "traffic_scale" in ps and "update_ratio" in ps:
+            series |= {"scale": ps["traffic_scale"].values, "ratio": ps["update_ratio"].values}
+        return series
+
+
+def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
+    """RMS corrugation vs traffic, when more than one passage is recorded
+    (every rail's, labelled by rail); with the traffic scale m and the update
+    ratio (its stability criterion) below when the run file has them."""
+    found = [(r, sr) for r in run.rails() if (sr := _rms_series(r)) is not None]
+    if not found:
+        return None
+    scaling = all("scale" in sr for _, sr in found)
+    extra = 0.5 * (len(found) - 1)  # a title line per rail
+    fig = Figure(figsize=(8, (6 if scaling else 4) + extra), layout="constrained")
     axes = fig.subplots(2 if scaling else 1, 1, squeeze=False, sharex=True)[:, 0]
-    axes[0].plot(traffic, rms, "o-", ms=3)
-    axes[0].set(ylabel="rms corrugation (µm)", title=f"{_rms_trend(rms, traffic)}\ncontact model: {run.contact_model}")
+    for r, sr in found:
+        axes[0].plot(sr["traffic"], sr["rms"], "o-", ms=3, **_rail_label(r))
+    trends = "\n".join(_rms_trend(sr["rms"], sr["traffic"], r.rail_name) for r, sr in found)
+    axes[0].set(ylabel="rms corrugation (µm)", title=f"{trends}\ncontact model: {run.contact_model}")
     axes[0].grid(alpha=0.3)
+    if run.two_rails:
+        axes[0].legend(fontsize=8)
     if scaling:
-        axes[1].semilogy(traffic, scale, "o-", ms=3, label="traffic scale m (passages per update)")
-        axes[1].set_ylabel("m")
-        twin = axes[1].twinx()
-        twin.plot(traffic, ratio, "s-", ms=2, color="tab:red", label="update ratio q")
-        twin.set_ylabel("update ratio q = m max|W_k|/|R_k|", color="tab:red")
-        axes[1].grid(alpha=0.3)
+        _scaling_panel(axes[1], found)
     axes[-1].set_xlabel("traffic (passages)")
     return _save(fig, out_dir, "rms_corrugation.png")
 
 
-def _rms_trend(rms_um: np.ndarray, traffic: np.ndarray) -> str:
-    """What the rms does over the run, in words: grows, falls or holds."""
+def _scaling_panel(ax, found) -> None:
+    """The traffic scale m (shared by the rails) and each rail's update ratio q."""
+    first = found[0][1]
+    ax.semilogy(first["traffic"], first["scale"], "o-", ms=3, label="traffic scale m (passages per update)")
+    ax.set_ylabel("m")
+    twin = ax.twinx()
+    for (r, sr), line in zip(found, ("s-", "s--")):
+        label = f"update ratio q ({r.rail_name})" if r.rail_name else "update ratio q"
+        twin.plot(sr["traffic"], sr["ratio"], line, ms=2, color="tab:red", label=label)
+    twin.set_ylabel("update ratio q = m max|W_k|/|R_k|", color="tab:red")
+    ax.grid(alpha=0.3)
+
+
+def _rms_trend(rms_um: np.ndarray, traffic: np.ndarray, rail: str = "") -> str:
+    """What the rms does over the run, in words: grows, falls or holds
+    (on ``rail``, named first, in a two-rail file)."""
+    subject = f"{rail}: the rms corrugation" if rail else "The rms corrugation"
     first, last = float(rms_um[0]), float(rms_um[-1])
     if first > 0 and abs(last / first - 1) < 0.01:
         verb = "holds at"
-        return f"The rms corrugation {verb} {last:.3g} µm over {traffic[-1]:.3g} wheel passages"
+        return f"{subject} {verb} {last:.3g} µm over {traffic[-1]:.3g} wheel passages"
     verb = "grows" if last > first else "falls"
-    return f"The rms corrugation {verb} from {first:.3g} to {last:.3g} µm over {traffic[-1]:.3g} wheel passages"
+    return f"{subject} {verb} from {first:.3g} to {last:.3g} µm over {traffic[-1]:.3g} wheel passages"
 
 
 def profile_snapshots(run: Run, pass_index: int, out_dir: Path) -> Path | None:
@@ -327,17 +383,16 @@ def profile_snapshots(run: Run, pass_index: int, out_dir: Path) -> Path | None:
         ax.plot(x_mm, um[k] - um[k].mean(), color=colour, lw=1.2,
                 label=f"after passage {passes[k] + 1} (traffic {traffic[k]:.3g})")
     ax.set(xlabel="x (mm)", ylabel="profile minus mean (µm)",
-           title=f"Rail profile on the centre line at stored passages\ncontact model: {run.contact_model}")
+           title=f"{_rail_prefix(run)}Rail profile on the centre line at stored passages\n"
+                 f"contact model: {run.contact_model}")
     ax.legend(fontsize=8, ncols=2)
     ax.grid(alpha=0.3)
-    return _save(fig, out_dir, "profile_snapshots.png")
+    return _save(fig, out_dir, f"profile_snapshots{run.suffix}.png")
 
 
-def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
-    """Corrugation amplitude against wavelength and traffic (growth studies),
-    with the growth rate per wavelength averaged over the run when present.
-    Uses the contact-filtered spectrum (what the wheel sees, on which the
-    growth rates are computed) when the file has it."""
+def _spectrogram_data(run: Run) -> dict | None:
+    """The rail's spectrum over traffic (contact-filtered where the file has
+    it), its traffic and growth rates; None with fewer than two passages."""
     spec = _find_spectrum(run, ("filtered_spectrum", "spectrum"))
     if spec is None or spec.sizes.get("pass", 0) < 2:
         return None
@@ -345,34 +400,78 @@ def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
         traffic = ps["traffic"].values if "traffic" in ps else ps["pass"].values
         rate = ps["growth_rate"].load() if "growth_rate" in ps else None
     wl_dim = [d for d in spec.dims if d != "pass"][0]
-    wl_mm = values_in(spec[wl_dim], "mm")
+    return {"run": run, "spec": spec, "traffic": traffic, "rate": rate, "wl_dim": wl_dim,
+            "wl_mm": values_in(spec[wl_dim], "mm")}
+
+
+def _amplitude_map(d: dict) -> tuple[np.ndarray, np.ndarray, str]:
+    """The kept wavelengths (mm), the amplitudes on them (wavelength, pass) and their label."""
+    spec = d["spec"]
     keep = np.nanmax(spec.values, axis=0) > 1e-3 * np.nanmax(spec.values)
-    fig = Figure(figsize=(9, 6 if rate is not None else 4), layout="constrained")
-    axes = fig.subplots(2 if rate is not None else 1, 1, squeeze=False)[:, 0]
-    ordered = spec.transpose(wl_dim, "pass")
+    ordered = spec.transpose(d["wl_dim"], "pass")
     try:
         amp, label = values_in(ordered, "um")[keep], "amplitude (µm)"
     except ValueError:  # a spectrum in other units (e.g. a PSD) is drawn as stored
         amp, label = ordered.values[keep], f"{spec.attrs.get('long_name', 'spectrum')} ({spec.attrs.get('units', '?')})"
-    mesh = axes[0].pcolormesh(traffic, wl_mm[keep], amp, shading="nearest", cmap="magma")
-    fig.colorbar(mesh, ax=axes[0], label=label)
-    what = "contact-filtered " if spec.name == "filtered_spectrum" else ""
-    axes[0].set(yscale="log", xlabel="traffic (passages)", ylabel="wavelength (mm)",
-                title=f"Corrugation {what}spectrum over traffic\ncontact model: {run.contact_model}")
-    if rate is not None:
-        mean_rate = rate.mean("pass").values
-        # Rates of harmonics far below the dominant ones are noise in dB, and a
-        # harmonic built up from nothing has no meaningful rate: keep those
-        # present from the first passage (any time, if none was).
-        first = spec.values[0]
-        strong = first > 0.05 * np.nanmax(first) if np.nanmax(first) > 0 else \
-            np.nanmax(spec.values, axis=0) > 0.05 * np.nanmax(spec.values)
-        axes[1].semilogx(wl_mm[strong], mean_rate[strong], "o-", ms=3)
-        axes[1].axhline(0.0, color="k", lw=0.8)
-        axes[1].set(xlabel="wavelength (mm)", ylabel="growth rate (dB / 1e5 passages)",
-                    title="mean growth rate over the run (harmonics above 5 % of the largest at the first passage)")
-        axes[1].grid(alpha=0.3, which="both")
+    return d["wl_mm"][keep], amp, label
+
+
+def _spectrogram_panel(fig, ax, d: dict, scale: dict) -> None:
+    """One rail's amplitude over wavelength and traffic (``scale``: the
+    colour limits shared by the rails, empty with one rail)."""
+    wl_mm, amp, label = _amplitude_map(d)
+    mesh = ax.pcolormesh(d["traffic"], wl_mm, amp, shading="nearest", cmap="magma", **scale)
+    fig.colorbar(mesh, ax=ax, label=label)
+    run = d["run"]
+    what = "contact-filtered " if d["spec"].name == "filtered_spectrum" else ""
+    ax.set(yscale="log", xlabel="traffic (passages)", ylabel="wavelength (mm)",
+           title=f"{_rail_prefix(run)}Corrugation {what}spectrum over traffic\ncontact model: {run.contact_model}")
+
+
+def _rate_line(ax, d: dict) -> None:
+    """One rail's growth rate per wavelength averaged over the run.  Rates of
+    harmonics far below the dominant ones are noise in dB, and a harmonic
+    built up from nothing has no meaningful rate: keep those present from
+    the first passage (any time, if none was)."""
+    spec = d["spec"]
+    mean_rate = d["rate"].mean("pass").values
+    first = spec.values[0]
+    strong = first > 0.05 * np.nanmax(first) if np.nanmax(first) > 0 else \
+        np.nanmax(spec.values, axis=0) > 0.05 * np.nanmax(spec.values)
+    ax.semilogx(d["wl_mm"][strong], mean_rate[strong], "o-", ms=3, **_rail_label(d["run"]))
+
+
+def spectrogram(run: Run, pass_index: int, out_dir: Path) -> Path | None:
+    """Corrugation amplitude against wavelength and traffic (growth studies),
+    with the growth rate per wavelength averaged over the run when present.
+    Uses the contact-filtered spectrum (what the wheel sees, on which the
+    growth rates are computed) when the file has it.  Two rails: one map
+    per rail (one colour scale), their growth rates on one axes."""
+    found = [d for r in run.rails() if (d := _spectrogram_data(r)) is not None]
+    if not found:
+        return None
+    rated = [d for d in found if d["rate"] is not None]
+    height = (6 if rated else 4) if len(found) == 1 else 3.5 * len(found) + (3 if rated else 0)
+    fig = Figure(figsize=(9, height), layout="constrained")
+    axes = fig.subplots(len(found) + bool(rated), 1, squeeze=False)[:, 0]
+    scale = _shared_scale([_amplitude_map(d)[1] for d in found]) if len(found) > 1 else {}
+    for ax, d in zip(axes, found):
+        _spectrogram_panel(fig, ax, d, scale)
+    if rated:
+        for d in rated:
+            _rate_line(axes[-1], d)
+        axes[-1].axhline(0.0, color="k", lw=0.8)
+        axes[-1].set(xlabel="wavelength (mm)", ylabel="growth rate (dB / 1e5 passages)",
+                     title="mean growth rate over the run (harmonics above 5 % of the largest at the first passage)")
+        axes[-1].grid(alpha=0.3, which="both")
+        if run.two_rails:
+            axes[-1].legend(fontsize=8)
     return _save(fig, out_dir, "spectrogram.png")
+
+
+def _shared_scale(maps: list[np.ndarray]) -> dict:
+    """The colour limits that cover every rail's map."""
+    return {"vmin": min(float(np.nanmin(m)) for m in maps), "vmax": max(float(np.nanmax(m)) for m in maps)}
 
 
 class FigureSkipped(Exception):
@@ -383,6 +482,9 @@ FigureFn = Callable[[Run, int, Path], "Path | None"]
 RAIL_FIGURES: tuple[FigureFn, ...] = (wear_map, wear_centreline)
 CONTACT_FIGURES: tuple[FigureFn, ...] = (loads, traction_snapshots)
 OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram, profile_snapshots)
+# The figures that draw every rail of a file in one figure; the others are
+# drawn once per rail.
+BOTH_RAILS: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram)
 
 
 def contact_pass_for(run: Run, pass_index: int) -> int | None:
@@ -397,6 +499,49 @@ def contact_pass_for(run: Run, pass_index: int) -> int | None:
     return before[-1] if before else kept[0]
 
 
+def _where(run: Run) -> str:
+    """The file, and the rail in a two-rail file, for notes and problems."""
+    return f"{run.path} ({run.rail_name})" if run.rail_name else f"{run.path}"
+
+
+def _rail_todo(run: Run, pass_index: int) -> tuple[list, list[str]]:
+    """One rail's wear and contact figures (the contact ones of the nearest
+    passage with a contact history), and the notes on what it left out."""
+    todo = [(fn, run, pass_index, _where(run)) for fn in RAIL_FIGURES]
+    names = f"loads{run.suffix}.png and traction_snapshots{run.suffix}.png"
+    contact = contact_pass_for(run, pass_index)
+    if contact is None:
+        return todo, [f"{_where(run)}: no contact history stored (growth.contact_history); {names} skipped"]
+    notes = []
+    if contact != pass_index:
+        notes.append(f"{_where(run)}: passage {pass_index + 1} has no contact history; {names} "
+                     f"show passage {contact + 1}, the nearest one kept")
+    return todo + [(fn, run, contact, _where(run)) for fn in CONTACT_FIGURES], notes
+
+
+def _draw(todo, out_dir: Path) -> tuple[list[Path], list[str], list[str]]:
+    """Draws ``todo`` ((figure, rail, passage, where) tuples: ``where`` names
+    the file, and the rail of a figure of one rail, in messages); returns the
+    paths written, the problems and the notes."""
+    paths, problems, notes = [], [], []
+    for fn, run, p, where in todo:
+        name = fn.__name__
+        try:
+            written = fn(run, p, out_dir)
+        except FigureSkipped as note:
+            notes.append(f"{where}: {note}")
+            continue
+        except KeyError as err:
+            problems.append(f"{where}: {name}: missing variable {err}")
+            continue
+        except (RunFileError, ValueError) as err:
+            problems.append(f"{where}: {name}: {err}")
+            continue
+        if written is not None:
+            paths.append(written)
+    return paths, problems, notes
+
+
 def make_figures(path, out_dir, pass_number: int | None = None, levels_at: list[int] | None = None):
     """Write every figure of one run that its contents allow.
 
@@ -406,25 +551,21 @@ def make_figures(path, out_dir, pass_number: int | None = None, levels_at: list[
     the PNGs written, one message per figure that could not be made (a
     defect of the file), and one per figure left out or drawn for another
     passage because the run did not store what it needs (not a problem).
+    A two-rail file has each rail's own figures (``BOTH_RAILS`` excepted).
     Raises RunFileError when the file itself is unusable.
     """
     from . import levels
 
     run = Run.open(path)
     pass_index = run.resolve_pass(pass_number)
-    out_dir = Path(out_dir)
-    todo = [(fn, pass_index) for fn in RAIL_FIGURES]
-    notes = []
-    contact = contact_pass_for(run, pass_index)
-    if contact is None:
-        notes.append(f"{run.path}: no contact history stored (growth.contact_history); "
-                     "loads.png and traction_snapshots.png skipped")
-    else:
-        if contact != pass_index:
-            notes.append(f"{run.path}: passage {pass_index + 1} has no contact history; loads.png and "
-                         f"traction_snapshots.png show passage {contact + 1}, the nearest one kept")
-        todo += [(fn, contact) for fn in CONTACT_FIGURES]
-    todo += [(fn, pass_index) for fn in OPTIONAL_FIGURES]
+    todo, notes = [], []
+    for rail in run.rails():
+        rail_todo, rail_notes = _rail_todo(rail, pass_index)
+        todo += rail_todo
+        notes += rail_notes
+    for fn in OPTIONAL_FIGURES:
+        rails = [run] if fn in BOTH_RAILS else run.rails()
+        todo += [(fn, r, pass_index, run.path if fn in BOTH_RAILS else _where(r)) for r in rails]
 
     def band_levels(r, _p, o):
         return levels.band_levels(r, o, levels_at)
@@ -432,23 +573,9 @@ def make_figures(path, out_dir, pass_number: int | None = None, levels_at: list[
     def level_growth(r, _p, o):
         return levels.level_growth(r, o)
 
-    todo += [(band_levels, pass_index), (level_growth, pass_index)]
-    paths, problems = [], []
-    for fn, p in todo:
-        name = fn.__name__
-        try:
-            written = fn(run, p, out_dir)
-        except FigureSkipped as note:
-            notes.append(f"{run.path}: {note}")
-            continue
-        except KeyError as err:
-            problems.append(f"{run.path}: {name}: missing variable {err}")
-            continue
-        except (RunFileError, ValueError) as err:
-            problems.append(f"{run.path}: {name}: {err}")
-            continue
-        if written is not None:
-            paths.append(written)
+    todo += [(band_levels, run, pass_index, run.path), (level_growth, run, pass_index, run.path)]
+    paths, problems, drawn_notes = _draw(todo, Path(out_dir))
+    notes += drawn_notes
     if not levels.has_levels(run):
         notes.append(f"{run.path}: no roughness levels (passes/roughness_level: written since issue 35); "
                      "levels.png and level_growth.png skipped")

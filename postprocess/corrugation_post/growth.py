@@ -4,7 +4,8 @@ a table of the harmonic's mean growth rate with its relative difference to
 the first run, the largest update ratio and the final rms.
 
 The harmonic is ``--wavelength`` (m), or by default the one of the first run
-whose amplitude grew the most (in dB) over the run.
+whose amplitude grew the most (in dB) over the run.  A file of two rails
+gives a row and a curve per rail, labelled ``STEM (RAIL NAME)``.
 """
 
 from __future__ import annotations
@@ -45,15 +46,24 @@ class GrowthCurves:
     initial: np.ndarray  # (wavelength,), m, before the first passage
 
 
+def load_rails(path) -> list[GrowthCurves]:
+    """The growth curves of every rail of a study (one for a one-rail file)."""
+    return [_load(rail) for rail in Run.open(path).rails()]
+
+
 def load(path) -> GrowthCurves:
-    run = Run.open(path)
+    """The growth curves of a study's first rail."""
+    return _load(Run.open(path))
+
+
+def _load(run: Run) -> GrowthCurves:
     status = root_attrs(run.path).get("status", "complete")
     if status != "complete":
         raise RunFileError(f"{run.path}: status {status!r}: an unfinished study (resume it first)")
     with run.pass_table() as ps:
         for name in ("traffic", "traffic_scale", "rms_corrugation", "spectrum"):
             if name not in ps:
-                raise RunFileError(f"{run.path}: passes/{name} missing: not a growth study")
+                raise RunFileError(f"{run.path}: {run.prefix}passes/{name} missing: not a growth study")
         ratio = ps["update_ratio"].values if "update_ratio" in ps else np.zeros(ps.sizes["pass"])
         # The contact-filtered spectrum (what the wheel sees; growth_rate is
         # computed on it) when the file has it.
@@ -65,8 +75,9 @@ def load(path) -> GrowthCurves:
         # A harmonic that started under the 1 pm floor has rate 0 there: no
         # initial amplitude to recover.
         initial = np.where((first_rate == 0.0) & (spectrum[0] > 0.0), np.nan, initial)
+        label = f"{run.path.stem} ({run.rail_name})" if run.rail_name else run.path.stem
         return GrowthCurves(
-            label=Path(path).stem, path=run.path, traffic=ps["traffic"].values,
+            label=label, path=run.path, traffic=ps["traffic"].values,
             scale=ps["traffic_scale"].values, rms=ps["rms_corrugation"].values, ratio=ratio,
             wavelengths=ps["wavelength"].values, spectrum=spectrum, initial=initial,
         )
@@ -101,7 +112,7 @@ def mean_rate(c: GrowthCurves, wavelength: float) -> float:
 def compare_growth(paths, out_dir, wavelength: float | None = None):
     """Writes ``growth_compare.png`` and ``growth_compare.csv``; returns
     ``(rows, paths)``."""
-    curves = [load(p) for p in paths]
+    curves = [c for p in paths for c in load_rails(p)]
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
     wl = wavelength if wavelength is not None else fastest_growing(curves[0])
@@ -135,11 +146,12 @@ def compare_growth(paths, out_dir, wavelength: float | None = None):
 
 
 def format_table(rows) -> str:
-    head = f"{'run':<28} {'passes':>6} {'traffic':>10} {'max m':>9} {'max q':>7} {'rate dB/1e5':>12} {'rel diff':>9}"
+    w = max([28] + [len(r["label"]) for r in rows])  # "STEM (RAIL NAME)" of a two-rail study
+    head = f"{'run':<{w}} {'passes':>6} {'traffic':>10} {'max m':>9} {'max q':>7} {'rate dB/1e5':>12} {'rel diff':>9}"
     lines = [head]
     for r in rows:
         lines.append(
-            f"{r['label']:<28} {r['passes']:>6} {r['final_traffic']:>10.3e} {r['max_traffic_scale']:>9.3g} "
+            f"{r['label']:<{w}} {r['passes']:>6} {r['final_traffic']:>10.3e} {r['max_traffic_scale']:>9.3g} "
             f"{r['max_update_ratio']:>7.3f} {r['mean_growth_rate_db_per_1e5']:>12.4f} {r['growth_rate_rel_diff']:>9.3f}"
         )
     return "\n".join(lines)

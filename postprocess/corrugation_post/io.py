@@ -5,6 +5,11 @@ in ``schema.py`` and in the book (docs/src/reference/run-file.md).  Structure (w
 attributes) is read with h5py; data are opened as xarray Datasets with the
 h5netcdf engine, so dimension names come from the HDF5 dimension scales.
 
+A file of both rails of a wheelset keeps the first rail's groups at the root
+(root attribute ``rail_name``) and the second rail's in group ``second_rail``
+(attribute ``rail_name``), with the same layout: ``rails`` lists them, and a
+``Run`` reads one rail's groups (``Run.rails``).
+
 Note that ``pass`` is a Python keyword: use ``ds["pass"]`` and
 ``da.sel({"pass": n})`` rather than attribute access.
 """
@@ -14,7 +19,7 @@ from __future__ import annotations
 import csv
 import re
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -25,6 +30,9 @@ import xarray as xr
 RAIL = "rail"
 PASSES = "passes"
 CONTACT = "contact"
+SECOND_RAIL = "second_rail"
+#: Group prefix of the second rail's groups, and the suffix of its figures' file names.
+SECOND_PREFIX, SECOND_SUFFIX = f"{SECOND_RAIL}/", f"_{SECOND_RAIL}"
 _CONTACT_RE = re.compile(r"^pass_(\d{5,})$")
 
 
@@ -116,18 +124,38 @@ def friction_coefficient(config: dict[str, Any], path: str | Path = "<config>") 
         ) from err
 
 
-def stored_passes(path: str | Path) -> list[int]:
-    """Stored passage indices: values of the ``rail`` group's ``pass`` coordinate."""
+@dataclass(frozen=True)
+class RailGroups:
+    """One rail of a run file: its name and the prefix of its groups."""
+
+    name: str  # the ``rail_name`` attribute; "rail" in a one-rail file
+    prefix: str  # "" (the root's groups) or SECOND_PREFIX
+
+
+def rails(path: str | Path) -> list[RailGroups]:
+    """The rails of a run file: the root's, and the second rail's when the
+    file has a ``second_rail`` group."""
     with h5py.File(path, "r") as f:
-        if RAIL not in f or "pass" not in f[RAIL]:
-            raise RunFileError(f"{path}: group '{RAIL}' has no 'pass' coordinate")
-        return [int(p) for p in np.asarray(f[RAIL]["pass"][()]).ravel()]
+        found = [RailGroups(str(as_str(f.attrs.get("rail_name", "rail"))), "")]
+        second = f.get(SECOND_RAIL)
+        if isinstance(second, h5py.Group):
+            found.append(RailGroups(str(as_str(second.attrs.get("rail_name", "second rail"))), SECOND_PREFIX))
+    return found
 
 
-def contact_passes(path: str | Path) -> list[int]:
+def stored_passes(path: str | Path, prefix: str = "") -> list[int]:
+    """Stored passage indices: values of the ``rail`` group's ``pass`` coordinate."""
+    group = prefix + RAIL
+    with h5py.File(path, "r") as f:
+        if group not in f or "pass" not in f[group]:
+            raise RunFileError(f"{path}: group '{group}' has no 'pass' coordinate")
+        return [int(p) for p in np.asarray(f[group]["pass"][()]).ravel()]
+
+
+def contact_passes(path: str | Path, prefix: str = "") -> list[int]:
     """Passage indices that have a ``contact/pass_NNNNN`` group, sorted."""
     with h5py.File(path, "r") as f:
-        grp = f.get(CONTACT)
+        grp = f.get(prefix + CONTACT)
         if not isinstance(grp, h5py.Group):
             return []
         found = (_CONTACT_RE.match(name) for name in grp)
@@ -136,18 +164,43 @@ def contact_passes(path: str | Path) -> list[int]:
 
 @dataclass
 class Run:
-    """A run file: its path, root attributes and parsed configuration."""
+    """A run file: its path, root attributes and parsed configuration, and
+    the rail whose groups it reads (the root's unless ``Run.rails`` chose
+    another)."""
 
     path: Path
     attrs: dict[str, Any] = field(repr=False)
     config: dict[str, Any] = field(repr=False)
+    rail_groups: list[RailGroups] = field(repr=False, default_factory=lambda: [RailGroups("rail", "")])
+    prefix: str = ""
 
     @classmethod
     def open(cls, path: str | Path) -> "Run":
         path = check_run_file(path)
         attrs = root_attrs(path)
         config = parse_config(str(attrs.get("config", "")), path)
-        return cls(path=path, attrs=attrs, config=config)
+        return cls(path=path, attrs=attrs, config=config, rail_groups=rails(path))
+
+    def rails(self) -> list["Run"]:
+        """One Run per rail of the file (one for a one-rail file)."""
+        return [replace(self, prefix=r.prefix) for r in self.rail_groups]
+
+    @property
+    def two_rails(self) -> bool:
+        return len(self.rail_groups) > 1
+
+    @property
+    def rail_name(self) -> str:
+        """The rail's name in a two-rail file; "" in a one-rail file, whose
+        figures and tables name no rail."""
+        if not self.two_rails:
+            return ""
+        return next(r.name for r in self.rail_groups if r.prefix == self.prefix)
+
+    @property
+    def suffix(self) -> str:
+        """What this rail's own figures add to their file names ("" or "_second_rail")."""
+        return SECOND_SUFFIX if self.prefix else ""
 
     @property
     def contact_model(self) -> str:
@@ -158,10 +211,10 @@ class Run:
         return friction_coefficient(self.config, self.path)
 
     def passes(self) -> list[int]:
-        return stored_passes(self.path)
+        return stored_passes(self.path, self.prefix)
 
     def contact_passes(self) -> list[int]:
-        return contact_passes(self.path)
+        return contact_passes(self.path, self.prefix)
 
     def resolve_pass(self, number: int | None) -> int:
         """The stored index (the ``pass`` coordinate, from 0) of passage
@@ -169,7 +222,7 @@ class Run:
         stored passage; error if not stored."""
         available = self.passes()
         if not available:
-            raise RunFileError(f"{self.path}: no stored passages in group '{RAIL}'")
+            raise RunFileError(f"{self.path}: no stored passages in group '{self.prefix}{RAIL}'")
         if number is None:
             return available[-1]
         if number - 1 not in available:
@@ -180,18 +233,19 @@ class Run:
         return number - 1
 
     def rail(self) -> xr.Dataset:
-        return open_group(self.path, RAIL)
+        return open_group(self.path, self.prefix + RAIL)
 
     def pass_table(self) -> xr.Dataset:
-        return open_group(self.path, PASSES)
+        return open_group(self.path, self.prefix + PASSES)
 
     def contact(self, pass_index: int) -> xr.Dataset:
+        group = self.prefix + contact_group(pass_index)
         if pass_index not in self.contact_passes():
             raise RunFileError(
-                f"{self.path}: no group '{contact_group(pass_index)}'; "
+                f"{self.path}: no group '{group}'; "
                 f"contact histories stored for passages: {_short(self.contact_passes())}"
             )
-        return open_group(self.path, contact_group(pass_index))
+        return open_group(self.path, group)
 
 
 def _short(values: list[int], keep: int = 8) -> str:

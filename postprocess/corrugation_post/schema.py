@@ -2,6 +2,9 @@
 
 Only required content is listed: extra variables, attributes and groups are
 allowed everywhere.  Contact groups are checked against ``CONTACT_VARS``.
+A file of two rails (root group ``second_rail``) has the second rail's
+``rail``, ``passes`` and ``contact`` groups checked like the root's, and
+the same passages and traffic as the first rail (``check_second_rail``).
 """
 
 from __future__ import annotations
@@ -55,10 +58,19 @@ UNITS = {
 
 
 def expected_groups(path: str | Path) -> dict[str, dict[str, tuple[str, ...]]]:
-    """Group path -> required variables, including every stored contact group."""
-    groups = {io.RAIL: RAIL_VARS, io.PASSES: PASSES_VARS}
-    for p in io.contact_passes(path):
-        group = io.contact_group(p)
+    """Group path -> required variables, including every stored contact
+    group, of every rail of the file."""
+    groups = {}
+    for rail in io.rails(path):
+        groups |= rail_groups(path, rail.prefix)
+    return groups
+
+
+def rail_groups(path: str | Path, prefix: str = "") -> dict[str, dict[str, tuple[str, ...]]]:
+    """Group path -> required variables of one rail (groups under ``prefix``)."""
+    groups = {prefix + io.RAIL: RAIL_VARS, prefix + io.PASSES: PASSES_VARS}
+    for p in io.contact_passes(path, prefix):
+        group = prefix + io.contact_group(p)
         groups[group] = CONTACT_VARS if _has_fields(path, group) else CONTACT_STEP_VARS
     return groups
 
@@ -166,27 +178,61 @@ LEVEL_UNITS = {
 }
 
 
-def check_levels(path: str | Path) -> list[str]:
+def check_levels(path: str | Path, prefix: str = "") -> list[str]:
     """The band levels, where the file has them: all of them, on their dims,
     with their units, no NaN (inf only where the contract allows it)."""
-    with io.open_group(path, io.PASSES) as ps:
+    group = prefix + io.PASSES
+    with io.open_group(path, group) as ps:
         if "roughness_level" not in ps.variables:
             return []
         problems = []
         for name, dims in LEVEL_VARS.items():
             if name not in ps.variables:
-                problems.append(f"passes: missing variable '{name}'{dims}")
+                problems.append(f"{group}: missing variable '{name}'{dims}")
             elif tuple(ps[name].dims) != dims:
-                problems.append(f"passes/{name}: dims {tuple(ps[name].dims)}, expected {dims}")
+                problems.append(f"{group}/{name}: dims {tuple(ps[name].dims)}, expected {dims}")
         for name, unit in LEVEL_UNITS.items():
             if name in ps.variables and ps[name].attrs.get("units") != unit:
-                problems.append(f"passes/{name}: units {ps[name].attrs.get('units')!r}, expected {unit!r}")
+                problems.append(f"{group}/{name}: units {ps[name].attrs.get('units')!r}, expected {unit!r}")
             if name in ps.variables and np.isnan(ps[name].values).any():
-                problems.append(f"passes/{name}: NaN values")
+                problems.append(f"{group}/{name}: NaN values")
         for name in ("roughness_level", "level_rate", "initial_level", "band"):
             if name in ps.variables and not np.isfinite(ps[name].values).all():
-                problems.append(f"passes/{name}: non-finite values")
+                problems.append(f"{group}/{name}: non-finite values")
         return problems
+
+
+def check_second_rail(path: str | Path) -> list[str]:
+    """A two-rail file: both rails named, apart, and the second rail's
+    passages and traffic those of the first (the rails share the passages)."""
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        second = f[io.SECOND_RAIL]
+        problems = [f"{where}: missing attribute 'rail_name' (the file has a second rail)"
+                    for where, obj in (("root", f), (io.SECOND_RAIL, second)) if "rail_name" not in obj.attrs]
+        names = [io.as_str(obj.attrs.get("rail_name")) for obj in (f, second)]
+        if names[0] is not None and names[0] == names[1]:
+            problems.append(f"{io.SECOND_RAIL}: rail_name {names[1]!r} is the first rail's too")
+        # A missing group is reported by the groups' own check (cannot open).
+        for group in (g for g in (io.RAIL, io.PASSES) if isinstance(second.get(g), h5py.Group)):
+            problems += _same_as_first(f, group, "pass") + _same_as_first(f, group, "traffic")
+    return problems
+
+
+def _same_as_first(f, group: str, name: str) -> list[str]:
+    """The second rail's ``group/name`` against the first rail's (values equal)."""
+    first, second = f.get(f"{group}/{name}"), f.get(f"{io.SECOND_PREFIX}{group}/{name}")
+    if first is None or second is None:
+        return []  # a missing variable is reported by the group's own check
+    a, b = np.asarray(first[()]), np.asarray(second[()])
+    where = f"{io.SECOND_PREFIX}{group}/{name}"
+    if a.shape != b.shape:
+        what = "passages" if name == "pass" else "values"
+        return [f"{where}: {b.size} {what}, the first rail's {group}/{name} has {a.size}"]
+    if not np.array_equal(a, b):
+        return [f"{where}: differs from the first rail's {group}/{name} (the rails share the passages)"]
+    return []
 
 
 def check_file(path: str | Path) -> list[str]:
@@ -204,7 +250,16 @@ def check_file(path: str | Path) -> list[str]:
     # names (none at all with contact_history = []): the rail snapshots of
     # the other passages need none.
     groups = expected_groups(path)
-    problems += check_levels(path)
+    prefixes = [rail.prefix for rail in io.rails(path)]
+    if len(prefixes) > 1:
+        problems += check_second_rail(path)
+    for prefix in prefixes:
+        try:
+            problems += check_levels(path, prefix)
+        except io.RunFileError:
+            if not prefix:
+                raise
+            # The second rail without passes: reported with its groups below.
     for group, required in groups.items():
         try:
             with io.open_group(path, group) as ds:

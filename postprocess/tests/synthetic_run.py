@@ -67,6 +67,46 @@ def rail_dataset(n_pass: int, wear_scale: float, nx: int = 81, ny: int = 17) -> 
     )
 
 
+def growth_variables(ds: xr.Dataset, scale: float) -> xr.Dataset:
+    """What a growth study adds to ``passes``: the traffic scale, the update
+    ratio, the contact-filtered spectrum and its growth rates (on the
+    ``wavelength`` of ``spectrum``), and the band levels against a limit."""
+    n_pass, wl = ds.sizes["pass"], ds["wavelength"].values
+    shape = np.exp(-((np.log(wl / WAVELENGTH)) ** 2))
+    amp = 1e-6 * scale * shape[None, :] * (1 + 0.5 * np.arange(n_pass))[:, None]
+    increments = np.diff(np.r_[0, ds["traffic"].values])
+    ds["traffic_scale"] = _var("pass", increments, "1", "real passages per simulated passage")
+    ds["update_ratio"] = _var("pass", np.full(n_pass, 0.01 * scale), "1", "update ratio q")
+    ds["filtered_spectrum"] = _var(("pass", "wavelength"), amp, "m",
+                                   "amplitude spectrum of the contact-filtered profile")
+    ds["growth_rate"] = _var(("pass", "wavelength"), np.full((n_pass, wl.size), 3.0 * scale), "dB/1e5 passages",
+                             "growth rate of each filtered harmonic")
+    return ds.merge(band_levels(n_pass, scale))
+
+
+def band_levels(n_pass: int, scale: float) -> xr.Dataset:
+    """Band levels (dB re 1 µm) of five one-third-octave bands rising by
+    ``2 scale`` dB a passage towards a flat -10 dB limit."""
+    band = 0.1 / 10 ** (np.arange(5) / 10)
+    initial = np.array([-30.0, -20.0, -15.0, -25.0, -80.0])
+    level = initial[None, :] + 2.0 * scale * (1 + np.arange(n_pass))[:, None]
+    rate = np.full((n_pass, band.size), 2.0 * scale * 1e5 / 10)
+    to_limit = np.maximum((-10.0 - level) / (2.0 * scale), 0.0)
+    return xr.Dataset(
+        {
+            "band_lower": _var("band", band / 10 ** 0.05, "m", "band lower wavelength"),
+            "band_upper": _var("band", band * 10 ** 0.05, "m", "band upper wavelength"),
+            "initial_level": _var("band", initial, "dB", "roughness level before the first passage"),
+            "limit_level": xr.Variable("band", np.full(band.size, -10.0),
+                                       {"units": "dB", "long_name": "roughness limit", "limit_name": "synthetic"}),
+            "roughness_level": _var(("pass", "band"), level, "dB", "roughness level re 1 um"),
+            "level_rate": _var(("pass", "band"), rate, "dB/1e5 passages", "level growth rate"),
+            "passages_to_limit": _var(("pass", "band"), to_limit, "1", "passages to the limit"),
+        },
+        coords={"band": _var("band", band, "m", "band centre wavelength")},
+    )
+
+
 def passes_dataset(rail: xr.Dataset, extras: bool) -> xr.Dataset:
     rms = np.sqrt((rail["profile"] - rail["profile"].mean(("y", "x"))) ** 2).mean(("y", "x"))
     ds = xr.Dataset(
@@ -151,18 +191,41 @@ def contact_dataset(pass_index: int, creep_scale: float, extras: bool,
     return xr.Dataset(data, coords=coords)
 
 
-def write_run(path: str | Path, *, contact_model: str = "fastsim", n_pass: int = 2,
-              wear_scale: float = 1.0, creep_scale: float = 1.0, extras: bool = False) -> Path:
-    """Write a synthetic run file; ``extras`` adds optional and unknown variables."""
-    path = Path(path)
-    xr.Dataset(attrs={
-        "config": CONFIG, "version": "0.1.0-synthetic",
-        "title": "synthetic test run", "contact_model": contact_model,
-    }).to_netcdf(path, engine="h5netcdf", mode="w")
+def write_rail(path: Path, prefix: str, n_pass: int, wear_scale: float, creep_scale: float,
+               extras: bool, growth: bool) -> None:
+    """One rail's groups ``rail``, ``passes`` and ``contact/pass_NNNNN`` under ``prefix``."""
     rail = rail_dataset(n_pass, wear_scale)
-    rail.to_netcdf(path, engine="h5netcdf", group="rail", mode="a")
-    passes_dataset(rail, extras).to_netcdf(path, engine="h5netcdf", group="passes", mode="a")
+    rail.to_netcdf(path, engine="h5netcdf", group=f"{prefix}rail", mode="a")
+    passes = passes_dataset(rail, extras or growth)
+    if growth:
+        passes = growth_variables(passes, wear_scale)
+    passes.to_netcdf(path, engine="h5netcdf", group=f"{prefix}passes", mode="a")
     for p in rail["pass"].values:
-        group = f"contact/pass_{int(p):05d}"
+        group = f"{prefix}contact/pass_{int(p):05d}"
         contact_dataset(int(p), creep_scale, extras).to_netcdf(path, engine="h5netcdf", group=group, mode="a")
+
+
+#: The rail names of a two-rail synthetic file, and the second rail's scale of wear and creepage.
+RAIL_NAMES = ("left rail", "right rail")
+SECOND_SCALE = 1.7
+
+
+def write_run(path: str | Path, *, contact_model: str = "fastsim", n_pass: int = 2,
+              wear_scale: float = 1.0, creep_scale: float = 1.0, extras: bool = False,
+              growth: bool = False, second_rail: bool = False) -> Path:
+    """Write a synthetic run file; ``extras`` adds optional and unknown
+    variables, ``growth`` a growth study's (band levels included);
+    ``second_rail`` the group ``second_rail`` (the layout of the root's
+    rail, passes and contact groups, SECOND_SCALE times the wear and
+    creepage) and the root attribute ``rail_name``."""
+    path = Path(path)
+    attrs = {"config": CONFIG, "version": "0.1.0-synthetic",
+             "title": "synthetic test run", "contact_model": contact_model}
+    if second_rail:
+        attrs["rail_name"] = RAIL_NAMES[0]
+    xr.Dataset(attrs=attrs).to_netcdf(path, engine="h5netcdf", mode="w")
+    write_rail(path, "", n_pass, wear_scale, creep_scale, extras, growth)
+    if second_rail:
+        xr.Dataset(attrs={"rail_name": RAIL_NAMES[1]}).to_netcdf(path, engine="h5netcdf", group="second_rail", mode="a")
+        write_rail(path, "second_rail/", n_pass, SECOND_SCALE * wear_scale, SECOND_SCALE * creep_scale, extras, growth)
     return path
