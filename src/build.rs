@@ -501,9 +501,25 @@ fn contact_dynamics(
                 law,
                 response,
                 mean_load: loads.normal_force,
+                rail: 0,
             }
         })
         .collect();
+    // The wheelset's second rail: its wheel, its contact at its own steady
+    // state (one wheelset: config::second_rail checks).
+    let mut wheels = wheels;
+    if let Some(second) = scene.second_rail_scene() {
+        let (n0, fx) = (second.loads.normal_force, second.loads.longitudinal_force);
+        let law = steady_contact_law(&second, &d.shape, n0, fx);
+        let response = match creep_forces {
+            CreepForces::Steady => None,
+            CreepForces::Transient => Some(
+                creep_response::scene::default_response(&second, n0, fx, [true, true, false, true])
+                    .map_err(|e| DynamicsError::CreepResponse(format!("second rail: {e}")))?,
+            ),
+        };
+        wheels.push(VehicleWheel3 { behind: 0.0, side: side(mass), law, response, mean_load: n0, rail: 1 });
+    }
     if wheels.len() > 1 {
         let model = ContactVehicle::new(rail, wheels, grid.nx, grid.dx, scene.speed).map_err(fail)?;
         return Ok(Box::new(model));

@@ -48,6 +48,7 @@ fn vehicle(behind: &[f64], slopes: bool, nodes: usize, dx: f64, speed: f64) -> C
             law: law(slopes),
             response: None,
             mean_load: 1e5,
+            rail: 0,
         })
         .collect();
     ContactVehicle::new(rail, wheels, nodes, dx, speed).unwrap()
@@ -152,6 +153,7 @@ fn on_the_discrete_track_without_creep_slopes_the_normal_forces_are_the_vertical
             law: law(false),
             response: None,
             mean_load: 1e5,
+            rail: 0,
         })
         .collect();
     let model = ContactVehicle::new(rail, wheels, nodes, dx, speed).unwrap();

@@ -19,6 +19,7 @@ mod reader;
 pub mod record;
 pub mod roughness;
 pub mod schema;
+mod second_rail;
 mod track;
 pub mod traffic;
 pub mod units;
@@ -220,7 +221,7 @@ fn plausibility(table: &Table, prefix: &str, out: &mut Vec<String>) {
 }
 
 /// The sections of a config, in the order they are documented.
-pub const SECTIONS: [&str; 16] = [
+pub const SECTIONS: [&str; 17] = [
     "material",
     "geometry",
     "rolling",
@@ -236,6 +237,7 @@ pub const SECTIONS: [&str; 16] = [
     "traffic",
     "vehicle",
     "wheelset",
+    "second_rail",
     "track",
 ];
 
@@ -344,6 +346,9 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     let levels = levels::read(&mut root, &mut resolved, dir, errors);
     let vehicle = vehicle::read(&mut root, &mut resolved, errors);
     let wheelset = wheelset::read(&mut root, &mut resolved, dir, errors);
+    let first_rail =
+        second_rail::FirstRail { normal_force: normal, longitudinal_force: longitudinal, creepage_x, creepage_y, spin };
+    let second = second_rail::read(&mut root, &mut resolved, first_rail, errors);
     // The track matters to growth studies (and is read when given).
     let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
         track::read(&mut root, &mut resolved, errors)
@@ -429,7 +434,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
             "the rail grid would have more than 5e7 nodes; use a larger rail.dx / rail.dy or a shorter stretch".into(),
         ));
     }
-    let (Some(vehicle), Some(wheelset), Some(levels)) = (vehicle, wheelset, levels) else {
+    let (Some(vehicle), Some(wheelset), Some(levels), Some(second_rail)) = (vehicle, wheelset, levels, second) else {
         return (None, resolved);
     };
     let Some(track) = track else {
@@ -446,6 +451,12 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         }
         None => vehicle.max_normal_force(&loads),
     };
+    // The second rail's patch must fit the rail grid too.
+    let max_normal = max_normal.max(
+        second_rail
+            .as_ref()
+            .map_or(0.0, |r| ImposedLoads { normal_force: r.normal_force, ..loads.clone() }.max_normal_force()),
+    );
     load::check_wheel_loads(&vehicle, &loads, mu, errors);
     if let Some(p) = shape.and_then(|s| s.patch(max_normal).ok())
         && half_width < p.b
@@ -532,7 +543,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
             ContactModel::ExactTransient(ContactGrid::Adapted { mesh, solver: step_solver })
         }
     };
-    let scene = Scene {
+    let mut scene = Scene {
         material,
         geometry,
         speed,
@@ -553,7 +564,9 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         track,
         vehicle,
         wheelset,
+        second_rail,
     };
+    second_rail::check(&mut scene, errors);
     check_sleeper_bays(&scene, errors);
     vehicle::check(&scene, errors);
     wheelset::check(&scene, errors);
@@ -562,7 +575,6 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     // contact.solver = "auto" on the fixed grid: the cheaper tangential
     // solver by the cost model (the config keeps "auto"), for the scene's
     // normal contact and for the linear contact's passages of "auto".
-    let mut scene = scene;
     if errors.is_empty() && scene.contact.model.fixed_grid().is_some() {
         let choice = crate::cost::auto_grid_solver(&scene);
         let mut linear = scene.clone();

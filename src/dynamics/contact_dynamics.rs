@@ -102,12 +102,22 @@ impl WheelSide {
     /// the left and z up: its (x, y, z) block of wheel 0 turns by `S =
     /// diag(1, -1, -1)` on both sides.
     pub fn receptance(&self, omega: f64, speed: f64) -> Mat3 {
+        self.receptance_between(omega, speed, 0, 0)
+    }
+
+    /// The displacement of wheel `at`'s contact per unit force at wheel
+    /// `from`'s (m/N; wheel 0 the first rail's, 1 the second's; both in
+    /// the rail's common axes, x along, y to the right, z down): the
+    /// modal wheelset's block `S H_(at, from) S` (the point receptance for
+    /// `at == from`). The rigid wheel has no second wheel: zero between two.
+    pub fn receptance_between(&self, omega: f64, speed: f64, at: usize, from: usize) -> Mat3 {
         match self {
-            WheelSide::Rigid(w) => w.receptance(omega, speed),
+            WheelSide::Rigid(w) if at == from => w.receptance(omega, speed),
+            WheelSide::Rigid(_) => Mat3::zeros(),
             WheelSide::Modal { model, spin } => {
                 let h = model.receptance(omega, *spin);
                 let sign = [1.0, -1.0, -1.0];
-                Mat3::from_fn(|a, b| h[(dof(0, DIRECTIONS[a]), dof(0, DIRECTIONS[b]))] * (sign[a] * sign[b]))
+                Mat3::from_fn(|a, b| h[(dof(at, DIRECTIONS[a]), dof(from, DIRECTIONS[b]))] * (sign[a] * sign[b]))
             }
         }
     }

@@ -57,6 +57,10 @@ pub struct VehicleWheel3 {
     pub response: Option<CreepResponse>,
     /// Mean normal force (N), for the parametric excitation.
     pub mean_load: f64,
+    /// The rail it runs on: 0 the first, 1 the second rail of the
+    /// wheelset (its wheel 1; a wheel on the second rail at the same
+    /// `behind` as one on the first is the same wheelset's other wheel).
+    pub rail: usize,
 }
 
 /// The channels of [`ContactSignals`], in the table's order.
@@ -99,7 +103,21 @@ impl ContactVehicle {
             .into_par_iter()
             .map(|h| {
                 let w = 2.0 * PI * h as f64 * speed / length;
-                let own: Vec<Mat3> = wheels.iter().map(|c| c.side.receptance(w, speed)).collect();
+                // The wheels' blocks: each wheel's point receptance, and
+                // between the two wheels of one wheelset (the same place,
+                // two rails) the wheelset's transfer receptance.
+                let own: Vec<Mat3> = (0..n * n)
+                    .map(|p| {
+                        let (j, l) = (&wheels[p / n], &wheels[p % n]);
+                        if p / n == p % n {
+                            j.side.receptance_between(w, speed, j.rail, j.rail)
+                        } else if j.behind == l.behind && j.rail != l.rail {
+                            j.side.receptance_between(w, speed, j.rail, l.rail)
+                        } else {
+                            Mat3::zeros()
+                        }
+                    })
+                    .collect();
                 let laws: Vec<ContactLaw> = wheels
                     .iter()
                     .map(|c| c.response.as_ref().map_or(c.law, |r| c.law.at_frequency(&r.at(w / (2.0 * PI)))))
@@ -125,18 +143,43 @@ impl ContactVehicle {
                         model.head_receptances(&pairs, w)?.chunks(n * n).map(|c| c.to_vec()).collect()
                     }
                 };
+                // The two rails are not coupled (their sleepers' rocking
+                // is left out); the second rail is the first's mirror image
+                // in the common axes (y to the right): M A M, M = diag(1, -1, 1).
+                let rails: Vec<Vec<Mat3>> = rails
+                    .into_iter()
+                    .map(|blocks| {
+                        blocks
+                            .into_iter()
+                            .enumerate()
+                            .map(|(p, a)| match (wheels[p / n].rail, wheels[p % n].rail) {
+                                (0, 0) => a,
+                                (1, 1) => mirror(&a),
+                                _ => Mat3::zeros(),
+                            })
+                            .collect()
+                    })
+                    .collect();
                 Ok(rails.iter().map(|a_r| solve(&own, a_r, &laws, w, speed)).collect())
             })
             .collect::<Result<Vec<_>, Discrete3Error>>()?;
-        let paths = match &rail {
-            Rail3::Discrete { vertical, sleeper_x0, .. } => {
-                let behind: Vec<f64> = wheels.iter().map(|c| c.behind).collect();
-                let loads: Vec<f64> = wheels.iter().map(|c| c.mean_load).collect();
+        // Each rail's wheels' paths under that rail's loads.
+        let mut paths = vec![vec![0.0; nodes]; n];
+        if let Rail3::Discrete { vertical, sleeper_x0, .. } = &rail {
+            for r in 0..2 {
+                let on: Vec<usize> = (0..n).filter(|&i| wheels[i].rail == r).collect();
+                if on.is_empty() {
+                    continue;
+                }
+                let behind: Vec<f64> = on.iter().map(|&i| wheels[i].behind).collect();
+                let loads: Vec<f64> = on.iter().map(|&i| wheels[i].mean_load).collect();
                 let statics = static_receptances(vertical, &behind);
-                parametric_paths(&statics, vertical.spacing, &behind, &loads, *sleeper_x0, nodes, dx)
+                let rail_paths = parametric_paths(&statics, vertical.spacing, &behind, &loads, *sleeper_x0, nodes, dx);
+                for (i, p) in on.into_iter().zip(rail_paths) {
+                    paths[i] = p;
+                }
             }
-            Rail3::Continuous(_) => vec![vec![0.0; nodes]; n],
-        };
+        }
         Ok(ContactVehicle { rail, wheels, key: (speed, nodes, dx), table, paths })
     }
 
@@ -187,19 +230,27 @@ impl ContactVehicle {
     }
 }
 
+/// The second rail's block of the first's in the common axes: `M A M`,
+/// `M = diag(1, -1, 1)` (the lateral direction mirrored).
+fn mirror(a: &Mat3) -> Mat3 {
+    let sign = [1.0, -1.0, 1.0];
+    Mat3::from_fn(|r, c| a[(r, c)] * (sign[r] * sign[c]))
+}
+
 /// Eq. 1 for unit inputs at each wheel: the responses (rows `CHANNELS i +
-/// c`, columns the input's wheel) with the wheels' receptances `own`, the
+/// c`, columns the input's wheel) with the wheels' blocks `own[j n + l]`
+/// (a wheel's point receptance, or the wheelset's between its two wheels), the
 /// rail's blocks `a_r[j n + l]` (at wheel `j` under a force at wheel `l`)
 /// and the wheels' laws at angular frequency `omega` (rad/s) and speed
 /// `speed` (m/s).
 fn solve(own: &[Mat3], a_r: &[Mat3], laws: &[ContactLaw], omega: f64, speed: f64) -> DMatrix<Complex64> {
-    let n = own.len();
+    let n = laws.len();
     let iwv = Complex64::new(0.0, omega / speed);
     let one = Complex64::new(1.0, 0.0);
     // The relative displacements per force, A (3n x 3n).
     let a = DMatrix::from_fn(3 * n, 3 * n, |r, c| {
         let (j, l) = (r / 3, c / 3);
-        let block = a_r[j * n + l] + if j == l { own[j] } else { Mat3::zeros() };
+        let block = a_r[j * n + l] + own[j * n + l];
         block[(r % 3, c % 3)]
     });
     let mut m = DMatrix::<Complex64>::zeros(3 * n, 3 * n);
@@ -257,6 +308,10 @@ impl TrackDynamics for ContactVehicle {
 
     fn wheels(&self) -> usize {
         self.wheels.len()
+    }
+
+    fn rail_of(&self, wheel: usize) -> usize {
+        self.wheels[wheel].rail
     }
 
     fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {

@@ -70,6 +70,13 @@ pub trait TrackDynamics {
         1
     }
 
+    /// The rail wheel `wheel` runs on: 0 the first, 1 the wheelset's
+    /// second rail ([`contact_vehicle`]).
+    fn rail_of(&self, wheel: usize) -> usize {
+        let _ = wheel;
+        0
+    }
+
     /// The dynamic normal force on each wheel (N, zero mean), `[wheel][j]`
     /// the force on the wheel when it is at `X_j = j dx`, from the profile
     /// each wheel sees (`profiles[wheel]`, sampled as in

@@ -148,8 +148,8 @@ pub struct GrowthPass {
     /// The leading wheel's passage on the extended grid (history, unfolded
     /// wear), with the fallback steps of every wheel's.
     pub passage: PassageResult,
-    /// The other wheels' patch histories, the second wheel first (empty
-    /// for one wheel).
+    /// The other wheels' patch histories on the first rail, the second
+    /// wheel first (empty for one wheel).
     pub wheel_histories: Vec<PatchHistory>,
     /// Wear of one simulated wheel passage on the periodic grid (m): with
     /// several wheels, the mean of theirs.
@@ -170,6 +170,23 @@ pub struct GrowthPass {
     /// Why `Auto`'s linear contact stopped, if it did and the passage was
     /// run again with the nonlinear contact.
     pub rerun: Option<String>,
+    /// The wheelset's second rail's part of the passage, where it has one.
+    pub second_rail: Option<RailPass>,
+}
+
+/// What one growth passage left on the wheelset's second rail.
+#[derive(Debug, Clone)]
+pub struct RailPass {
+    /// Its wheel's patch history.
+    pub history: PatchHistory,
+    /// Its wear of one wheel passage on the periodic grid (m).
+    pub wear: Array2<f64>,
+    /// Its wheel's dynamic normal force on the periodic grid (N).
+    pub dynamic_force: Vec<f64>,
+    /// Steps inside the stretch where its wheel left the rail.
+    pub contact_loss_steps: usize,
+    /// Steps where its linear profile contact's pressure vanished inside.
+    pub clipped_steps: usize,
 }
 
 /// The largest curvature of the corrugation, relative to the wheel's
@@ -226,23 +243,64 @@ pub fn growth_passage(
     record_fields: bool,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<GrowthPass, PassageError> {
+    let rails = [Rail { spec, profile }];
+    growth_passage_rails(&rails, shape, solver, deposit, grid, normal, dynamics, record_fields, progress)
+}
+
+/// One rail of a growth passage: its passage (loads, creepages, spin) and
+/// its profile.
+#[derive(Debug, Clone, Copy)]
+pub struct Rail<'a> {
+    /// The passage of its wheels.
+    pub spec: &'a PassageSpec,
+    /// Its profile (m).
+    pub profile: &'a Array2<f64>,
+}
+
+/// [`growth_passage`] of a wheelset on `rails` (the first rail first; a
+/// second where the dynamics couples the wheelset's two contacts,
+/// [`crate::dynamics::contact_vehicle`]): each rail's wheel runs over its
+/// own profile with its own steady state and its own dynamic variations,
+/// and wears its own rail. `Auto` takes the linear contact where every
+/// rail's corrugation allows it.
+#[allow(clippy::too_many_arguments)]
+pub fn growth_passage_rails(
+    rails: &[Rail],
+    shape: &HertzShape,
+    solver: &mut dyn TangentialSolver,
+    deposit: &dyn WearKernel,
+    grid: &RailGrid,
+    normal: NormalContact,
+    dynamics: Option<&dyn TrackDynamics>,
+    record_fields: bool,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<GrowthPass, PassageError> {
     // Auto: the linear contact while the curvature of the corrugation it
     // sees is small against the wheel's (the raw profile's second
     // differences see the wear's rounding at the rail cells' scale too).
-    let a = shape.patch(spec.loads.normal_force).map(|p| p.a).unwrap_or(0.0);
+    let surfaces = |solver: &dyn TangentialSolver| -> Vec<RailSurface> {
+        rails
+            .iter()
+            .map(|r| {
+                let a = shape.patch(r.spec.loads.normal_force).map(|p| p.a).unwrap_or(0.0);
+                linear_surface(r.profile, grid, solver, a)
+            })
+            .collect()
+    };
     let linear = match normal {
-        NormalContact::Linear { .. } => Some(linear_surface(profile, grid, &*solver, a)),
-        NormalContact::Auto { .. } => Some(linear_surface(profile, grid, &*solver, a)).filter(|s| {
-            let (crest, trough) = s.curvature_range();
-            trough.max(-crest) < LINEAR_CONTACT_CURVATURE * 2.0 * shape.curvatures().a
+        NormalContact::Linear { .. } => Some(surfaces(&*solver)),
+        NormalContact::Auto { .. } => Some(surfaces(&*solver)).filter(|all| {
+            all.iter().all(|s| {
+                let (crest, trough) = s.curvature_range();
+                trough.max(-crest) < LINEAR_CONTACT_CURVATURE * 2.0 * shape.curvatures().a
+            })
         }),
         _ => None,
     }
-    .map(Arc::new);
+    .map(|all| all.into_iter().map(Arc::new).collect::<Vec<_>>());
     let auto = matches!(normal, NormalContact::Auto { .. });
-    let mut run = |linear| {
-        passage_with(spec, shape, solver, deposit, grid, profile, normal, linear, dynamics, record_fields, progress)
-    };
+    let mut run =
+        |linear| passage_with(rails, shape, solver, deposit, grid, normal, linear, dynamics, record_fields, progress);
     match run(linear.clone()) {
         Err(e @ PassageError::Tangential { .. }) if auto && linear.is_some() => {
             run(None).map(|g| GrowthPass { rerun: Some(e.to_string()), ..g })
@@ -259,74 +317,94 @@ fn linear_surface(profile: &Array2<f64>, grid: &RailGrid, solver: &dyn Tangentia
     RailSurface::corrugation_above(profile, grid, solver.linear_resolution(a).unwrap_or(0.0))
 }
 
-/// [`growth_passage`] in the linear contact over the surface `linear`, or
-/// without it in the one `normal` names.
+/// [`growth_passage_rails`] in the linear contact over each rail's surface
+/// `linear`, or without it in the one `normal` names.
 #[allow(clippy::too_many_arguments)]
 fn passage_with(
-    spec: &PassageSpec,
+    rails: &[Rail],
     shape: &HertzShape,
     solver: &mut dyn TangentialSolver,
     deposit: &dyn WearKernel,
     grid: &RailGrid,
-    profile: &Array2<f64>,
     normal: NormalContact,
-    linear: Option<Arc<RailSurface>>,
+    linear: Option<Vec<Arc<RailSurface>>>,
     dynamics: Option<&dyn TrackDynamics>,
     record_fields: bool,
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<GrowthPass, PassageError> {
     let length = grid.nx as f64 * grid.dx;
-    let mut spec = spec.clone();
     let linear_contact = linear.is_some();
-    // The rail surface in the normal problem of every step.
-    let seen_by = match (normal, linear) {
+    // Each rail's surface in the normal problem of every step.
+    let seen_by = match (normal, &linear) {
         (NormalContact::Hertz, _) => Seen::HertzLine,
-        (_, Some(linear)) => {
-            let surface = RailContact::Linear(linear);
-            solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
-            spec.surface = Some(surface);
-            Seen::Linear
-        }
-        _ => {
-            let surface = RailContact::Profile(Arc::new(RailSurface::corrugation(profile, grid)));
-            solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
-            spec.surface = Some(surface);
-            Seen::Profile
-        }
+        (_, Some(_)) => Seen::Linear,
+        _ => Seen::Profile,
     };
-    // Each wheel's loads, and the profile it sees at its mean load (the
-    // same for wheels of the same load).
+    let surfaces: Vec<Option<RailContact>> = rails
+        .iter()
+        .enumerate()
+        .map(|(r, rail)| match (seen_by, &linear) {
+            (Seen::HertzLine, _) => None,
+            (_, Some(l)) => Some(RailContact::Linear(l[r].clone())),
+            _ => Some(RailContact::Profile(Arc::new(RailSurface::corrugation(rail.profile, grid)))),
+        })
+        .collect();
+    // The solver's surface is the rail's whose wheel it solves.
+    let mut current: Option<usize> = None;
+    let mut use_rail = |solver: &mut dyn TangentialSolver, r: usize| -> Result<(), PassageError> {
+        if current != Some(r)
+            && let Some(surface) = &surfaces[r]
+        {
+            solver.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
+        }
+        current = Some(r);
+        Ok(())
+    };
+    // Each wheel's rail and loads, and the profile it sees at its mean load
+    // (the same for wheels of the same load on the same rail).
     let wheels = dynamics.map_or(1, |d| d.wheels());
-    let loads: Vec<ImposedLoads> =
-        if spec.wheel_loads.is_empty() { vec![spec.loads.clone(); wheels] } else { spec.wheel_loads.clone() };
+    let rail_of: Vec<usize> = (0..wheels).map(|w| dynamics.map_or(0, |d| d.rail_of(w))).collect();
+    let loads: Vec<ImposedLoads> = (0..wheels)
+        .map(|w| {
+            let spec = rails[rail_of[w]].spec;
+            match spec.wheel_loads.get(w) {
+                Some(l) if rail_of[w] == 0 => l.clone(),
+                _ => spec.loads.clone(),
+            }
+        })
+        .collect();
     let mut seen: Vec<Vec<f64>> = Vec::with_capacity(wheels);
     for (w, l) in loads.iter().enumerate() {
-        let same = loads[..w].iter().position(|o| o.normal_force == l.normal_force);
+        let same = (0..w).find(|&o| rail_of[o] == rail_of[w] && loads[o].normal_force == l.normal_force);
         let line = match same {
             Some(o) => seen[o].clone(),
-            None => seen_profile(
-                seen_by,
-                solver,
-                profile,
-                grid,
-                shape,
-                l.normal_force,
-                spec.step_length,
-                dynamics.is_some(),
-            )?,
+            None => {
+                let rail = &rails[rail_of[w]];
+                use_rail(solver, rail_of[w])?;
+                seen_profile(
+                    seen_by,
+                    solver,
+                    rail.profile,
+                    grid,
+                    shape,
+                    l.normal_force,
+                    rail.spec.step_length,
+                    dynamics.is_some(),
+                )?
+            }
         };
         seen.push(line);
     }
     // Each wheel's force when it is at X (one wheel without dynamics), and
     // where the dynamics has every direction, its creep force's and
     // creepages' variations.
-    let signals = dynamics.and_then(|d| d.contact_signals(&seen, grid.dx, spec.speed));
+    let speed = rails[0].spec.speed;
+    let signals = dynamics.and_then(|d| d.contact_signals(&seen, grid.dx, speed));
     let forces = match (&signals, dynamics) {
         (Some(s), _) => s.iter().map(|c| c.normal.clone()).collect(),
-        (None, Some(d)) => d.wheel_forces(&seen, grid.dx, spec.speed),
+        (None, Some(d)) => d.wheel_forces(&seen, grid.dx, speed),
         (None, None) => vec![vec![0.0; grid.nx]],
     };
-    spec.wear_window = (grid.x_min, grid.x_min + length);
     // Extended grid on the same lattice, wide enough for the largest patch
     // of this passage (imposed plus dynamic normal force, of any wheel), so
     // no wear is clipped at its ends.
@@ -340,13 +418,21 @@ fn passage_with(
     let reach = (a_max / grid.dx).ceil() as usize + 2;
     let ext = RailGrid { x_min: grid.x_min - reach as f64 * grid.dx, nx: grid.nx + 2 * reach, ..grid.clone() };
     // Every wheel over the whole stretch with its own force; the wear of
-    // one wheel passage is their mean (wheel passages are the traffic).
+    // one wheel passage is the mean of its rail's wheels (wheel passages
+    // are the traffic).
     let window = grid.x_min..grid.x_min + length;
-    let mut wear = Array2::zeros((grid.ny, grid.nx));
-    let (mut contact_loss_steps, mut clipped_steps, mut fallback_steps) = (0, 0, 0);
-    let mut leading = None;
+    let mut wear = vec![Array2::zeros((grid.ny, grid.nx)); rails.len()];
+    let mut on_rail = vec![0usize; rails.len()];
+    let (mut contact_loss_steps, mut clipped_steps) = (vec![0; rails.len()], vec![0; rails.len()]);
+    let mut fallback_steps = 0;
+    let mut leading: Vec<Option<PassageResult>> = vec![None; rails.len()];
     let mut wheel_histories = Vec::new();
     for (w, force) in forces.iter().enumerate() {
+        let r = rail_of[w];
+        use_rail(solver, r)?;
+        let mut spec = rails[r].spec.clone();
+        spec.surface = surfaces[r].clone();
+        spec.wear_window = (grid.x_min, grid.x_min + length);
         spec.loads = loads[w].clone();
         spec.dynamic_normal_force = Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: force.clone() });
         let signal = |values: &Vec<f64>| Some(PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: values.clone() });
@@ -377,31 +463,50 @@ fn passage_with(
         });
         let mut report = |done: usize, total: usize| progress(w * total + done, wheels * total);
         let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, &mut report)?;
-        wear += &fold_periodic(&passage.wear, &ext, grid);
+        wear[r] += &fold_periodic(&passage.wear, &ext, grid);
+        on_rail[r] += 1;
         let h = &passage.history;
-        contact_loss_steps +=
+        contact_loss_steps[r] +=
             h.x_c.iter().zip(&h.in_contact).filter(|(x, c)| window.contains(*x) && **c == 0.0).count();
-        clipped_steps += passage.clipped_steps;
+        clipped_steps[r] += passage.clipped_steps;
         fallback_steps += passage.fallback_steps;
-        match leading {
-            None => leading = Some(passage),
-            Some(_) => wheel_histories.push(passage.history),
+        match &leading[r] {
+            None => leading[r] = Some(passage),
+            Some(_) if r == 0 => wheel_histories.push(passage.history),
+            Some(_) => {}
         }
     }
-    if wheels > 1 {
-        wear /= wheels as f64;
+    for (wear, n) in wear.iter_mut().zip(&on_rail) {
+        if *n > 1 {
+            *wear /= *n as f64;
+        }
     }
-    let passage = PassageResult { fallback_steps, ..leading.expect("one wheel at least") };
+    let mut leading = leading.into_iter();
+    let first = leading.next().flatten().expect("one wheel at least");
+    let passage = PassageResult { fallback_steps, ..first };
+    let mut wear = wear.into_iter();
+    let first_wear = wear.next().expect("one rail");
+    let second_rail = leading.next().flatten().map(|p| {
+        let w = rail_of.iter().position(|&r| r == 1).expect("a wheel on the second rail");
+        RailPass {
+            history: p.history,
+            wear: wear.next().expect("the second rail's wear"),
+            dynamic_force: forces[w].clone(),
+            contact_loss_steps: contact_loss_steps[1],
+            clipped_steps: clipped_steps[1],
+        }
+    });
     let dynamic_force = forces.into_iter().next().expect("one wheel at least");
     Ok(GrowthPass {
         wheel_histories,
         passage,
-        wear,
+        wear: first_wear,
         dynamic_force,
-        contact_loss_steps,
-        clipped_steps,
+        contact_loss_steps: contact_loss_steps[0],
+        clipped_steps: clipped_steps[0],
         linear_contact,
         rerun: None,
+        second_rail,
     })
 }
 

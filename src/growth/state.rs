@@ -88,4 +88,8 @@ pub struct RunState {
     /// The rail's roughness level in each band before the first passage
     /// (dB re 1 um); empty until the study fills it in.
     pub initial_level: Vec<f64>,
+    /// The wheelset's second rail's state (its profile, rows, stored
+    /// states and its wheel's histories; its rows' traffic is the first
+    /// rail's), where the study has one.
+    pub second_rail: Option<Box<RunState>>,
 }

@@ -25,7 +25,7 @@ use super::roughness::profile_line;
 use super::spectrum::{amplitudes, growth_rates, wavelengths};
 use super::state::{PassRow, RailSnapshot, RunState};
 use super::traffic::change_rate;
-use super::{contact_filtered_line, growth_passage};
+use super::{Rail, contact_filtered_line, growth_passage_rails};
 use crate::build::{Derived, DynamicsError, build_deposit, build_solver, derive, study_grid, track_dynamics};
 use crate::contact::{ContactError, Elements, TangentialSolver};
 use crate::dynamics::TrackDynamics;
@@ -33,7 +33,7 @@ use crate::levels::{BandLevels, forecast::crossed, level_rates};
 use crate::metrics::{centre_row, rms_corrugation};
 use crate::model_choice::hertz_validity::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::params::{GrowthParams, NormalContact, Scene, StopRule, TrafficClass, TrafficScaling};
-use crate::passage::{PassageError, PassageSpec, run_passage};
+use crate::passage::{PassageError, PassageSpec, PatchHistory, run_passage};
 use crate::rail_grid::RailGrid;
 use crate::wear::WearKernel;
 use ndarray::Array2;
@@ -124,11 +124,13 @@ pub struct Advanced {
 /// (speed, contact spring at its load, unsprung mass).
 struct ClassModel {
     passage: PassageSpec,
+    /// The passage of the wheelset's second rail, where it has one.
+    second_passage: Option<PassageSpec>,
     dynamics: Option<Box<dyn TrackDynamics>>,
-    /// The wear one passage of the class leaves on the smooth rail where
-    /// its track forces a dynamic force there; computed at the class's
-    /// first passage of this invocation.
-    forced: Option<Vec<f64>>,
+    /// The wear one passage of the class leaves on the smooth rails (the
+    /// first's, then the second's) where its track forces a dynamic force
+    /// there; computed at the class's first passage of this invocation.
+    forced: Option<Vec<Vec<f64>>>,
 }
 
 /// A growth study (or a single passage) in progress: the scene's kernels,
@@ -163,6 +165,7 @@ pub struct Study<'a> {
 /// single passage), no passages done.
 pub fn initial_state(scene: &Scene) -> RunState {
     let grid = study_grid(scene);
+    let second_rail = scene.second_rail_scene().map(|second| Box::new(initial_state(&second)));
     let profile = match &scene.growth {
         Some(g) => {
             let line = profile_line(&g.roughness, &grid.xs(), grid.nx as f64 * grid.dx);
@@ -177,6 +180,7 @@ pub fn initial_state(scene: &Scene) -> RunState {
         histories: Vec::new(),
         wheel_histories: Vec::new(),
         initial_level: Vec::new(),
+        second_rail,
     }
 }
 
@@ -222,7 +226,8 @@ impl<'a> Study<'a> {
                 let cs = scene.for_class(c);
                 let cd = derive(&cs);
                 let dynamics = track_dynamics(&cs, &cd)?;
-                Ok(ClassModel { passage: cd.passage, dynamics, forced: None })
+                let second_passage = cs.second_rail_scene().map(|s| derive(&s).passage);
+                Ok(ClassModel { passage: cd.passage, second_passage, dynamics, forced: None })
             })
             .collect::<Result<_, DynamicsError>>()?;
         let has_dynamics = models.iter().any(|m| m.dynamics.is_some());
@@ -249,12 +254,18 @@ impl<'a> Study<'a> {
         };
         // The rail's band levels over the running band of the mean patch.
         let (levels, limit) = band_levels(scene, &grid, mean_patch.1);
-        if state.initial_level.is_empty() {
-            if state.rows.is_empty() {
-                state.initial_level = levels.levels(&state.profile);
-            } else {
-                fill_legacy_levels(&mut state, &levels);
+        let fill = |state: &mut RunState| {
+            if state.initial_level.is_empty() {
+                if state.rows.is_empty() {
+                    state.initial_level = levels.levels(&state.profile);
+                } else {
+                    fill_legacy_levels(state, &levels);
+                }
             }
+        };
+        fill(&mut state);
+        if let Some(second) = state.second_rail.as_deref_mut() {
+            fill(second);
         }
         // A study that stopped (growth.stop) stays stopped when resumed: the
         // rule reads the stored rows.
@@ -324,6 +335,7 @@ impl<'a> Study<'a> {
         let (mut loss, mut clipped, mut linear_contact) = (0, 0, false);
         let fallbacks;
         let mut others = Vec::new();
+        let mut second = None;
         let (wear, history) = match growth {
             None => {
                 let r = run_passage(
@@ -343,21 +355,28 @@ impl<'a> Study<'a> {
                 let model = &mut self.models[class];
                 let (solver, deposit, grid, shape) =
                     (self.solver.as_mut(), self.deposit.as_ref(), &self.grid, &self.d.shape);
-                let mut passage = |profile: &Array2<f64>, record: bool, report: &mut dyn FnMut(usize, usize)| {
-                    growth_passage(
-                        &model.passage,
-                        shape,
-                        &mut *solver,
-                        deposit,
-                        grid,
-                        profile,
-                        normal,
-                        model.dynamics.as_deref(),
-                        record,
-                        report,
-                    )
-                };
-                let g = passage(&self.state.profile, record_fields, &mut report);
+                let mut passage =
+                    |profiles: [Option<&Array2<f64>>; 2], record: bool, report: &mut dyn FnMut(usize, usize)| {
+                        let specs = [Some(&model.passage), model.second_passage.as_ref()];
+                        let rails: Vec<Rail> = specs
+                            .into_iter()
+                            .zip(profiles)
+                            .filter_map(|(spec, profile)| Some(Rail { spec: spec?, profile: profile? }))
+                            .collect();
+                        growth_passage_rails(
+                            &rails,
+                            shape,
+                            &mut *solver,
+                            deposit,
+                            grid,
+                            normal,
+                            model.dynamics.as_deref(),
+                            record,
+                            report,
+                        )
+                    };
+                let profiles = [Some(&self.state.profile), self.state.second_rail.as_ref().map(|s| &s.profile)];
+                let g = passage(profiles, record_fields, &mut report);
                 // At saturation the dynamic force may take N below F_x / mu:
                 // the prescribed force can no longer be transmitted, the end
                 // of what the model describes; the study stops there.
@@ -373,12 +392,16 @@ impl<'a> Study<'a> {
                 loss = g.contact_loss_steps;
                 clipped = g.clipped_steps;
                 linear_contact = g.linear_contact;
-                if clipped > 0 {
+                let names = self.scene.second_rail.as_ref().map(|r| r.names.clone());
+                let on = |k: usize| names.as_ref().map_or_else(String::new, |n| format!(" (the {})", n[k]));
+                let clipped_all =
+                    [(clipped, on(0))].into_iter().chain(g.second_rail.as_ref().map(|r| (r.clipped_steps, on(1))));
+                for (steps, rail) in clipped_all.filter(|(c, _)| *c > 0) {
                     progress(Event::Warning {
                         pass,
                         message: format!(
                             "the linear profile contact's patch opened inside (the pressure vanished well inside \
-                             the patch) at {clipped} steps: the corrugation is beyond the linearisation's range \
+                             the patch) at {steps} steps{rail}: the corrugation is beyond the linearisation's range \
                              (contact.normal = \"profile\", the nonlinear profile contact of the fixed grid, \
                              solves it)"
                         ),
@@ -393,13 +416,15 @@ impl<'a> Study<'a> {
                         ),
                     });
                 }
-                if g.contact_loss_steps > 0 {
+                let lost = [(g.contact_loss_steps, on(0))]
+                    .into_iter()
+                    .chain(g.second_rail.as_ref().map(|r| (r.contact_loss_steps, on(1))));
+                for (steps, rail) in lost.filter(|(c, _)| *c > 0) {
                     progress(Event::Warning {
                         pass,
                         message: format!(
-                            "the wheel left the rail at {} of the stretch's steps (N <= 0): the linear track model \
-                             is not valid there, and the growth this passage drives is not reliable",
-                            g.contact_loss_steps
+                            "the wheel left the rail{rail} at {steps} of the stretch's steps (N <= 0): the linear \
+                             track model is not valid there, and the growth this passage drives is not reliable"
                         ),
                     });
                 }
@@ -411,10 +436,14 @@ impl<'a> Study<'a> {
                 // and the update bound counts the rest (growth::traffic).
                 if model.forced.is_none() && model.dynamics.as_deref().is_some_and(|dy| dy.forces_smooth_rail()) {
                     let smooth = Array2::zeros(self.state.profile.raw_dim());
-                    let w0 = passage(&smooth, false, &mut |_, _| {}).map_err(fail)?;
-                    model.forced = Some(line(&w0.wear));
+                    let two = self.state.second_rail.is_some();
+                    let w0 = passage([Some(&smooth), two.then_some(&smooth)], false, &mut |_, _| {}).map_err(fail)?;
+                    let mut forced = vec![line(&w0.wear)];
+                    forced.extend(w0.second_rail.as_ref().map(|r| line(&r.wear)));
+                    model.forced = Some(forced);
                 }
                 others = g.wheel_histories;
+                second = g.second_rail;
                 (g.wear, g.passage.history)
             }
         };
@@ -428,69 +457,51 @@ impl<'a> Study<'a> {
             });
         }
         let cpu_seconds = clock.elapsed().as_secs_f64();
-        let m_rho = self.traffic_scale(class, &line(&wear));
-        let (m, rho) = m_rho;
-        let state = &mut self.state;
-        let previous = state.rows.last();
-        let filtered = |p: &Array2<f64>| contact_filtered_line(p, &self.grid, self.mean_patch.1);
-        let before = match previous {
-            Some(r) => r.filtered_spectrum.clone(),
-            None => amplitudes(&filtered(&state.profile)),
+        let second_line = second.as_ref().map(|r| line(&r.wear));
+        let (m, rho) = self.traffic_scale(class, &line(&wear), second_line.as_deref());
+        let profile_contact = match normal {
+            NormalContact::Hertz => 0.0,
+            _ if linear_contact => PROFILE_LINEAR,
+            _ => PROFILE_NONLINEAR,
         };
-        let traffic = previous.map_or(0.0, |r| r.traffic) + m;
-        let levels_before = previous.map_or_else(|| state.initial_level.clone(), |r| r.roughness_level.clone());
-        state.profile.scaled_add(-m, &wear);
-        let roughness_level = self.levels.levels(&state.profile);
-        let spectrum = amplitudes(&line(&state.profile));
-        let filtered_spectrum = amplitudes(&filtered(&state.profile));
-        if let Some(message) = self.hertz_check.check(&self.waves, &filtered_spectrum) {
+        let keep = RowKeep {
+            pass,
+            class,
+            cpu_seconds,
+            m,
+            update_ratio: m * rho,
+            profile_contact,
+            grid: &self.grid,
+            centre: self.centre,
+            mean_b: self.mean_patch.1,
+            levels: &self.levels,
+            store: {
+                let store_every = growth.map_or(1, |g| g.store_every);
+                (pass + 1) % store_every == 0 || pass + 1 == passes
+            },
+            keep_history,
+        };
+        let max_wear = wear.iter().cloned().fold(0.0, f64::max);
+        let row = keep.apply(&mut self.state, wear, history, (loss, clipped));
+        if !others.is_empty() && keep_history {
+            self.state.wheel_histories.push((pass as i64, others));
+        }
+        if let (Some(state), Some(r)) = (self.state.second_rail.as_deref_mut(), second) {
+            keep.apply(state, r.wear, r.history, (r.contact_loss_steps, r.clipped_steps));
+        }
+        if let Some(message) = self.hertz_check.check(&self.waves, &row.filtered_spectrum) {
             progress(Event::Warning { pass, message });
         }
-        let row = PassRow {
-            index: pass as i64,
-            traffic,
-            traffic_scale: m,
-            rms_corrugation: rms_corrugation(state.profile.view(), &self.grid),
-            removed_volume: wear.sum() * self.grid.dx * self.grid.dy,
-            cpu_seconds,
-            update_ratio: m * rho,
-            traffic_class: class,
-            contact_loss_steps: loss as f64,
-            profile_contact: match normal {
-                NormalContact::Hertz => 0.0,
-                _ if linear_contact => PROFILE_LINEAR,
-                _ => PROFILE_NONLINEAR,
-            },
-            clipped_steps: clipped as f64,
-            // Below 1e-12 m (1 pm) an amplitude is numerical noise.
-            growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
-            spectrum,
-            filtered_spectrum,
-            level_rate: level_rates(&levels_before, &roughness_level, m),
-            roughness_level,
-        };
         progress(Event::Passage {
             done: pass + 1,
             total: passes,
-            traffic,
+            traffic: row.traffic,
             scale: m,
             rms: row.rms_corrugation,
             update_ratio: row.update_ratio,
             class: (self.classes.len() > 1).then(|| self.classes[class].name.clone()),
         });
-        let max_wear = wear.iter().cloned().fold(0.0, f64::max);
-        let store_every = growth.map_or(1, |g| g.store_every);
-        if (pass + 1) % store_every == 0 || pass + 1 == passes {
-            state.rail.push(RailSnapshot { index: pass as i64, traffic, profile: state.profile.clone(), wear });
-        }
-        if keep_history {
-            state.histories.push((pass as i64, history));
-            if !others.is_empty() {
-                state.wheel_histories.push((pass as i64, others));
-            }
-        }
-        state.rows.push(row);
-        self.stopped = stop_reason(growth, state, &self.levels, &self.limit, &scene.levels.limit.name);
+        self.stopped = stop_reason(growth, &self.state, &self.levels, &self.limit, &scene.levels.limit.name);
         if let Some(reason) = &self.stopped {
             progress(Event::Stopped { pass, reason: reason.clone() });
         }
@@ -515,14 +526,23 @@ impl<'a> Study<'a> {
     /// profile: the update is exact for any m (growth::traffic), rho = 0.
     /// The adaptive m rises from the last m of the same class: classes
     /// whose wear changes the profile faster keep a smaller m.
-    fn traffic_scale(&self, class: usize, wear: &[f64]) -> (f64, f64) {
+    fn traffic_scale(&self, class: usize, wear: &[f64], second: Option<&[f64]>) -> (f64, f64) {
+        // Each rail's rate (the second rail's against its own profile);
+        // the faster one bounds the update.
+        let rate = |k: usize, profile: &Array2<f64>, wear: &[f64]| {
+            let mut w = wear.to_vec();
+            if let Some(w0) = self.models[class].forced.as_ref().and_then(|f| f.get(k)) {
+                w.iter_mut().zip(w0).for_each(|(w, f)| *w -= f);
+            }
+            change_rate(&profile.row(self.centre).to_vec(), &w)
+        };
         let rho = match self.models.get(class) {
             Some(model) if model.dynamics.is_some() => {
-                let mut w = wear.to_vec();
-                if let Some(w0) = &model.forced {
-                    w.iter_mut().zip(w0).for_each(|(w, f)| *w -= f);
+                let first = rate(0, &self.state.profile, wear);
+                match (second, self.state.second_rail.as_deref()) {
+                    (Some(w), Some(s)) => first.max(rate(1, &s.profile, w)),
+                    _ => first,
                 }
-                change_rate(&self.state.profile.row(self.centre).to_vec(), &w)
             }
             _ => 0.0,
         };
@@ -593,6 +613,81 @@ impl<'a> Study<'a> {
     /// um; inf: none).
     pub fn bands(&self) -> (&[crate::levels::Band], &[f64]) {
         (self.levels.bands(), &self.limit)
+    }
+}
+
+/// What a passage's row needs besides its rail's wear: the same for each
+/// rail of the wheelset.
+struct RowKeep<'s> {
+    pass: usize,
+    class: usize,
+    cpu_seconds: f64,
+    /// Real passages this one stands for (1).
+    m: f64,
+    update_ratio: f64,
+    profile_contact: f64,
+    grid: &'s RailGrid,
+    centre: usize,
+    /// The mean patch's lateral semi-axis (m).
+    mean_b: f64,
+    levels: &'s BandLevels,
+    /// Whether the rail's state is stored after this passage.
+    store: bool,
+    keep_history: bool,
+}
+
+impl RowKeep<'_> {
+    /// Updates a rail's `state` with its `wear` of one passage (`r -= m
+    /// W`), appends its row, its stored state and its wheel's `history`
+    /// where kept; `(loss, clipped)` its steps without contact and with
+    /// the linear contact's patch opened. Returns the row.
+    fn apply(
+        &self,
+        state: &mut RunState,
+        wear: Array2<f64>,
+        history: PatchHistory,
+        (loss, clipped): (usize, usize),
+    ) -> PassRow {
+        let line = |p: &Array2<f64>| p.row(self.centre).to_vec();
+        let filtered = |p: &Array2<f64>| contact_filtered_line(p, self.grid, self.mean_b);
+        let previous = state.rows.last();
+        let before = match previous {
+            Some(r) => r.filtered_spectrum.clone(),
+            None => amplitudes(&filtered(&state.profile)),
+        };
+        let m = self.m;
+        let traffic = previous.map_or(0.0, |r| r.traffic) + m;
+        let levels_before = previous.map_or_else(|| state.initial_level.clone(), |r| r.roughness_level.clone());
+        state.profile.scaled_add(-m, &wear);
+        let roughness_level = self.levels.levels(&state.profile);
+        let filtered_spectrum = amplitudes(&filtered(&state.profile));
+        let row = PassRow {
+            index: self.pass as i64,
+            traffic,
+            traffic_scale: m,
+            rms_corrugation: rms_corrugation(state.profile.view(), self.grid),
+            removed_volume: wear.sum() * self.grid.dx * self.grid.dy,
+            cpu_seconds: self.cpu_seconds,
+            update_ratio: self.update_ratio,
+            traffic_class: self.class,
+            contact_loss_steps: loss as f64,
+            profile_contact: self.profile_contact,
+            clipped_steps: clipped as f64,
+            // Below 1e-12 m (1 pm) an amplitude is numerical noise.
+            growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
+            spectrum: amplitudes(&line(&state.profile)),
+            filtered_spectrum,
+            level_rate: level_rates(&levels_before, &roughness_level, m),
+            roughness_level,
+        };
+        if self.store {
+            state.rail.push(RailSnapshot { index: self.pass as i64, traffic, profile: state.profile.clone(), wear });
+        }
+        if self.keep_history {
+            state.histories.push((self.pass as i64, history));
+        }
+        state.rows.push(row.clone());
+        row
     }
 }
 

@@ -30,17 +30,41 @@ pub struct StateLayout<'a> {
     /// Wheels on the rail of each traffic class's vehicle (the stored
     /// passages of a class of several wheels hold the others' histories).
     pub class_wheels: Vec<usize>,
+    /// Whether the run has the wheelset's second rail (group
+    /// `second_rail`).
+    pub second_rail: bool,
 }
 
 /// Reads the state of the run file at `path`, checking every shape against
-/// `layout`.
+/// `layout`: the first rail's from the root groups, the wheelset's second
+/// rail's from group `second_rail` where `layout` has one.
 pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcError> {
+    let mut state = read_rail_state(path, layout, "")?;
+    if layout.second_rail {
+        let second = read_rail_state(path, layout, "second_rail/")?;
+        if second.rows.len() != state.rows.len() {
+            return Err(NcError::Invalid {
+                path: path.to_owned(),
+                what: "second_rail/passes/pass".into(),
+                msg: format!("has {} passages, the first rail {}", second.rows.len(), state.rows.len()),
+            });
+        }
+        state.second_rail = Some(Box::new(second));
+    }
+    Ok(state)
+}
+
+/// One rail's state from the groups `{prefix}passes`, `{prefix}rail` and
+/// `{prefix}contact`.
+fn read_rail_state(path: &Path, layout: &StateLayout, prefix: &str) -> Result<RunState, NcError> {
+    let passes_group = format!("{prefix}passes");
+    let rail_group = format!("{prefix}rail");
     let invalid = |what: &str, msg: String| NcError::Invalid { path: path.to_owned(), what: what.into(), msg };
     let dim = |a: ArrayD<f64>, what: &str| -> Result<ndarray::Array1<f64>, NcError> {
         a.into_dimensionality::<Ix1>().map_err(|e| invalid(what, e.to_string()))
     };
     // Group `passes`.
-    let index = read_i64(path, "passes", "pass")?
+    let index = read_i64(path, &passes_group, "pass")?
         .into_dimensionality::<Ix1>()
         .map_err(|e| invalid("passes/pass", e.to_string()))?;
     let done = index.len();
@@ -48,15 +72,16 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         return Err(invalid("passes/pass", "passage indices are not 0, 1, 2, ...".into()));
     }
     let column = |name: &str| -> Result<ndarray::Array1<f64>, NcError> {
-        let c = dim(read_f64(path, "passes", name)?, &format!("passes/{name}"))?;
+        let c = dim(read_f64(path, &passes_group, name)?, &format!("passes/{name}"))?;
         if c.len() != done {
             return Err(invalid(&format!("passes/{name}"), format!("has {} rows, not {done}", c.len())));
         }
         Ok(c)
     };
     let table = |name: &str| -> Result<Array2<f64>, NcError> {
-        let t =
-            read_f64(path, "passes", name)?.into_dimensionality::<Ix2>().map_err(|e| invalid(name, e.to_string()))?;
+        let t = read_f64(path, &passes_group, name)?
+            .into_dimensionality::<Ix2>()
+            .map_err(|e| invalid(name, e.to_string()))?;
         if t.dim() != (done, layout.wavelengths) {
             return Err(invalid(name, format!("has shape {:?}, not ({done}, {})", t.dim(), layout.wavelengths)));
         }
@@ -67,7 +92,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
     let (traffic, scale, rms, volume, cpu, ratio) = (traffic?, scale?, rms?, volume?, cpu?, ratio?);
     let (spectrum, filtered, rate) = (table("spectrum")?, table("filtered_spectrum")?, table("growth_rate")?);
     // Files written before the column existed had no contact loss recorded.
-    let optional = |name: &str| match read_f64(path, "passes", name) {
+    let optional = |name: &str| match read_f64(path, &passes_group, name) {
         Ok(_) => column(name),
         Err(_) => Ok(ndarray::Array1::zeros(done)),
     };
@@ -75,7 +100,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
     // The band levels (files written before them have none: the study
     // derives them from the spectra, crate::growth::study).
     let band_table = |name: &str| -> Result<Option<Array2<f64>>, NcError> {
-        let Ok(t) = read_f64(path, "passes", name) else { return Ok(None) };
+        let Ok(t) = read_f64(path, &passes_group, name) else { return Ok(None) };
         let t = t.into_dimensionality::<Ix2>().map_err(|e| invalid(name, e.to_string()))?;
         if t.dim() != (done, layout.bands) {
             return Err(invalid(name, format!("has shape {:?}, not ({done}, {})", t.dim(), layout.bands)));
@@ -83,7 +108,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         Ok(Some(t))
     };
     let (levels, rates) = (band_table("roughness_level")?, band_table("level_rate")?);
-    let initial_level = match (&levels, read_f64(path, "passes", "initial_level")) {
+    let initial_level = match (&levels, read_f64(path, &passes_group, "initial_level")) {
         (Some(_), Ok(v)) => {
             let v = dim(v, "passes/initial_level")?;
             if v.len() != layout.bands {
@@ -96,7 +121,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
     let band_row = |t: &Option<Array2<f64>>, k: usize| t.as_ref().map_or_else(Vec::new, |t| t.row(k).to_vec());
     let clipped = optional("clipped_steps")?;
     // Files of a study without classes, or written before the column existed.
-    let class = match read_i64(path, "passes", "traffic_class") {
+    let class = match read_i64(path, &passes_group, "traffic_class") {
         Ok(c) => {
             let c = c.into_dimensionality::<Ix1>().map_err(|e| invalid("passes/traffic_class", e.to_string()))?;
             if c.len() != done || c.iter().any(|k| *k < 0 || *k as usize >= layout.classes.max(1)) {
@@ -135,17 +160,19 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
 
     // Group `rail`.
     let (ny, nx) = layout.grid_shape;
-    let profile =
-        read_f64(path, "rail", "state")?.into_dimensionality::<Ix2>().map_err(|e| invalid("state", e.to_string()))?;
+    let profile = read_f64(path, &rail_group, "state")?
+        .into_dimensionality::<Ix2>()
+        .map_err(|e| invalid("state", e.to_string()))?;
     if profile.dim() != (ny, nx) {
         return Err(invalid(
             "rail/state",
             format!("has shape {:?}, not the config's grid ({ny}, {nx})", profile.dim()),
         ));
     }
-    let stored =
-        read_i64(path, "rail", "pass")?.into_dimensionality::<Ix1>().map_err(|e| invalid("pass", e.to_string()))?;
-    let rail_traffic = dim(read_f64(path, "rail", "traffic")?, "rail/traffic")?;
+    let stored = read_i64(path, &rail_group, "pass")?
+        .into_dimensionality::<Ix1>()
+        .map_err(|e| invalid("pass", e.to_string()))?;
+    let rail_traffic = dim(read_f64(path, &rail_group, "traffic")?, "rail/traffic")?;
     if rail_traffic.len() != stored.len() {
         return Err(invalid("rail/traffic", format!("has {} entries, not {}", rail_traffic.len(), stored.len())));
     }
@@ -155,7 +182,9 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
         return Err(invalid("rail/pass", format!("stored passages must increase within 0 .. {done}")));
     }
     let stack = |name: &str| -> Result<ndarray::Array3<f64>, NcError> {
-        let a = read_f64(path, "rail", name)?.into_dimensionality::<Ix3>().map_err(|e| invalid(name, e.to_string()))?;
+        let a = read_f64(path, &rail_group, name)?
+            .into_dimensionality::<Ix3>()
+            .map_err(|e| invalid(name, e.to_string()))?;
         if a.dim() != (stored.len(), ny, nx) {
             return Err(invalid(name, format!("has shape {:?}, not ({}, {ny}, {nx})", a.dim(), stored.len())));
         }
@@ -174,7 +203,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
     // Group `contact`, and the other wheels' subgroups.
     let (mut histories, mut wheel_histories) = (Vec::new(), Vec::new());
     for k in (0..done).filter(|k| layout.history_passes.contains(k)) {
-        let group = format!("contact/pass_{k:05}");
+        let group = format!("{prefix}contact/pass_{k:05}");
         histories.push((k as i64, read_history(path, &group, layout)?));
         let wheels = layout.class_wheels.get(rows[k].traffic_class).copied().unwrap_or(1);
         if wheels > 1 {
@@ -184,7 +213,7 @@ pub fn read_run_state(path: &Path, layout: &StateLayout) -> Result<RunState, NcE
             wheel_histories.push((k as i64, others));
         }
     }
-    Ok(RunState { profile, rows, rail, histories, wheel_histories, initial_level })
+    Ok(RunState { profile, rows, rail, histories, wheel_histories, initial_level, second_rail: None })
 }
 
 fn read_history(path: &Path, group: &str, layout: &StateLayout) -> Result<PatchHistory, NcError> {

@@ -63,6 +63,9 @@ pub struct RunRecord<'a> {
     pub limit_name: &'a str,
     /// The traffic in the operator's units (a growth study's `[traffic]`).
     pub operation: Option<&'a Operation>,
+    /// The two rails' names, the first's first, where the run has the
+    /// wheelset's second rail (its state is `state.second_rail`).
+    pub rail_names: Option<&'a [String; 2]>,
 }
 
 /// Writes `record` to `path` atomically.
@@ -79,30 +82,43 @@ pub fn write_run_file(path: &Path, record: &RunRecord) -> Result<(), NcError> {
         root.attr_str("stop_reason", record.stop_reason.unwrap_or(""))?;
         root.attr_i64("passes_done", done as i64)?;
         root.attr_i64("passes_planned", record.passes_planned as i64)?;
-        let rail = root.group("rail")?;
-        write_rail(&rail, record)?;
-        super::field_units::write_rail(&rail, record)?;
-        let passes = root.group("passes")?;
-        write_passes(&passes, &record.state.rows, record.wavelengths, record.classes)?;
-        super::field_units::write_passes(&passes, record)?;
+        write_rail_groups(root, record)?;
         if !record.classes.is_empty() {
             write_classes(&root.group("traffic")?, record.classes)?;
         }
         if let Some(r) = record.record {
             write_record(&root.group("record")?, r)?;
         }
-        let contact = root.group("contact")?;
-        for (index, history) in &record.state.histories {
-            let group = contact.group(&format!("pass_{index:05}"))?;
-            write_history(&group, history, record)?;
-            // The other wheels' histories: subgroups wheel_2, wheel_3, ...
-            let others = record.state.wheel_histories.iter().filter(|(i, _)| i == index).flat_map(|(_, h)| h);
-            for (k, h) in others.enumerate() {
-                write_history(&group.group(&format!("wheel_{}", k + 2))?, h, record)?;
-            }
+        // The wheelset's second rail: the same groups in `second_rail`.
+        if let (Some(second), Some(names)) = (record.state.second_rail.as_deref(), record.rail_names) {
+            root.attr_str("rail_name", &names[0])?;
+            let group = root.group("second_rail")?;
+            group.attr_str("rail_name", &names[1])?;
+            write_rail_groups(&group, &RunRecord { state: second, ..record.clone() })?;
         }
         Ok(())
     })
+}
+
+/// One rail's groups `rail`, `passes` and `contact` in `root`.
+fn write_rail_groups(root: &NcGroup, record: &RunRecord) -> Result<(), NcError> {
+    let rail = root.group("rail")?;
+    write_rail(&rail, record)?;
+    super::field_units::write_rail(&rail, record)?;
+    let passes = root.group("passes")?;
+    write_passes(&passes, &record.state.rows, record.wavelengths, record.classes)?;
+    super::field_units::write_passes(&passes, record)?;
+    let contact = root.group("contact")?;
+    for (index, history) in &record.state.histories {
+        let group = contact.group(&format!("pass_{index:05}"))?;
+        write_history(&group, history, record)?;
+        // The other wheels' histories: subgroups wheel_2, wheel_3, ...
+        let others = record.state.wheel_histories.iter().filter(|(i, _)| i == index).flat_map(|(_, h)| h);
+        for (k, h) in others.enumerate() {
+            write_history(&group.group(&format!("wheel_{}", k + 2))?, h, record)?;
+        }
+    }
+    Ok(())
 }
 
 fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {

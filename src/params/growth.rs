@@ -248,6 +248,28 @@ pub enum Roughness {
     Measured(Box<crate::growth::record::MeasuredRoughness>),
 }
 
+impl Roughness {
+    /// The same roughness drawn with another seed (the seeded kinds; the
+    /// others are returned as they are).
+    pub fn with_seed(&self, seed: u64) -> Roughness {
+        match self {
+            Roughness::Random { rms, wavelength_min, wavelength_max, .. } => {
+                Roughness::Random { seed, rms: *rms, wavelength_min: *wavelength_min, wavelength_max: *wavelength_max }
+            }
+            Roughness::Levels { bands, .. } => Roughness::Levels { seed, bands: bands.clone() },
+            other => other.clone(),
+        }
+    }
+
+    /// The generator's seed of a seeded kind.
+    pub fn seed(&self) -> Option<u64> {
+        match self {
+            Roughness::Random { seed, .. } | Roughness::Levels { seed, .. } => Some(*seed),
+            _ => None,
+        }
+    }
+}
+
 /// One one-third-octave band of a roughness level spectrum.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LevelBand {

@@ -472,6 +472,35 @@ pub struct Scene {
     pub vehicle: VehicleParams,
     /// The wheelset (`[wheelset]`), if modelled.
     pub wheelset: Option<WheelsetParams>,
+    /// The wheelset's second rail (`[second_rail]`), if modelled: the
+    /// rail of the scene is then the first (the wheelset's wheel 0).
+    pub second_rail: Option<SecondRail>,
+}
+
+/// The second rail of a wheelset (`[second_rail]`): its contact's steady
+/// state (e.g. from a curving calculation) and its initial roughness. The
+/// scene's own keys describe the first rail. Lateral creepage and spin are
+/// in the same axes on both rails (y to the right of the direction of
+/// travel), so a mirror-symmetric wheelset on tangent track has equal
+/// lateral creepages and opposite spins.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SecondRail {
+    /// The two rails' names, the first rail's first ("left rail", "right
+    /// rail"; a curve's "low rail", "high rail").
+    pub names: [String; 2],
+    /// Mean normal force on the second rail (N).
+    pub normal_force: f64,
+    /// Mean longitudinal force on its wheel (N) (force control).
+    pub longitudinal_force: f64,
+    /// Its longitudinal creepage (1) (creepage control), or None.
+    pub creepage_x: Option<f64>,
+    /// Its lateral creepage (1).
+    pub creepage_y: f64,
+    /// Its spin (1/m).
+    pub spin: f64,
+    /// Seed of its random roughness (a random or level-spectrum roughness;
+    /// the other kinds are the first rail's).
+    pub roughness_seed: Option<u64>,
 }
 
 impl Scene {
@@ -501,5 +530,24 @@ impl Scene {
             }
             None => self.vehicle.max_normal_force(&self.loads),
         }
+        .max(self.second_rail_scene().map_or(0.0, |s| s.loads.max_normal_force()))
+    }
+
+    /// The scene as the second rail's contact sees it (its loads,
+    /// creepages and spin, and its initial roughness), where the wheelset
+    /// has a second rail; the wheelset, track and vehicle are the same.
+    pub fn second_rail_scene(&self) -> Option<Scene> {
+        let second = self.second_rail.as_ref()?;
+        let mut scene = self.clone();
+        scene.second_rail = None;
+        scene.loads.normal_force = second.normal_force;
+        scene.loads.longitudinal_force = second.longitudinal_force;
+        scene.creepage_x = second.creepage_x;
+        scene.creepage_y = second.creepage_y;
+        scene.spin = second.spin;
+        if let (Some(g), Some(seed)) = (scene.growth.as_mut(), second.roughness_seed) {
+            g.roughness = g.roughness.with_seed(seed);
+        }
+        Some(scene)
     }
 }

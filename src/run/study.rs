@@ -215,6 +215,7 @@ pub fn resume(
             .iter()
             .map(|c| c.wheels.as_ref().map_or(scene.vehicle.wheels.len(), Vec::len))
             .collect(),
+        second_rail: scene.second_rail.is_some(),
     };
     if done > growth.passes {
         let msg = format!("holds {done} passages, more than its config's growth.passes = {}", growth.passes);
@@ -229,11 +230,18 @@ pub fn resume(
     let mut state = read_run_state(path, &layout).map_err(read)?;
     // A snapshot stored only because the earlier run ended there is not one
     // the longer run stores.
-    if growth.passes > done
-        && let Some(last) = state.rail.last()
-        && !(last.index as usize + 1).is_multiple_of(growth.store_every)
-    {
-        state.rail.pop();
+    // (Each rail's: the second rail stores with the first.)
+    let drop_end = |state: &mut RunState| {
+        if growth.passes > done
+            && let Some(last) = state.rail.last()
+            && !(last.index as usize + 1).is_multiple_of(growth.store_every)
+        {
+            state.rail.pop();
+        }
+    };
+    drop_end(&mut state);
+    if let Some(second) = state.second_rail.as_deref_mut() {
+        drop_end(second);
     }
     Ok(continue_run(&resolved, state, out.unwrap_or(path), progress)?)
 }
@@ -270,6 +278,7 @@ fn continue_run(
             limit: study.bands().1,
             limit_name: &scene.levels.limit.name,
             operation: scene.growth.as_ref().map(|g| &g.operation),
+            rail_names: scene.second_rail.as_ref().map(|r| &r.names),
         };
         write_run_file(out, &record)
     };

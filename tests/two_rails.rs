@@ -1,0 +1,203 @@
+//! Both rails of a wheelset (`[second_rail]`, src/dynamics/contact_vehicle.rs
+//! with wheels on two rails): the second rail without its contact is the
+//! one-rail model; a mirror-symmetric wheelset on mirror-image contacts and
+//! equal profiles answers mirror-symmetrically; the second rail's profile
+//! reaches the first rail's contact through the wheelset; a two-rail study
+//! resumes bit for bit, both rails; a second rail the scene cannot carry is
+//! refused naming the key.
+use corrugation::build::wheelset_model;
+use corrugation::config::load_str;
+use corrugation::dynamics::TrackDynamics;
+use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, WheelSide};
+use corrugation::dynamics::contact_point::ContactLaw;
+use corrugation::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
+use corrugation::dynamics::continuous3::Continuous3;
+use corrugation::dynamics::track::TrackConfig;
+use corrugation::output::netcdf::{read_attr_str, read_f64};
+use corrugation::run::{resume, run_scene};
+use num_complex::Complex64;
+use std::f64::consts::PI;
+
+const CURVE: &str = include_str!("../configs/curve_two_rails.toml");
+
+fn c(v: f64) -> Complex64 {
+    Complex64::new(v, 0.0)
+}
+
+/// A contact law with cross terms (so that the mirror image differs).
+fn law() -> ContactLaw {
+    ContactLaw {
+        stiffness: 1.83e9,
+        force_per_normal: [c(0.21), c(0.05)],
+        force_per_creepage: [[c(-3.1e7), c(1.2e6)], [c(-0.8e6), c(-3.3e7)]],
+    }
+}
+
+/// The law's mirror image in the common axes (y to the right): the
+/// lateral force and creepage change sign.
+fn mirrored(l: &ContactLaw) -> ContactLaw {
+    let f = l.force_per_creepage;
+    ContactLaw {
+        stiffness: l.stiffness,
+        force_per_normal: [l.force_per_normal[0], -l.force_per_normal[1]],
+        force_per_creepage: [[f[0][0], -f[0][1]], [-f[1][0], f[1][1]]],
+    }
+}
+
+/// The default modal wheelset spinning at 60 km/h.
+fn side() -> WheelSide {
+    let scene = load_str(CURVE, "curve", &[]).unwrap().scene;
+    WheelSide::Modal { model: wheelset_model(&scene).unwrap(), spin: scene.speed / scene.geometry.wheel_radius }
+}
+
+const NODES: usize = 300;
+const DX: f64 = 1e-3;
+const SPEED: f64 = 16.67;
+
+fn rail() -> Rail3 {
+    Rail3::Continuous(Continuous3::new(&TrackConfig::default(), 0.0))
+}
+
+fn wheelset(second: ContactLaw) -> ContactVehicle {
+    let side = side();
+    let wheel = |law: ContactLaw, rail: usize| VehicleWheel3 {
+        behind: 0.0,
+        side: side.clone(),
+        law,
+        response: None,
+        mean_load: 1e5,
+        rail,
+    };
+    ContactVehicle::new(rail(), vec![wheel(law(), 0), wheel(second, 1)], NODES, DX, SPEED).unwrap()
+}
+
+/// Three harmonics of the stretch, phase `p`.
+fn profile(p: f64) -> Vec<f64> {
+    let length = NODES as f64 * DX;
+    (0..NODES)
+        .map(|i| {
+            let x = i as f64 * DX;
+            [(5, 1e-6, 0.3), (17, 5e-7, 1.1), (40, 2e-7, 2.0)]
+                .iter()
+                .map(|(n, a, q)| a * (2.0 * PI * *n as f64 * x / length + q + p).cos())
+                .sum::<f64>()
+        })
+        .collect()
+}
+
+fn peak(a: &[f64]) -> f64 {
+    a.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// max |a - s b| / max |b|.
+fn worst(a: &[f64], b: &[f64], s: f64) -> f64 {
+    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - s * y).abs())) / peak(b)
+}
+
+#[test]
+fn the_second_rail_without_its_contact_is_one_rail() {
+    // No contact spring (1e-6 N/m) and no creep slopes on the second rail:
+    // its wheel is free, as the one-rail model's other wheel.
+    let free = ContactLaw { stiffness: 1e-6, force_per_normal: [c(0.0); 2], force_per_creepage: [[c(0.0); 2]; 2] };
+    let two = wheelset(free);
+    let one = ContactDynamics::new(rail(), side(), law(), None, 1e5, NODES, DX, SPEED).unwrap();
+    let (r0, r1) = (profile(0.0), profile(1.0));
+    let both = two.contact_signals(&[r0.clone(), r1], DX, SPEED).unwrap();
+    let single = one.contact_signals(&[r0], DX, SPEED).unwrap().swap_remove(0);
+    for (name, a, b) in [
+        ("normal", &both[0].normal, &single.normal),
+        ("force_x", &both[0].force_x, &single.force_x),
+        ("creepage_x", &both[0].creepage_x, &single.creepage_x),
+        ("creepage_y", &both[0].creepage_y, &single.creepage_y),
+    ] {
+        // The free wheel's spring carries 1e-6 N/m x 1e-6 m: nothing.
+        assert!(worst(a, b, 1.0) < 1e-9, "{name}: {}", worst(a, b, 1.0));
+    }
+}
+
+#[test]
+fn a_symmetric_wheelset_on_mirror_image_contacts_answers_symmetrically() {
+    // Equal profiles, the second contact the first's mirror image: equal
+    // normal forces and longitudinal creepages, opposite lateral
+    // creepages. The spin about the axle keeps the mirror symmetry (an
+    // axial vector normal to the mirror plane), the gyroscopic coupling
+    // included.
+    let two = wheelset(mirrored(&law()));
+    let r = profile(0.0);
+    let s = two.contact_signals(&[r.clone(), r], DX, SPEED).unwrap();
+    assert!(peak(&s[0].normal) > 100.0 && peak(&s[0].creepage_y) > 1e-9);
+    assert!(worst(&s[1].normal, &s[0].normal, 1.0) < 1e-9, "{}", worst(&s[1].normal, &s[0].normal, 1.0));
+    assert!(worst(&s[1].creepage_x, &s[0].creepage_x, 1.0) < 1e-9);
+    assert!(worst(&s[1].creepage_y, &s[0].creepage_y, -1.0) < 1e-9);
+}
+
+#[test]
+fn the_second_rails_profile_reaches_the_first_rails_contact_through_the_wheelset() {
+    // Only the second rail is rough: the first rail's contact varies by
+    // the wheelset's transfer receptances (roll, bending, torsion), less
+    // than the second's own, and not by nothing.
+    let two = wheelset(law());
+    let s = two.contact_signals(&[vec![0.0; NODES], profile(0.0)], DX, SPEED).unwrap();
+    let (first, second) = (peak(&s[0].normal), peak(&s[1].normal));
+    assert!(first > 1e-3 * second && first < second, "first {first} N, second {second} N");
+    assert!(peak(&s[0].creepage_x) > 0.0);
+}
+
+fn study(passes: usize, extra: &[&str]) -> corrugation::config::Resolved {
+    let set: Vec<String> = [
+        "contact.elements_x=8",
+        "contact.elements_y=8",
+        "growth.contact_history=[0]",
+        "dynamics.creep_forces=steady",
+        "wheelset.model=\"modal\"",
+        "second_rail.normal_force=1.1e5",
+        "second_rail.name=\"high rail\"",
+    ]
+    .iter()
+    .chain(extra)
+    .map(|s| s.to_string())
+    .chain([format!("growth.passes={passes}")])
+    .collect();
+    load_str(include_str!("../configs/growth_fastsim.toml"), "g", &set).unwrap()
+}
+
+#[test]
+fn a_two_rail_study_writes_both_rails_and_resumes_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let (full, part) = (dir.path().join("full.h5"), dir.path().join("part.h5"));
+    run_scene(&study(3, &[]), &full, &mut |_| {}).unwrap();
+    assert_eq!(read_attr_str(&full, "", "rail_name").unwrap(), "left rail");
+    assert_eq!(read_attr_str(&full, "second_rail", "rail_name").unwrap(), "high rail");
+    // Each rail wears, each its own way (its own roughness and load).
+    let v1 = read_f64(&full, "passes", "removed_volume").unwrap();
+    let v2 = read_f64(&full, "second_rail/passes", "removed_volume").unwrap();
+    assert!(v1.iter().all(|v| *v > 0.0) && v2.iter().all(|v| *v > 0.0));
+    assert!(v1.iter().zip(&v2).all(|(a, b)| a != b));
+    assert_eq!(
+        read_f64(&full, "passes", "traffic").unwrap(),
+        read_f64(&full, "second_rail/passes", "traffic").unwrap()
+    );
+    let n2 = read_f64(&full, "second_rail/contact/pass_00000", "normal_force").unwrap();
+    assert!(n2.iter().all(|n| (n - 1.1e5).abs() < 0.2e5), "the second rail's load about its mean");
+    run_scene(&study(2, &[]), &part, &mut |_| {}).unwrap();
+    resume(&part, Some(1), None, &mut |_| {}).unwrap();
+    for g in ["", "second_rail/"] {
+        for (group, v) in [("passes", "rms_corrugation"), ("rail", "state"), ("rail", "profile")] {
+            let group = format!("{g}{group}");
+            let (a, b) = (read_f64(&full, &group, v).unwrap(), read_f64(&part, &group, v).unwrap());
+            assert!(a == b, "{group}/{v}: {:?} vs {:?}", a.shape(), b.shape());
+        }
+    }
+}
+
+#[test]
+fn a_second_rail_the_scene_cannot_carry_is_refused_naming_the_key() {
+    let set = ["second_rail.normal_force=1.1e5".to_string()];
+    let base = include_str!("../configs/growth_fastsim.toml");
+    let e = load_str(base, "g", &set).err().expect("no modal wheelset").to_string();
+    assert!(e.contains("second_rail") && e.contains("wheelset.model"), "{e}");
+    let set = ["second_rail.normal_force=1.1e5", "wheelset.model=\"modal\"", "dynamics.directions=\"vertical\""];
+    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    let e = load_str(base, "g", &set).err().expect("vertical only").to_string();
+    assert!(e.contains("second_rail") && e.contains("dynamics.directions"), "{e}");
+}
