@@ -104,6 +104,25 @@ pub fn print_check(r: &Resolved) {
             s.loads.longitudinal_force, s.creepage_y, s.spin
         ),
     }
+    if let (Some(second), Some(r)) = (s.second_rail_scene(), s.second_rail.as_ref()) {
+        let [first_name, name] = &r.names;
+        let steady = match second.creepage_x {
+            Some(xi) => format!("xi_x = {xi:e}"),
+            None => format!("F_x = {:.4e} N", second.loads.longitudinal_force),
+        };
+        let patch = d.shape.patch(second.loads.normal_force).ok();
+        println!(
+            "rails              two: the {first_name} (the keys above) and the {name}: N = {:.4e} N (a = {:.4} mm, \
+             b = {:.4} mm), {steady}, lateral creepage {:e}, spin {:e} 1/m; the contacts coupled through the modal \
+             wheelset's transfer receptances, the rails themselves not (their sleepers' rocking left out); each \
+             rail its own roughness, wear and growth",
+            second.loads.normal_force,
+            patch.map_or(0.0, |p| p.a * 1e3),
+            patch.map_or(0.0, |p| p.b * 1e3),
+            second.creepage_y,
+            second.spin
+        );
+    }
     if d.patch_min.is_none() {
         println!(
             "contact loss       N <= 0 on part of the stretch (min N = {:.4e} N): no patch there",

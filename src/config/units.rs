@@ -123,6 +123,12 @@ const UNITS: &[(&str, &str)] = &[
     ("traffic.mix.unsprung_mass", "kg"),
     ("traffic.mix.share", "1"),
     ("traffic.mix.wheels", "m"),
+    ("second_rail.normal_force", "N"),
+    ("second_rail.longitudinal_force", "N"),
+    ("second_rail.creepage_x", "1"),
+    ("second_rail.creepage_y", "1"),
+    ("second_rail.spin", "1/m"),
+    ("second_rail.roughness_seed", "1"),
 ];
 
 /// The unit of config key `key` (`load.harmonics[0].amplitude` counts as

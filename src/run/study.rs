@@ -300,9 +300,11 @@ fn continue_run(
     progress(Event::Writing { done: study.state().rows.len() });
     write(&study)?;
     let rows = &study.state().rows;
-    let outlook = match &scene.growth {
+    // Each rail's standing, named where the wheelset has two.
+    let standing = |state: &RunState| match &scene.growth {
         Some(g) => {
             let (bands, limit) = study.bands();
+            let rows = &state.rows;
             let levels: Vec<Vec<f64>> = rows.iter().map(|r| r.roughness_level.clone()).collect();
             let rates: Vec<Vec<f64>> = rows.iter().map(|r| r.level_rate.clone()).collect();
             let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
@@ -311,7 +313,7 @@ fn continue_run(
                 bands,
                 limit,
                 limit_name: &scene.levels.limit.name,
-                initial: &study.state().initial_level,
+                initial: &state.initial_level,
                 levels: &levels,
                 rates: &rates,
                 traffic: &traffic,
@@ -319,6 +321,13 @@ fn continue_run(
             })
         }
         None => Vec::new(),
+    };
+    let outlook = match (study.state().second_rail.as_deref(), scene.second_rail.as_ref()) {
+        (Some(second), Some(r)) => {
+            let named = |name: &str, lines: Vec<String>| lines.into_iter().map(move |l| format!("{name}: {l}"));
+            named(&r.names[0], standing(study.state())).chain(named(&r.names[1], standing(second))).collect()
+        }
+        _ => standing(study.state()),
     };
     Ok(RunSummary {
         passes: rows.len(),
