@@ -403,6 +403,12 @@ fn probes() -> Vec<(String, Table)> {
     out.push(with("levels against ISO 3095", "[levels]\nlimit = \"iso3095\"", &[]));
     out.push(with("the modal wheelset", "[wheelset]\nmodel = \"modal\"", &[]));
     out.push(with(
+        "the second rail under force control",
+        "[wheelset]\nmodel = \"modal\"\n[second_rail]\nnormal_force = 1.1e5\nlongitudinal_force = 1e4\n\
+         roughness_seed = 7",
+        &[],
+    ));
+    out.push(with(
         "the automatic model choice",
         "[contact]\nmodel = \"auto\"\ntolerance = 0.1\n[passage]\nstep_length = 2e-4\n[growth]\nstop = \"saturation\"",
         &["contact.grid", "contact.dx", "contact.dy"],

@@ -324,8 +324,12 @@ fn continue_run(
     };
     let outlook = match (study.state().second_rail.as_deref(), scene.second_rail.as_ref()) {
         (Some(second), Some(r)) => {
-            let named = |name: &str, lines: Vec<String>| lines.into_iter().map(move |l| format!("{name}: {l}"));
-            named(&r.names[0], standing(study.state())).chain(named(&r.names[1], standing(second))).collect()
+            let named = |name: &String, lines: Vec<String>| -> Vec<String> {
+                lines.into_iter().map(|l| format!("{name}: {l}")).collect()
+            };
+            let mut lines = named(&r.names[0], standing(study.state()));
+            lines.extend(named(&r.names[1], standing(second)));
+            lines
         }
         _ => standing(study.state()),
     };
