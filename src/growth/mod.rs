@@ -244,7 +244,7 @@ pub fn growth_passage(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<GrowthPass, PassageError> {
     let rails = [Rail { spec, profile }];
-    growth_passage_rails(&rails, shape, solver, deposit, grid, normal, dynamics, record_fields, progress)
+    growth_passage_rails(&rails, shape, solver, None, deposit, grid, normal, dynamics, record_fields, progress)
 }
 
 /// One rail of a growth passage: its passage (loads, creepages, spin) and
@@ -262,12 +262,15 @@ pub struct Rail<'a> {
 /// [`crate::dynamics::contact_vehicle`]): each rail's wheel runs over its
 /// own profile with its own steady state and its own dynamic variations,
 /// and wears its own rail. `Auto` takes the linear contact where every
-/// rail's corrugation allows it.
+/// rail's corrugation allows it. With `second_solver` (a solver like
+/// `solver`) the two rails' wheels run at once, one on each (the same
+/// results: every passage starts from a reset solver).
 #[allow(clippy::too_many_arguments)]
-pub fn growth_passage_rails(
+pub fn growth_passage_rails<'o>(
     rails: &[Rail],
     shape: &HertzShape,
     solver: &mut dyn TangentialSolver,
+    mut second_solver: Option<&mut (dyn TangentialSolver + 'o)>,
     deposit: &dyn WearKernel,
     grid: &RailGrid,
     normal: NormalContact,
@@ -299,8 +302,10 @@ pub fn growth_passage_rails(
     }
     .map(|all| all.into_iter().map(Arc::new).collect::<Vec<_>>());
     let auto = matches!(normal, NormalContact::Auto { .. });
-    let mut run =
-        |linear| passage_with(rails, shape, solver, deposit, grid, normal, linear, dynamics, record_fields, progress);
+    let mut run = |linear| {
+        let second = second_solver.as_deref_mut();
+        passage_with(rails, shape, solver, second, deposit, grid, normal, linear, dynamics, record_fields, progress)
+    };
     match run(linear.clone()) {
         Err(e @ PassageError::Tangential { .. }) if auto && linear.is_some() => {
             run(None).map(|g| GrowthPass { rerun: Some(e.to_string()), ..g })
@@ -320,10 +325,11 @@ fn linear_surface(profile: &Array2<f64>, grid: &RailGrid, solver: &dyn Tangentia
 /// [`growth_passage_rails`] in the linear contact over each rail's surface
 /// `linear`, or without it in the one `normal` names.
 #[allow(clippy::too_many_arguments)]
-fn passage_with(
+fn passage_with<'o>(
     rails: &[Rail],
     shape: &HertzShape,
     solver: &mut dyn TangentialSolver,
+    mut second_solver: Option<&mut (dyn TangentialSolver + 'o)>,
     deposit: &dyn WearKernel,
     grid: &RailGrid,
     normal: NormalContact,
@@ -373,6 +379,12 @@ fn passage_with(
             }
         })
         .collect();
+    // The two rails' wheels at once, each on its own solver (the second
+    // rail's holds its surface throughout).
+    let parallel = rail_of == [0, 1] && second_solver.is_some();
+    if parallel && let (Some(other), Some(surface)) = (second_solver.as_deref_mut(), &surfaces[1]) {
+        other.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
+    }
     let mut seen: Vec<Vec<f64>> = Vec::with_capacity(wheels);
     for (w, l) in loads.iter().enumerate() {
         let same = (0..w).find(|&o| rail_of[o] == rail_of[w] && loads[o].normal_force == l.normal_force);
@@ -380,10 +392,16 @@ fn passage_with(
             Some(o) => seen[o].clone(),
             None => {
                 let rail = &rails[rail_of[w]];
-                use_rail(solver, rail_of[w])?;
+                let on: &mut dyn TangentialSolver = match second_solver.as_deref_mut() {
+                    Some(other) if parallel && rail_of[w] == 1 => other,
+                    _ => {
+                        use_rail(solver, rail_of[w])?;
+                        &mut *solver
+                    }
+                };
                 seen_profile(
                     seen_by,
-                    solver,
+                    on,
                     rail.profile,
                     grid,
                     shape,
@@ -427,9 +445,8 @@ fn passage_with(
     let mut fallback_steps = 0;
     let mut leading: Vec<Option<PassageResult>> = vec![None; rails.len()];
     let mut wheel_histories = Vec::new();
-    for (w, force) in forces.iter().enumerate() {
+    let wheel_spec = |w: usize, force: &Vec<f64>| -> PassageSpec {
         let r = rail_of[w];
-        use_rail(solver, r)?;
         let mut spec = rails[r].spec.clone();
         spec.surface = surfaces[r].clone();
         spec.wear_window = (grid.x_min, grid.x_min + length);
@@ -461,8 +478,32 @@ fn passage_with(
                 PeriodicSignal { x0: grid.x_min, dx: grid.dx, values: t.creepage(&variation, grid.dx, spec.speed) }
             })
         });
-        let mut report = |done: usize, total: usize| progress(w * total + done, wheels * total);
-        let passage = run_passage(&spec, shape, solver, deposit, &ext, record_fields, &mut report)?;
+        spec
+    };
+    let specs: Vec<PassageSpec> = forces.iter().enumerate().map(|(w, f)| wheel_spec(w, f)).collect();
+    let passages: Vec<PassageResult> = match second_solver {
+        Some(other) if parallel => {
+            use_rail(solver, 0)?;
+            let (first, second) = std::thread::scope(|scope| {
+                let second =
+                    scope.spawn(|| run_passage(&specs[1], shape, other, deposit, &ext, record_fields, &mut |_, _| {}));
+                let first = run_passage(&specs[0], shape, solver, deposit, &ext, record_fields, progress);
+                (first, second.join().expect("the second rail's passage does not panic"))
+            });
+            vec![first?, second?]
+        }
+        _ => {
+            let mut out = Vec::with_capacity(wheels);
+            for (w, spec) in specs.iter().enumerate() {
+                use_rail(solver, rail_of[w])?;
+                let mut report = |done: usize, total: usize| progress(w * total + done, wheels * total);
+                out.push(run_passage(spec, shape, solver, deposit, &ext, record_fields, &mut report)?);
+            }
+            out
+        }
+    };
+    for (w, passage) in passages.into_iter().enumerate() {
+        let r = rail_of[w];
         wear[r] += &fold_periodic(&passage.wear, &ext, grid);
         on_rail[r] += 1;
         let h = &passage.history;

@@ -140,6 +140,8 @@ pub struct Study<'a> {
     growth: Option<&'a GrowthParams>,
     d: Derived,
     solver: Box<dyn TangentialSolver>,
+    /// The second rail's solver (its wheel runs beside the first's).
+    second_solver: Option<Box<dyn TangentialSolver>>,
     deposit: Box<dyn WearKernel>,
     elements: Elements,
     grid: RailGrid,
@@ -215,6 +217,7 @@ impl<'a> Study<'a> {
     pub fn new(scene: &'a Scene, mut state: RunState) -> Result<Self, DynamicsError> {
         let d = derive(scene);
         let solver = build_solver(scene, &d.shape);
+        let second_solver = scene.second_rail.as_ref().map(|_| build_solver(scene, &d.shape));
         let elements = solver.elements();
         let deposit = build_deposit(&elements);
         let growth = scene.growth.as_ref();
@@ -274,6 +277,7 @@ impl<'a> Study<'a> {
             scene,
             growth,
             solver,
+            second_solver,
             deposit,
             elements,
             passes: growth.map_or(1, |g| g.passes),
@@ -355,6 +359,7 @@ impl<'a> Study<'a> {
                 let model = &mut self.models[class];
                 let (solver, deposit, grid, shape) =
                     (self.solver.as_mut(), self.deposit.as_ref(), &self.grid, &self.d.shape);
+                let mut second_solver = self.second_solver.as_deref_mut();
                 let mut passage =
                     |profiles: [Option<&Array2<f64>>; 2], record: bool, report: &mut dyn FnMut(usize, usize)| {
                         let specs = [Some(&model.passage), model.second_passage.as_ref()];
@@ -367,6 +372,7 @@ impl<'a> Study<'a> {
                             &rails,
                             shape,
                             &mut *solver,
+                            second_solver.as_deref_mut(),
                             deposit,
                             grid,
                             normal,
