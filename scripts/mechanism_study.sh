@@ -22,6 +22,13 @@
 #   rutting the curve with the wheelset's torsional mode and a longitudinal
 #           creepage of -2e-3 (the rolling-radius difference), creepage
 #           control: the low rail's rutting mechanism of the literature
+#   low_rail  configs/curve_two_rails.toml's low rail alone (its
+#           [second_rail] section removed): the modal wheelset, its other
+#           wheel free
+#   two_rails configs/curve_two_rails.toml: the low and the high rail, the
+#           two contacts coupled through the modal wheelset (the speeds
+#           figure is the low rail's; rails_summary.csv has each rail's
+#           fastest-growing harmonics)
 # then `corrugation-post speeds` per mechanism (growth rate against
 # wavelength and frequency with the track's resonances; speeds_summary.csv:
 # each study's peak wavelength, frequency and rate) and `corrugation-post
@@ -47,6 +54,8 @@ if [ -n "${PASSES:-}" ]; then
   short=(--set "growth.passes=$PASSES" --set "growth.store_every=$PASSES" --set "growth.checkpoint_every=$PASSES")
 fi
 "$bin" track --overwrite configs/growth_discrete.toml -o "$out/track.h5" --set "dynamics.directions=$directions"
+# The curve's low rail alone: curve_two_rails.toml without its second rail.
+awk '/^\[second_rail\]/ {skip = 1; next} /^\[/ {skip = 0} !skip' configs/curve_two_rails.toml > "$out/low_rail.toml"
 # Creepage control needs the config without its longitudinal force.
 grep -v '^longitudinal_force' configs/growth_discrete.toml > "$out/creepage.toml"
 printf '\n[wheelset]\n' >> "$out/creepage.toml"
@@ -65,7 +74,7 @@ mechanism() {
   done
   .venv/bin/corrugation-post speeds "${made[@]}" --track "$out/track.h5" --out "$out/$name"
 }
-cases=${CASES:-single braked torsion modal bogie curve rutting}
+cases=${CASES:-single braked torsion modal bogie curve rutting low_rail two_rails}
 base=configs/growth_discrete.toml
 for name in $cases; do
   case $name in
@@ -78,7 +87,13 @@ for name in $cases; do
     curve) mechanism curve $base --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 --set load.longitudinal_force=0 ;;
     rutting) mechanism rutting "$out/creepage.toml" --set load.control=creepage --set rolling.creepage_x=-2e-3 \
       --set rolling.creepage_y=5e-3 --set rolling.spin=0.5 ;;
-    *) echo "unknown mechanism $name (single, braked, torsion, modal, bogie, curve, rutting)" >&2; exit 2 ;;
+    low_rail) mechanism low_rail "$out/low_rail.toml" ;;
+    two_rails)
+      mechanism two_rails configs/curve_two_rails.toml
+      .venv/bin/python scripts/rails_summary.py "$out"/two_rails_v*.h5 "$out"/low_rail_v*.h5 > "$out/rails_summary.csv"
+      cat "$out/rails_summary.csv"
+      ;;
+    *) echo "unknown mechanism $name (single, braked, torsion, modal, bogie, curve, rutting, low_rail, two_rails)" >&2; exit 2 ;;
   esac
 done
 # The mechanisms side by side: mechanisms.png, mechanisms_summary.csv (per
