@@ -141,3 +141,29 @@ fn the_torsional_mode_needs_creepage_control_and_a_track_model() {
     let e = errors(scene(&["wheelset.polar_inertia=0"]));
     assert!(e.len() == 1 && e[0].starts_with("wheelset.polar_inertia"), "{e:?}");
 }
+
+#[test]
+fn each_wheel_of_a_vehicle_gets_the_torsion_of_its_own_normal_force() {
+    // Two wheels 2.5 m apart with the torsional feedback of the vertical
+    // dynamics: each wheel's creepage variation is eq. 3 of its own
+    // normal force's variation (before the two rails' change the second
+    // wheel took the leading wheel's).
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("bogie.h5");
+    let resolved = scene(&["growth.passes=1", "vehicle.wheels=[0.0, 2.5]"]).unwrap();
+    run_scene(&resolved, &out, &mut |_| {}).unwrap();
+    let feedback = corrugation::build::derive(&resolved.scene).passage.torsion[0];
+    let group = "contact/pass_00000/wheel_2";
+    let (x, xi, n) = (
+        read_f64(&out, group, "x_c").unwrap(),
+        read_f64(&out, group, "creepage_x").unwrap(),
+        read_f64(&out, group, "normal_force").unwrap(),
+    );
+    let inside: Vec<usize> = (0..x.len()).filter(|&k| x[k] >= -1e-9 && x[k] < 0.12 - 1e-9).collect();
+    assert_eq!(inside.len(), 600);
+    let variation: Vec<f64> = inside.iter().map(|&k| n[k] - 1e5).collect();
+    let expected = feedback.creepage(&variation, 2e-4, 27.78);
+    let span = expected.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = inside.iter().zip(&expected).fold(0.0f64, |m, (&k, e)| m.max((xi[k] + 1.3e-3 - e).abs()));
+    assert!(span > 1e-7 && worst < 1e-6 * span, "{worst:e} of {span:e}");
+}

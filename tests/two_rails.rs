@@ -202,4 +202,10 @@ fn a_second_rail_the_scene_cannot_carry_is_refused_naming_the_key() {
     let Err(e) = load_str(base, "g", &set) else { panic!("accepted with the vertical dynamics only") };
     let e = e.to_string();
     assert!(e.contains("second_rail") && e.contains("dynamics.directions"), "{e}");
+    // Two rails of one name; the second rail's load in full sliding.
+    let set = ["second_rail.name=\"left rail\"", "wheelset.model=\"modal\"", "second_rail.normal_force=2e4"];
+    let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+    let Err(e) = load_str(base, "g", &set) else { panic!("accepted two rails of one name") };
+    let e = e.to_string();
+    assert!(e.contains("second_rail.name") && e.contains("second_rail.longitudinal_force"), "{e}");
 }

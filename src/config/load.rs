@@ -153,6 +153,19 @@ impl LoadProblem {
     }
 }
 
+/// What keeps the wheelset's second rail's loads (`second`, the first
+/// rail's harmonics kept) from being run with friction `mu`, in words.
+pub(super) fn second_rail_problem(second: &ImposedLoads, mu: f64) -> Option<String> {
+    match load_problem(second, mu) {
+        Some(p) => Some(p.describe()),
+        None if second.min_normal_force() <= 0.0 => Some(format!(
+            "N reaches {:.6e} N <= 0 with load.harmonics: the second rail's wheel leaves its rail",
+            second.min_normal_force()
+        )),
+        None => None,
+    }
+}
+
 /// What keeps `loads` from being run with friction `mu`, if anything.
 fn load_problem(loads: &ImposedLoads, mu: f64) -> Option<LoadProblem> {
     let (n_min, f_max) = (loads.min_normal_force(), loads.max_longitudinal_force());

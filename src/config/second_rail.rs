@@ -99,8 +99,33 @@ pub(super) fn check(scene: &mut Scene, errors: &mut Vec<ConfigError>) {
         ));
         return;
     };
-    if second.roughness_seed.is_none() {
-        second.roughness_seed = growth.roughness.seed().map(|s| s.wrapping_add(1));
+    match (second.roughness_seed, growth.roughness.seed()) {
+        (None, seed) => second.roughness_seed = seed.map(|s| s.wrapping_add(1)),
+        (Some(_), None) => errors.push(ConfigError::new(
+            "second_rail.roughness_seed",
+            "seeds a random roughness: only with roughness.kind = \"random\" or \"levels\" (the other kinds are \
+             the first rail's on both rails)"
+                .into(),
+        )),
+        _ => {}
+    }
+    if second.names[0] == second.names[1] {
+        errors.push(ConfigError::new(
+            "second_rail.name",
+            format!(
+                "= \"{}\" is the first rail's name too (second_rail.first_name): the rails need two names",
+                second.names[1]
+            ),
+        ));
+    }
+    let loads = crate::loads::ImposedLoads {
+        normal_force: second.normal_force,
+        longitudinal_force: second.longitudinal_force,
+        ..scene.loads.clone()
+    };
+    if let Some(problem) = super::load::second_rail_problem(&loads, scene.material.friction) {
+        let key = if problem.contains("F_x") { "second_rail.longitudinal_force" } else { "second_rail.normal_force" };
+        errors.push(ConfigError::new(key, problem));
     }
     if !matches!(growth.directions, Directions::All { .. }) || growth.dynamics.unsprung_mass().is_none() {
         errors.push(ConfigError::new(
@@ -125,10 +150,10 @@ pub(super) fn check(scene: &mut Scene, errors: &mut Vec<ConfigError>) {
             ),
         ));
     }
-    if growth.classes.len() > 1 {
+    if super::traffic::is_mix(&growth.classes) {
         errors.push(ConfigError::new(
             "second_rail",
-            "goes with one traffic class: the second rail's loads are given for the scene's wheelset, not per \
+            "goes without a traffic mix: the second rail's loads are given for the scene's wheelset, not per \
              class of [[traffic.mix]]"
                 .into(),
         ));

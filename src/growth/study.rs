@@ -272,7 +272,7 @@ impl<'a> Study<'a> {
         }
         // A study that stopped (growth.stop) stays stopped when resumed: the
         // rule reads the stored rows.
-        let stopped = stop_reason(growth, &state, &levels, &limit, &scene.levels.limit.name);
+        let stopped = rails_stop_reason(scene, &state, &levels, &limit);
         Ok(Study {
             scene,
             growth,
@@ -492,11 +492,21 @@ impl<'a> Study<'a> {
         if !others.is_empty() && keep_history {
             self.state.wheel_histories.push((pass as i64, others));
         }
-        if let (Some(state), Some(r)) = (self.state.second_rail.as_deref_mut(), second) {
-            keep.apply(state, r.wear, r.history, (r.contact_loss_steps, r.clipped_steps));
-        }
-        if let Some(message) = self.hertz_check.check(&self.waves, &row.filtered_spectrum) {
-            progress(Event::Warning { pass, message });
+        let second_row = match (self.state.second_rail.as_deref_mut(), second) {
+            (Some(state), Some(r)) => {
+                Some(keep.apply(state, r.wear, r.history, (r.contact_loss_steps, r.clipped_steps)))
+            }
+            _ => None,
+        };
+        let names = self.scene.second_rail.as_ref().map(|r| &r.names);
+        for (k, row) in std::iter::once(&row).chain(second_row.as_ref()).enumerate() {
+            if let Some(message) = self.hertz_check.check(&self.waves, &row.filtered_spectrum) {
+                let message = match names {
+                    Some(n) => format!("{}: {message}", n[k]),
+                    None => message,
+                };
+                progress(Event::Warning { pass, message });
+            }
         }
         progress(Event::Passage {
             done: pass + 1,
@@ -507,7 +517,7 @@ impl<'a> Study<'a> {
             update_ratio: row.update_ratio,
             class: (self.classes.len() > 1).then(|| self.classes[class].name.clone()),
         });
-        self.stopped = stop_reason(growth, &self.state, &self.levels, &self.limit, &scene.levels.limit.name);
+        self.stopped = rails_stop_reason(scene, &self.state, &self.levels, &self.limit);
         if let Some(reason) = &self.stopped {
             progress(Event::Stopped { pass, reason: reason.clone() });
         }
@@ -694,6 +704,21 @@ impl RowKeep<'_> {
         }
         state.rows.push(row.clone());
         row
+    }
+}
+
+/// Why a growth study of `scene` stops after the last row of `state`: the
+/// first rail's reason, or where the wheelset has a second rail, the first
+/// rail's or the second's, named.
+fn rails_stop_reason(scene: &Scene, state: &RunState, levels: &BandLevels, limit: &[f64]) -> Option<String> {
+    let growth = scene.growth.as_ref();
+    let name = &scene.levels.limit.name;
+    let first = stop_reason(growth, state, levels, limit, name);
+    match (state.second_rail.as_deref(), scene.second_rail.as_ref()) {
+        (Some(second), Some(r)) => first
+            .map(|why| format!("{}: {why}", r.names[0]))
+            .or_else(|| stop_reason(growth, second, levels, limit, name).map(|why| format!("{}: {why}", r.names[1]))),
+        _ => first,
     }
 }
 
