@@ -505,8 +505,8 @@ fn contact_dynamics(
             }
         })
         .collect();
-    // The wheelset's second rail: its wheel, its contact at its own steady
-    // state (one wheelset: config::second_rail checks).
+    // The wheelsets' second rail: each wheelset's other wheel, at the same
+    // place, its contact at the second rail's steady state.
     let mut wheels = wheels;
     if let Some(second) = scene.second_rail_scene() {
         let (n0, fx) = (second.loads.normal_force, second.loads.longitudinal_force);
@@ -518,7 +518,11 @@ fn contact_dynamics(
                     .map_err(|e| DynamicsError::CreepResponse(format!("second rail: {e}")))?,
             ),
         };
-        wheels.push(VehicleWheel3 { behind: 0.0, side: side(mass), law, response, mean_load: n0, rail: 1 });
+        for i in 0..v.wheels.len() {
+            let (law, response) = (law, response.clone());
+            let side = side(v.wheel_mass(i, mass));
+            wheels.push(VehicleWheel3 { behind: v.wheels[i], side, law, response, mean_load: n0, rail: 1 });
+        }
     }
     if wheels.len() > 1 {
         let model = ContactVehicle::new(rail, wheels, grid.nx, grid.dx, scene.speed).map_err(fail)?;

@@ -201,7 +201,12 @@ pub fn estimate(s: &Scene) -> CostEstimate {
         }
         _ => wheels as f64,
     };
-    let per_passage = p.n_steps() as f64 * (contact + deposit) * mean_wheels;
+    // The wheelset's second rail doubles the contacts, but its wheels run
+    // beside the first rail's: on two cores a two-rail passage measured
+    // 1.14 times a straight single contact's (scripts/two_rails_cost.sh),
+    // and a curve's unfolded grid takes about 1.3 of that; 1.3 here.
+    let rails = if s.second_rail.is_some() { 1.3 } else { 1.0 };
+    let per_passage = p.n_steps() as f64 * (contact + deposit) * mean_wheels * rails;
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
     // The discrete model tabulates its receptances once per traffic class
     // (0.9 s CPU for the 108 harmonics up to 5 kHz of growth_discrete.toml,

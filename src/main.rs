@@ -402,6 +402,12 @@ fn report(s: &RunSummary, out: &Path) {
         s.removed_volume,
         s.rms_corrugation,
     );
+    if let Some(([first, second], volume, rms)) = &s.second_rail {
+        say!(
+            "(those are the {first}'s; the {second}: removed volume {volume:.4e} m^3, rms corrugation {rms:.4e} m, \
+             in group second_rail)"
+        );
+    }
     if let Some(reason) = &s.stop_reason {
         say!("the study stopped before its planned passages (growth.stop): {reason}");
     }

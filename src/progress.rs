@@ -72,14 +72,18 @@ impl Progress {
                 None => {}
             },
             Event::Passage { .. } if !self.growth => {}
-            Event::Passage { done, total, traffic, scale, rms, update_ratio, class } => {
+            Event::Passage { done, total, traffic, scale, rms, second_rail, update_ratio, class } => {
                 let first = *self.first_pass.get_or_insert(done - 1);
                 let elapsed = self.start.elapsed().as_secs_f64();
                 let eta = elapsed / (done - first) as f64 * (total - done) as f64;
                 let class = class.map(|c| format!(" [{c}]")).unwrap_or_default();
+                let rms_text = match &second_rail {
+                    Some((a, b, second)) => format!("{rms:.4e} m ({a}), {second:.4e} m ({b})"),
+                    None => format!("{rms:.4e} m"),
+                };
                 let text = format!(
                     "passage {done}/{total}{class}: traffic {traffic:.4e} (m = {scale:.3e}, update ratio \
-                     {update_ratio:.2e}), rms corrugation {rms:.4e} m"
+                     {update_ratio:.2e}), rms corrugation {rms_text}"
                 );
                 match &self.bar {
                     Some(b) => {

@@ -209,3 +209,27 @@ fn a_second_rail_the_scene_cannot_carry_is_refused_naming_the_key() {
     let e = e.to_string();
     assert!(e.contains("second_rail.name") && e.contains("second_rail.longitudinal_force"), "{e}");
 }
+
+#[test]
+fn a_bogie_on_two_rails_runs_and_resumes_bit_for_bit() {
+    // Two wheelsets 2.5 m apart, each with its wheel on each rail: the
+    // second rail's second wheel has its own history, unlike its first's.
+    let dir = tempfile::tempdir().unwrap();
+    let (full, part) = (dir.path().join("full.h5"), dir.path().join("part.h5"));
+    let bogie = ["vehicle.wheels=[0.0, 2.5]"];
+    run_scene(&study(3, &bogie), &full, &mut |_| {}).unwrap();
+    let group = "second_rail/contact/pass_00000";
+    let lead = read_f64(&full, group, "normal_force").unwrap();
+    let second = read_f64(&full, &format!("{group}/wheel_2"), "normal_force").unwrap();
+    assert_eq!(lead.shape(), second.shape());
+    assert!(lead.iter().zip(second.iter()).any(|(a, b)| (a - b).abs() > 1.0));
+    run_scene(&study(2, &bogie), &part, &mut |_| {}).unwrap();
+    resume(&part, Some(1), None, &mut |_| {}).unwrap();
+    for g in ["", "second_rail/"] {
+        for (group, v) in [("passes", "rms_corrugation"), ("rail", "state"), ("rail", "profile")] {
+            let group = format!("{g}{group}");
+            let (a, b) = (read_f64(&full, &group, v).unwrap(), read_f64(&part, &group, v).unwrap());
+            assert!(a == b, "{group}/{v}");
+        }
+    }
+}

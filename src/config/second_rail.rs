@@ -88,8 +88,10 @@ pub(super) fn read(
 
 /// Fills in the roughness seed's default (the first rail's plus 1) and
 /// checks that the scene can carry a second rail: a growth study with the
-/// dynamics in every direction on one wheelset, modal (the two contacts are
-/// coupled through the wheelset), without a traffic mix.
+/// dynamics in every direction, the modal wheelset (each wheelset's two
+/// contacts are coupled through it), without a traffic mix. Under a
+/// vehicle of several wheels (`vehicle.wheels`) every wheelset has its
+/// second wheel on the second rail, at the second rail's steady state.
 pub(super) fn check(scene: &mut Scene, errors: &mut Vec<ConfigError>) {
     let Some(second) = scene.second_rail.as_mut() else { return };
     let Some(growth) = scene.growth.as_ref() else {
@@ -124,8 +126,15 @@ pub(super) fn check(scene: &mut Scene, errors: &mut Vec<ConfigError>) {
         ..scene.loads.clone()
     };
     if let Some(problem) = super::load::second_rail_problem(&loads, scene.material.friction) {
-        let key = if problem.contains("F_x") { "second_rail.longitudinal_force" } else { "second_rail.normal_force" };
-        errors.push(ConfigError::new(key, problem));
+        errors.push(ConfigError::new(
+            "second_rail.normal_force",
+            format!(
+                "{problem} on the second rail: its N is second_rail.normal_force = {:.6e} N, its F_x \
+                 second_rail.longitudinal_force (load.longitudinal_force unless given) = {:.6e} N, with \
+                 load.harmonics",
+                second.normal_force, second.longitudinal_force
+            ),
+        ));
     }
     if !matches!(growth.directions, Directions::All { .. }) || growth.dynamics.unsprung_mass().is_none() {
         errors.push(ConfigError::new(
@@ -139,15 +148,6 @@ pub(super) fn check(scene: &mut Scene, errors: &mut Vec<ConfigError>) {
         errors.push(ConfigError::new(
             "second_rail",
             "needs the modal wheelset (wheelset.model = \"modal\"): it couples the two wheels' contacts".into(),
-        ));
-    }
-    if scene.vehicle.wheels.len() > 1 {
-        errors.push(ConfigError::new(
-            "second_rail",
-            format!(
-                "goes with one wheelset: vehicle.wheels has {} wheels (two rails under a bogie are not modelled yet)",
-                scene.vehicle.wheels.len()
-            ),
         ));
     }
     if super::traffic::is_mix(&growth.classes) {

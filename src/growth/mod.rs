@@ -177,8 +177,11 @@ pub struct GrowthPass {
 /// What one growth passage left on the wheelset's second rail.
 #[derive(Debug, Clone)]
 pub struct RailPass {
-    /// Its wheel's patch history.
+    /// Its leading wheel's patch history.
     pub history: PatchHistory,
+    /// Its other wheels' patch histories (a vehicle of several
+    /// wheelsets), the second wheel first.
+    pub wheel_histories: Vec<PatchHistory>,
     /// Its wear of one wheel passage on the periodic grid (m).
     pub wear: Array2<f64>,
     /// Its wheel's dynamic normal force on the periodic grid (N).
@@ -381,7 +384,7 @@ fn passage_with<'o>(
         .collect();
     // The two rails' wheels at once, each on its own solver (the second
     // rail's holds its surface throughout).
-    let parallel = rail_of == [0, 1] && second_solver.is_some();
+    let parallel = rails.len() == 2 && rail_of.contains(&1) && second_solver.is_some();
     if parallel && let (Some(other), Some(surface)) = (second_solver.as_deref_mut(), &surfaces[1]) {
         other.set_surface(Some(surface.clone())).map_err(PassageError::Surface)?;
     }
@@ -444,7 +447,7 @@ fn passage_with<'o>(
     let (mut contact_loss_steps, mut clipped_steps) = (vec![0; rails.len()], vec![0; rails.len()]);
     let mut fallback_steps = 0;
     let mut leading: Vec<Option<PassageResult>> = vec![None; rails.len()];
-    let mut wheel_histories = Vec::new();
+    let mut wheel_histories = vec![Vec::new(); rails.len()];
     let wheel_spec = |w: usize, force: &Vec<f64>| -> PassageSpec {
         let r = rail_of[w];
         let mut spec = rails[r].spec.clone();
@@ -483,14 +486,35 @@ fn passage_with<'o>(
     let specs: Vec<PassageSpec> = forces.iter().enumerate().map(|(w, f)| wheel_spec(w, f)).collect();
     let passages: Vec<PassageResult> = match second_solver {
         Some(other) if parallel => {
+            // Each rail's wheels one after the other, the rails side by
+            // side; the progress is the first rail's.
             use_rail(solver, 0)?;
+            let order = &rail_of;
+            let on = move |r: usize| (0..wheels).filter(move |&w| order[w] == r);
+            let first_wheels = on(0).count();
             let (first, second) = std::thread::scope(|scope| {
-                let second =
-                    scope.spawn(|| run_passage(&specs[1], shape, other, deposit, &ext, record_fields, &mut |_, _| {}));
-                let first = run_passage(&specs[0], shape, solver, deposit, &ext, record_fields, progress);
-                (first, second.join().expect("the second rail's passage does not panic"))
+                let second = scope.spawn(|| {
+                    on(1)
+                        .map(|w| {
+                            run_passage(&specs[w], shape, &mut *other, deposit, &ext, record_fields, &mut |_, _| {})
+                        })
+                        .collect::<Result<Vec<_>, _>>()
+                });
+                let first = on(0)
+                    .enumerate()
+                    .map(|(k, w)| {
+                        let mut report = |done: usize, total: usize| progress(k * total + done, first_wheels * total);
+                        run_passage(&specs[w], shape, &mut *solver, deposit, &ext, record_fields, &mut report)
+                    })
+                    .collect::<Result<Vec<_>, _>>();
+                (first, second.join().expect("the second rail's passages do not panic"))
             });
-            vec![first?, second?]
+            // Back in the wheels' order: the first rail's, then the second's.
+            let (mut first, mut second) = (first?.into_iter(), second?.into_iter());
+            rail_of
+                .iter()
+                .map(|&r| if r == 0 { first.next() } else { second.next() }.expect("a passage per wheel"))
+                .collect()
         }
         _ => {
             let mut out = Vec::with_capacity(wheels);
@@ -513,8 +537,7 @@ fn passage_with<'o>(
         fallback_steps += passage.fallback_steps;
         match &leading[r] {
             None => leading[r] = Some(passage),
-            Some(_) if r == 0 => wheel_histories.push(passage.history),
-            Some(_) => {}
+            Some(_) => wheel_histories[r].push(passage.history),
         }
     }
     for (wear, n) in wear.iter_mut().zip(&on_rail) {
@@ -527,10 +550,13 @@ fn passage_with<'o>(
     let passage = PassageResult { fallback_steps, ..first };
     let mut wear = wear.into_iter();
     let first_wear = wear.next().expect("one rail");
+    let mut histories = wheel_histories.into_iter();
+    let wheel_histories = histories.next().expect("one rail");
     let second_rail = leading.next().flatten().map(|p| {
         let w = rail_of.iter().position(|&r| r == 1).expect("a wheel on the second rail");
         RailPass {
             history: p.history,
+            wheel_histories: histories.next().unwrap_or_default(),
             wear: wear.next().expect("the second rail's wear"),
             dynamic_force: forces[w].clone(),
             contact_loss_steps: contact_loss_steps[1],

@@ -58,8 +58,11 @@ pub enum Event {
         traffic: f64,
         /// Real passages this one stood for (1).
         scale: f64,
-        /// rms corrugation after it (m).
+        /// rms corrugation after it (m): the first rail's.
         rms: f64,
+        /// With the wheelset's second rail: the first rail's name, the
+        /// second's, and the second's rms corrugation after it (m).
+        second_rail: Option<(String, String, f64)>,
         /// Relative profile change of its update (1).
         update_ratio: f64,
         /// Its traffic class, in a mixed-traffic study.
@@ -488,13 +491,10 @@ impl<'a> Study<'a> {
             keep_history,
         };
         let max_wear = wear.iter().cloned().fold(0.0, f64::max);
-        let row = keep.apply(&mut self.state, wear, history, (loss, clipped));
-        if !others.is_empty() && keep_history {
-            self.state.wheel_histories.push((pass as i64, others));
-        }
+        let row = keep.apply(&mut self.state, wear, (history, others), (loss, clipped));
         let second_row = match (self.state.second_rail.as_deref_mut(), second) {
             (Some(state), Some(r)) => {
-                Some(keep.apply(state, r.wear, r.history, (r.contact_loss_steps, r.clipped_steps)))
+                Some(keep.apply(state, r.wear, (r.history, r.wheel_histories), (r.contact_loss_steps, r.clipped_steps)))
             }
             _ => None,
         };
@@ -514,6 +514,7 @@ impl<'a> Study<'a> {
             traffic: row.traffic,
             scale: m,
             rms: row.rms_corrugation,
+            second_rail: second_row.as_ref().zip(names).map(|(r, n)| (n[0].clone(), n[1].clone(), r.rms_corrugation)),
             update_ratio: row.update_ratio,
             class: (self.classes.len() > 1).then(|| self.classes[class].name.clone()),
         });
@@ -654,14 +655,15 @@ struct RowKeep<'s> {
 
 impl RowKeep<'_> {
     /// Updates a rail's `state` with its `wear` of one passage (`r -= m
-    /// W`), appends its row, its stored state and its wheel's `history`
-    /// where kept; `(loss, clipped)` its steps without contact and with
-    /// the linear contact's patch opened. Returns the row.
+    /// W`), appends its row, its stored state and its wheels' histories
+    /// (the leading wheel's, the others') where kept; `(loss, clipped)`
+    /// its steps without contact and with the linear contact's patch
+    /// opened. Returns the row.
     fn apply(
         &self,
         state: &mut RunState,
         wear: Array2<f64>,
-        history: PatchHistory,
+        (history, others): (PatchHistory, Vec<PatchHistory>),
         (loss, clipped): (usize, usize),
     ) -> PassRow {
         let line = |p: &Array2<f64>| p.row(self.centre).to_vec();
@@ -701,6 +703,9 @@ impl RowKeep<'_> {
         }
         if self.keep_history {
             state.histories.push((self.pass as i64, history));
+            if !others.is_empty() {
+                state.wheel_histories.push((self.pass as i64, others));
+            }
         }
         state.rows.push(row.clone());
         row

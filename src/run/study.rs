@@ -140,6 +140,10 @@ pub struct RunSummary {
     /// Where the rail stands against the roughness limit, in words
     /// ([`crate::levels::forecast::outlook`]; empty for one passage).
     pub outlook: Vec<String>,
+    /// With the wheelset's second rail: both rails' names and the second
+    /// rail's last removed volume (m^3) and rms corrugation (m); the
+    /// fields above are the first rail's.
+    pub second_rail: Option<([String; 2], f64, f64)>,
 }
 
 /// Runs the scene (one passage, or a growth study over `growth.passes`
@@ -351,5 +355,16 @@ fn continue_run(
         update_bound: study.update_bound(),
         stop_reason: study.stopped().map(str::to_owned),
         outlook,
+        second_rail: study.state().second_rail.as_deref().zip(scene.second_rail.as_ref()).map(|(state, r)| {
+            let last = state.rows.last();
+            (
+                r.names.clone(),
+                last.map_or(0.0, |x| x.removed_volume),
+                last.map_or_else(
+                    || crate::metrics::rms_corrugation(state.profile.view(), study.grid()),
+                    |x| x.rms_corrugation,
+                ),
+            )
+        }),
     })
 }
