@@ -112,7 +112,7 @@ pub fn print_check(r: &Resolved) {
         };
         let patch = d.shape.patch(second.loads.normal_force).ok();
         println!(
-            "rails              two: the {first_name} (the keys above) and the {name}: N = {:.4e} N (a = {:.4} mm, \
+            "rails              two: the {first_name} (the keys and the lines above) and the {name}: N = {:.4e} N (a = {:.4} mm, \
              b = {:.4} mm), {steady}, lateral creepage {:e}, spin {:e} 1/m; the contacts coupled through the modal \
              wheelset's transfer receptances, the rails themselves not (their sleepers' rocking left out); each \
              rail its own roughness, wear and growth",

@@ -68,7 +68,8 @@ pub(super) fn read(
         None => (None, None),
     };
     let creepage_y = s.f64("creepage_y", first.creepage_y, Range::Closed(-0.1, 0.1));
-    let spin = s.f64("spin", first.spin.map(|v| -v), Range::Closed(-100.0, 100.0));
+    // (0 - v: no negative zero for a first rail without spin.)
+    let spin = s.f64("spin", first.spin.map(|v| 0.0 - v), Range::Closed(-100.0, 100.0));
     let seed = if s.has("roughness_seed") {
         s.usize("roughness_seed", None, 0, usize::MAX >> 1).map(Some)
     } else {

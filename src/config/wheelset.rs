@@ -139,7 +139,8 @@ pub(super) fn check(scene: &Scene, errors: &mut Vec<ConfigError>) {
     }
     let why = "the torsional mode varies the prescribed creepage with the dynamic normal force";
     let every_direction = scene.growth.as_ref().is_some_and(|g| matches!(g.directions, Directions::All { .. }));
-    if scene.creepage_x.is_none() && !every_direction {
+    // (A second rail without every direction has its own message.)
+    if scene.creepage_x.is_none() && !every_direction && scene.second_rail.is_none() {
         errors.push(ConfigError::new(
             "wheelset",
             format!(
