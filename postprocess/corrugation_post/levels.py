@@ -46,6 +46,8 @@ def default_passes(count: int, n: int = 4) -> list[int]:
 
 # Each rail's marker and line (the first rail's are those of a one-rail file).
 RAIL_STYLES = (("o", "-"), ("s", "--"))
+# The passages' colours (C7, grey, is the levels before the first passage's).
+PALETTE = (0, 1, 2, 3, 4, 5, 6, 8, 9)
 
 
 def _read_levels(run: Run) -> dict:
@@ -60,15 +62,16 @@ def _read_levels(run: Run) -> dict:
         }
 
 
-def _rail_levels(ax, d: dict, at: list[int], style: tuple[str, str], rail: str) -> None:
-    """One rail's levels before the first passage and after passages ``at``."""
+def _rail_levels(ax, d: dict, at: list[int], style: tuple[str, str], rail: str, first_colour: int = 0) -> None:
+    """One rail's levels before the first passage and after passages ``at``,
+    in the colours from ``C{first_colour}`` on (each rail its own)."""
     x = np.arange(d["band_mm"].size)
     marker, line = style
     named = f"{rail}, " if rail else ""
     if d["initial"] is not None:
         ax.plot(x, d["initial"], f"{marker}:", color="0.5", ms=4, label=f"{named}before passage 1")
     for k, p in enumerate(at):
-        ax.plot(x, d["level"][p - 1], f"{marker}{line}", ms=4, color=f"C{k}",
+        ax.plot(x, d["level"][p - 1], f"{marker}{line}", ms=4, color=f"C{PALETTE[(first_colour + k) % len(PALETTE)]}",
                 label=f"{named}after passage {p} (traffic {d['traffic'][p - 1]:.3g})")
 
 
@@ -101,8 +104,8 @@ def band_levels(run: Run, out_dir: Path, at: list[int] | None = None) -> Path | 
     fig = Figure(figsize=(9, 5 + 0.5 * (len(found) - 1)), layout="constrained")
     ax = fig.add_subplot()
     x = np.arange(band_mm.size)  # band index: equal spacing per band, as EN 15610 draws it
-    for (r, d), style in zip(found, RAIL_STYLES):
-        _rail_levels(ax, d, at, style, r.rail_name)
+    for i, ((r, d), style) in enumerate(zip(found, RAIL_STYLES)):
+        _rail_levels(ax, d, at, style, r.rail_name, first_colour=i * len(at))
     _limit_lines(ax, found)
     ax.set_xticks(x, _band_labels(band_mm), rotation=60 if band_mm.size > 12 else 0)
     ax.set(xlabel="band centre wavelength (mm), decreasing", ylabel="roughness level (dB re 1 µm)",
