@@ -16,6 +16,7 @@ mod hertz_check;
 pub mod mix;
 pub mod record;
 pub mod roughness;
+mod row;
 pub mod spectrum;
 pub mod state;
 pub mod stop;

@@ -3,6 +3,10 @@
 //! deepens the troughs faster than it wears the crests, and the linear
 //! track model stops being valid when the wheel leaves the rail.
 
+use super::state::RunState;
+use crate::levels::{BandLevels, forecast::crossed};
+use crate::params::{GrowthParams, Scene, StopRule};
+
 /// Passages over which the rms growth rate is measured.
 pub const SATURATION_WINDOW: usize = 10;
 
@@ -38,6 +42,55 @@ pub fn saturation(rms: &[f64], traffic: &[f64], contact_loss_steps: f64, rate: f
             "saturation: the rms grew by {g:.3} dB per 1e5 passages over the last {SATURATION_WINDOW} passages (< growth.saturation_rate = {rate})"
         )
     })
+}
+
+/// Why a growth study of `scene` stops after the last row of `state`: the
+/// first rail's reason, or where the wheelset has a second rail, the first
+/// rail's or the second's, named.
+pub(super) fn rails_stop_reason(scene: &Scene, state: &RunState, levels: &BandLevels, limit: &[f64]) -> Option<String> {
+    let growth = scene.growth.as_ref();
+    let name = &scene.levels.limit.name;
+    let first = stop_reason(growth, state, levels, limit, name);
+    match (state.second_rail.as_deref(), scene.second_rail.as_ref()) {
+        (Some(second), Some(r)) => first
+            .map(|why| format!("{}: {why}", r.names[0]))
+            .or_else(|| stop_reason(growth, second, levels, limit, name).map(|why| format!("{}: {why}", r.names[1]))),
+        _ => first,
+    }
+}
+
+/// Why a growth study stops after the last row of `state`, by its
+/// `growth.stop` rule.
+fn stop_reason(
+    growth: Option<&GrowthParams>,
+    state: &RunState,
+    levels: &BandLevels,
+    limit: &[f64],
+    limit_name: &str,
+) -> Option<String> {
+    let rows = &state.rows;
+    let last = rows.last()?;
+    match growth?.stop {
+        StopRule::Never => None,
+        StopRule::Saturation { rate } => {
+            let rms: Vec<f64> = rows.iter().map(|r| r.rms_corrugation).collect();
+            let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
+            saturation(&rms, &traffic, last.contact_loss_steps, rate)
+        }
+        StopRule::Limit => {
+            let before = match rows.len() {
+                1 => &state.initial_level,
+                n => &rows[n - 2].roughness_level,
+            };
+            let &k = crossed(before, &last.roughness_level, limit).first()?;
+            Some(format!(
+                "limit: the {} band reached the {limit_name} limit ({:.1} dB re 1 um) in passage {}",
+                levels.bands()[k].label(),
+                limit[k],
+                rows.len()
+            ))
+        }
+    }
 }
 
 #[cfg(test)]

@@ -22,18 +22,20 @@
 use super::hertz_check::HertzCheck;
 use super::mix::{next_class, tally};
 use super::roughness::profile_line;
-use super::spectrum::{amplitudes, growth_rates, wavelengths};
-use super::state::{PassRow, RailSnapshot, RunState};
+use super::row::RowKeep;
+use super::spectrum::wavelengths;
+use super::state::RunState;
+use super::stop::rails_stop_reason;
 use super::traffic::change_rate;
-use super::{Rail, contact_filtered_line, growth_passage_rails};
+use super::{Rail, growth_passage_rails};
 use crate::build::{Derived, DynamicsError, build_deposit, build_solver, derive, study_grid, track_dynamics};
 use crate::contact::{ContactError, Elements, TangentialSolver};
 use crate::dynamics::TrackDynamics;
-use crate::levels::{BandLevels, forecast::crossed, level_rates};
-use crate::metrics::{centre_row, rms_corrugation};
+use crate::levels::{BandLevels, level_rates};
+use crate::metrics::centre_row;
 use crate::model_choice::hertz_validity::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::params::{GrowthParams, NormalContact, Scene, StopRule, TrafficClass, TrafficScaling};
-use crate::passage::{PassageError, PassageSpec, PatchHistory, run_passage};
+use crate::passage::{PassageError, PassageSpec, run_passage};
 use crate::rail_grid::RailGrid;
 use crate::wear::WearKernel;
 use ndarray::Array2;
@@ -630,134 +632,6 @@ impl<'a> Study<'a> {
     /// um; inf: none).
     pub fn bands(&self) -> (&[crate::levels::Band], &[f64]) {
         (self.levels.bands(), &self.limit)
-    }
-}
-
-/// What a passage's row needs besides its rail's wear: the same for each
-/// rail of the wheelset.
-struct RowKeep<'s> {
-    pass: usize,
-    class: usize,
-    cpu_seconds: f64,
-    /// Real passages this one stands for (1).
-    m: f64,
-    update_ratio: f64,
-    profile_contact: f64,
-    grid: &'s RailGrid,
-    centre: usize,
-    /// The mean patch's lateral semi-axis (m).
-    mean_b: f64,
-    levels: &'s BandLevels,
-    /// Whether the rail's state is stored after this passage.
-    store: bool,
-    keep_history: bool,
-}
-
-impl RowKeep<'_> {
-    /// Updates a rail's `state` with its `wear` of one passage (`r -= m
-    /// W`), appends its row, its stored state and its wheels' histories
-    /// (the leading wheel's, the others') where kept; `(loss, clipped)`
-    /// its steps without contact and with the linear contact's patch
-    /// opened. Returns the row.
-    fn apply(
-        &self,
-        state: &mut RunState,
-        wear: Array2<f64>,
-        (history, others): (PatchHistory, Vec<PatchHistory>),
-        (loss, clipped): (usize, usize),
-    ) -> PassRow {
-        let line = |p: &Array2<f64>| p.row(self.centre).to_vec();
-        let filtered = |p: &Array2<f64>| contact_filtered_line(p, self.grid, self.mean_b);
-        let previous = state.rows.last();
-        let before = match previous {
-            Some(r) => r.filtered_spectrum.clone(),
-            None => amplitudes(&filtered(&state.profile)),
-        };
-        let m = self.m;
-        let traffic = previous.map_or(0.0, |r| r.traffic) + m;
-        let levels_before = previous.map_or_else(|| state.initial_level.clone(), |r| r.roughness_level.clone());
-        state.profile.scaled_add(-m, &wear);
-        let roughness_level = self.levels.levels(&state.profile);
-        let filtered_spectrum = amplitudes(&filtered(&state.profile));
-        let row = PassRow {
-            index: self.pass as i64,
-            traffic,
-            traffic_scale: m,
-            rms_corrugation: rms_corrugation(state.profile.view(), self.grid),
-            removed_volume: wear.sum() * self.grid.dx * self.grid.dy,
-            cpu_seconds: self.cpu_seconds,
-            update_ratio: self.update_ratio,
-            traffic_class: self.class,
-            contact_loss_steps: loss as f64,
-            profile_contact: self.profile_contact,
-            clipped_steps: clipped as f64,
-            // Below 1e-12 m (1 pm) an amplitude is numerical noise.
-            growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
-            spectrum: amplitudes(&line(&state.profile)),
-            filtered_spectrum,
-            level_rate: level_rates(&levels_before, &roughness_level, m),
-            roughness_level,
-        };
-        if self.store {
-            state.rail.push(RailSnapshot { index: self.pass as i64, traffic, profile: state.profile.clone(), wear });
-        }
-        if self.keep_history {
-            state.histories.push((self.pass as i64, history));
-            if !others.is_empty() {
-                state.wheel_histories.push((self.pass as i64, others));
-            }
-        }
-        state.rows.push(row.clone());
-        row
-    }
-}
-
-/// Why a growth study of `scene` stops after the last row of `state`: the
-/// first rail's reason, or where the wheelset has a second rail, the first
-/// rail's or the second's, named.
-fn rails_stop_reason(scene: &Scene, state: &RunState, levels: &BandLevels, limit: &[f64]) -> Option<String> {
-    let growth = scene.growth.as_ref();
-    let name = &scene.levels.limit.name;
-    let first = stop_reason(growth, state, levels, limit, name);
-    match (state.second_rail.as_deref(), scene.second_rail.as_ref()) {
-        (Some(second), Some(r)) => first
-            .map(|why| format!("{}: {why}", r.names[0]))
-            .or_else(|| stop_reason(growth, second, levels, limit, name).map(|why| format!("{}: {why}", r.names[1]))),
-        _ => first,
-    }
-}
-
-/// Why a growth study stops after the last row of `state`, by its
-/// `growth.stop` rule.
-fn stop_reason(
-    growth: Option<&GrowthParams>,
-    state: &RunState,
-    levels: &BandLevels,
-    limit: &[f64],
-    limit_name: &str,
-) -> Option<String> {
-    let rows = &state.rows;
-    let last = rows.last()?;
-    match growth?.stop {
-        StopRule::Never => None,
-        StopRule::Saturation { rate } => {
-            let rms: Vec<f64> = rows.iter().map(|r| r.rms_corrugation).collect();
-            let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
-            super::stop::saturation(&rms, &traffic, last.contact_loss_steps, rate)
-        }
-        StopRule::Limit => {
-            let before = match rows.len() {
-                1 => &state.initial_level,
-                n => &rows[n - 2].roughness_level,
-            };
-            let &k = crossed(before, &last.roughness_level, limit).first()?;
-            Some(format!(
-                "limit: the {} band reached the {limit_name} limit ({:.1} dB re 1 um) in passage {}",
-                levels.bands()[k].label(),
-                limit[k],
-                rows.len()
-            ))
-        }
     }
 }
 
