@@ -37,12 +37,14 @@
 # Output in out/mechanism_study/ (out/mechanism_study_vertical/ with
 # DIRECTIONS=vertical). About 45 minutes on 2 cores with the config's 40
 # passages; PASSES=N runs N passages per study; CASES="single bogie" picks
-# mechanisms.
+# mechanisms; SET="dynamics.spin=false" adds --set overrides to every
+# study (space-separated) and OUT=DIR writes elsewhere.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 directions=${DIRECTIONS:-all}
 out=out/mechanism_study
 [ "$directions" = all ] || out=out/mechanism_study_$directions
+out=${OUT:-$out}
 bash scripts/setup.sh
 mkdir -p "$out"
 # CORRUGATION_BIN: a binary of its own (a build beside the study then
@@ -50,6 +52,9 @@ mkdir -p "$out"
 bin=${CORRUGATION_BIN:-./target/release/corrugation}
 [ -n "${CORRUGATION_BIN:-}" ] || cargo build --release --quiet
 short=()
+for kv in ${SET:-}; do
+  short+=(--set "$kv")
+done
 if [ -n "${PASSES:-}" ]; then
   short=(--set "growth.passes=$PASSES" --set "growth.store_every=$PASSES" --set "growth.checkpoint_every=$PASSES")
 fi

@@ -390,8 +390,10 @@ pub fn wheelset_model(scene: &Scene) -> Option<WheelsetModel> {
 /// d(xi_x, xi_y)` by central differences (1e-3 relative steps) of FASTSIM's
 /// steady solution on a 40 x 40 mesh with the Hertz pressure (as
 /// [`torsion_feedback`]), at the mean creepage: the prescribed one, or
-/// under force control the one FASTSIM finds for the mean force.
-pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64) -> ContactLaw {
+/// under force control the one FASTSIM finds for the mean force; with
+/// `spin`, the spin's slopes `d(F_x, F_y) / dphi` too (steps of 1e-3 of the
+/// mean spin, at least 1e-6 1/m).
+pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64, spin: bool) -> ContactLaw {
     let elastic = scene.material.elastic;
     let coefficients = creep_coefficients(shape.aspect(), elastic.poisson_ratio).expect("validated aspect");
     let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, elastic.shear_modulus());
@@ -411,22 +413,27 @@ pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64) 
         Some(xi) => xi,
         None => fastsim.solve_force(&input).map(|s| s.creepage.x).unwrap_or(0.0),
     };
-    let forces = |n: f64, x: f64, y: f64| {
+    let forces_at = |n: f64, x: f64, y: f64, spin: f64| {
         let patch = shape.patch(n).expect("validated loads keep N > 0");
-        let s =
-            fastsim.solve_creepage(&patch, Creepage { x, y, spin: scene.spin }, scene.material.friction, scene.speed);
+        let s = fastsim.solve_creepage(&patch, Creepage { x, y, spin }, scene.material.friction, scene.speed);
         [s.force_x, s.force_y]
     };
+    let forces = |n: f64, x: f64, y: f64| forces_at(n, x, y, scene.spin);
     let y0 = scene.creepage_y;
     let (dn, dx, dy) = (1e-3 * n0, 1e-3 * xi0.abs().max(1e-5), 1e-3 * y0.abs().max(1e-5));
     let diff = |a: [f64; 2], b: [f64; 2], h: f64| [0, 1].map(|i| Complex64::new((a[i] - b[i]) / (2.0 * h), 0.0));
     let per_normal = diff(forces(n0 + dn, xi0, y0), forces(n0 - dn, xi0, y0), dn);
     let per_x = diff(forces(n0, xi0 + dx, y0), forces(n0, xi0 - dx, y0), dx);
     let per_y = diff(forces(n0, xi0, y0 + dy), forces(n0, xi0, y0 - dy), dy);
+    let per_spin = spin.then(|| {
+        let dphi = 1e-3 * scene.spin.abs().max(1e-3);
+        diff(forces_at(n0, xi0, y0, scene.spin + dphi), forces_at(n0, xi0, y0, scene.spin - dphi), dphi)
+    });
     ContactLaw {
         stiffness: hertz_stiffness(patch0.normal_force, patch0.approach),
         force_per_normal: per_normal,
         force_per_creepage: [[per_x[0], per_y[0]], [per_x[1], per_y[1]]],
+        force_per_spin: per_spin,
     }
 }
 
@@ -441,6 +448,7 @@ fn contact_dynamics(
     mass: f64,
     contact_offset: f64,
     creep_forces: CreepForces,
+    spin: bool,
 ) -> Result<Box<dyn TrackDynamics>, DynamicsError> {
     let v = &scene.vehicle;
     // Each distinct load's law and creep response (measured once).
@@ -451,12 +459,13 @@ fn contact_dynamics(
         if laws.iter().any(|(k, ..)| *k == key) {
             continue;
         }
-        let law = steady_contact_law(scene, &d.shape, key.0, key.1);
-        // The dynamics loop needs the creepages' and the normal force's columns.
+        let law = steady_contact_law(scene, &d.shape, key.0, key.1, spin);
+        // The dynamics loop needs the creepages' and the normal force's
+        // columns, and the spin's with the spin's channel.
         let response = match creep_forces {
             CreepForces::Steady => None,
             CreepForces::Transient => Some(
-                creep_response::scene::default_response(scene, key.0, key.1, [true, true, false, true])
+                creep_response::scene::default_response(scene, key.0, key.1, [true, true, spin, true])
                     .map_err(|e| DynamicsError::CreepResponse(e.to_string()))?,
             ),
         };
@@ -510,11 +519,11 @@ fn contact_dynamics(
     let mut wheels = wheels;
     if let Some(second) = scene.second_rail_scene() {
         let (n0, fx) = (second.loads.normal_force, second.loads.longitudinal_force);
-        let law = steady_contact_law(&second, &d.shape, n0, fx);
+        let law = steady_contact_law(&second, &d.shape, n0, fx, spin);
         let response = match creep_forces {
             CreepForces::Steady => None,
             CreepForces::Transient => Some(
-                creep_response::scene::default_response(&second, n0, fx, [true, true, false, true])
+                creep_response::scene::default_response(&second, n0, fx, [true, true, spin, true])
                     .map_err(|e| DynamicsError::CreepResponse(format!("second rail: {e}")))?,
             ),
         };
@@ -579,10 +588,10 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Result<Option<Box<dyn Track
         return Ok(None);
     };
     // The dynamics in every direction, of one wheel or several.
-    if let (Directions::All { contact_offset, creep_forces }, Some(mass)) =
+    if let (Directions::All { contact_offset, creep_forces, spin }, Some(mass)) =
         (growth.directions, growth.dynamics.unsprung_mass())
     {
-        return contact_dynamics(scene, d, mass, contact_offset, creep_forces).map(Some);
+        return contact_dynamics(scene, d, mass, contact_offset, creep_forces, spin).map(Some);
     }
     Ok(match growth.dynamics {
         DynamicsKind::Imposed => None,

@@ -469,7 +469,7 @@ fn print_directions(s: &corrugation::params::Scene, g: &corrugation::params::Gro
     if g.dynamics == DynamicsKind::Imposed {
         return;
     }
-    let Directions::All { contact_offset, creep_forces } = g.directions else {
+    let Directions::All { contact_offset, creep_forces, spin } = g.directions else {
         println!(
             "directions         vertical: the normal force's dynamics{} (dynamics.directions = \"all\" adds the \
              longitudinal and lateral directions)",
@@ -496,6 +496,19 @@ fn print_directions(s: &corrugation::params::Scene, g: &corrugation::params::Gro
          right of the centre line), the wheel {wheel}; creep forces from {creep}",
         contact_offset * 1e3
     );
+    if spin {
+        let wheel_turns = if s.wheelset.as_ref().is_some_and(|w| w.modal.is_some()) {
+            "the wheelset's yaw, the axle's horizontal bending and the wheels' axial modes"
+        } else {
+            "none: the rigid wheel does not turn about the vertical"
+        };
+        println!(
+            "spin               in the loop: the rail head's rotation about the vertical and the wheel's ({wheel_turns}) \
+             vary the spin creepage (dynamics.spin = false leaves it out)"
+        );
+    } else {
+        println!("spin               left out of the loop (dynamics.spin = false): the spin stays at its mean");
+    }
     if let Some(c) = cost.directions {
         println!(
             "directions cost    {:.1} s for the receptances in three directions, {:.1} s for the creep response, once \

@@ -27,6 +27,7 @@ fn law() -> ContactLaw {
         stiffness: 1.83e9,
         force_per_normal: [c(0.21), c(0.0)],
         force_per_creepage: [[c(-3.1e7), c(0.0)], [c(0.0), c(-3.3e7)]],
+        force_per_spin: None,
     }
 }
 

@@ -30,6 +30,7 @@ fn law() -> ContactLaw {
         stiffness: 1.83e9,
         force_per_normal: [c(0.21), c(0.05)],
         force_per_creepage: [[c(-3.1e7), c(1.2e6)], [c(-0.8e6), c(-3.3e7)]],
+        force_per_spin: Some([c(1.5e3), c(-2.6e4)]),
     }
 }
 
@@ -41,6 +42,8 @@ fn mirrored(l: &ContactLaw) -> ContactLaw {
         stiffness: l.stiffness,
         force_per_normal: [l.force_per_normal[0], -l.force_per_normal[1]],
         force_per_creepage: [[f[0][0], -f[0][1]], [-f[1][0], f[1][1]]],
+        // The spin changes sign with the lateral direction.
+        force_per_spin: l.force_per_spin.map(|s| [-s[0], s[1]]),
     }
 }
 
@@ -98,7 +101,12 @@ fn worst(a: &[f64], b: &[f64], s: f64) -> f64 {
 fn the_second_rail_without_its_contact_is_one_rail() {
     // No contact spring (1e-6 N/m) and no creep slopes on the second rail:
     // its wheel is free, as the one-rail model's other wheel.
-    let free = ContactLaw { stiffness: 1e-6, force_per_normal: [c(0.0); 2], force_per_creepage: [[c(0.0); 2]; 2] };
+    let free = ContactLaw {
+        stiffness: 1e-6,
+        force_per_normal: [c(0.0); 2],
+        force_per_creepage: [[c(0.0); 2]; 2],
+        force_per_spin: None,
+    };
     let two = wheelset(free);
     let one = ContactDynamics::new(rail(), side(), law(), None, 1e5, NODES, DX, SPEED).unwrap();
     let (r0, r1) = (profile(0.0), profile(1.0));
@@ -109,6 +117,7 @@ fn the_second_rail_without_its_contact_is_one_rail() {
         ("force_x", &both[0].force_x, &single.force_x),
         ("creepage_x", &both[0].creepage_x, &single.creepage_x),
         ("creepage_y", &both[0].creepage_y, &single.creepage_y),
+        ("spin", &both[0].spin, &single.spin),
     ] {
         // The free wheel's spring carries 1e-6 N/m x 1e-6 m: nothing.
         assert!(worst(a, b, 1.0) < 1e-9, "{name}: {}", worst(a, b, 1.0));
@@ -129,6 +138,9 @@ fn a_symmetric_wheelset_on_mirror_image_contacts_answers_symmetrically() {
     assert!(worst(&s[1].normal, &s[0].normal, 1.0) < 1e-9, "{}", worst(&s[1].normal, &s[0].normal, 1.0));
     assert!(worst(&s[1].creepage_x, &s[0].creepage_x, 1.0) < 1e-9);
     assert!(worst(&s[1].creepage_y, &s[0].creepage_y, -1.0) < 1e-9);
+    // The spin, as the lateral creepage, changes sign in the mirror.
+    assert!(peak(&s[0].spin) > 0.0);
+    assert!(worst(&s[1].spin, &s[0].spin, -1.0) < 1e-9, "{}", worst(&s[1].spin, &s[0].spin, -1.0));
 }
 
 #[test]

@@ -52,6 +52,13 @@ def test_track_file_and_figure(tmp_path):
     away = (f < 900) | ((f > 1300) & (f < 2600)) | (f > 3200)
     assert (np.abs(zz - vertical) / np.abs(vertical))[:, away].max() < 0.02
     assert ds["continuous_head_receptance_real"].dims == ("frequency", "response", "force")
+    # The head's rotation about z (the spin's channel): per force, on the
+    # force coordinate, in rad/N; per moment passive (Im <= 0).
+    rot = ds["head_receptance_rotation_real"]
+    assert rot.dims == ("position", "frequency", "force") and rot.attrs["units"] == "rad/N"
+    per_moment = ds["head_receptance_rotation_per_moment_imag"]
+    assert per_moment.dims == ("position", "frequency") and per_moment.attrs["units"] == "rad/(N m)"
+    assert (per_moment.values <= 0).all() and (per_moment.values < 0).any()
     assert (tmp_path / "fig").exists() is False
     assert figure(out, tmp_path / "fig")[0].stat().st_size > 1000
     # Softer pads lower the rail-on-pad resonance by the square root.

@@ -73,11 +73,13 @@ pub fn read(
     let directions = s.choice("directions", Some("all"), &["all", "vertical"]);
     let offset = s.f64("contact_offset", Some(0.0), Range::Closed(-0.04, 0.04));
     let creep_forces = s.choice("creep_forces", Some("transient"), &["transient", "steady"]);
-    let directions = match (directions.as_deref(), offset, creep_forces.as_deref()) {
-        (Some("vertical"), Some(_), Some(_)) => Some(Directions::Vertical),
-        (Some(_), Some(contact_offset), Some(c)) => Some(Directions::All {
+    let spin = s.bool("spin", true);
+    let directions = match (directions.as_deref(), offset, creep_forces.as_deref(), spin) {
+        (Some("vertical"), Some(_), Some(_), Some(_)) => Some(Directions::Vertical),
+        (Some(_), Some(contact_offset), Some(c), Some(spin)) => Some(Directions::All {
             contact_offset,
             creep_forces: if c == "steady" { CreepForces::Steady } else { CreepForces::Transient },
+            spin,
         }),
         _ => None,
     };

@@ -37,10 +37,19 @@
 //! "transient"`, at each harmonic's frequency), or the steady creep
 //! curve's slopes (FASTSIM's, as the torsional feedback's, `"steady"`).
 //!
+//! **The spin** (`dynamics.spin`, on by default): the rail head's and the
+//! wheel tread's rotations about the vertical at the contact (the rail's
+//! lateral bending slope `chi`; the modal wheelset's yaw, the axle's
+//! horizontal bending, the wheels' axial modes) vary the spin creepage at
+//! the harmonic's frequency, and the creep forces answer through the creep
+//! response's spin column (or FASTSIM's steady slope): eq. 1 of
+//! [`super::contact_point`] with its spin row. The rigid wheel does not
+//! turn about the vertical (its rail head still does).
+//!
 //! What the passage receives: the normal force's variation, the lateral
-//! creepage's, and the longitudinal creepage's (creepage control) or
-//! force's (force control: the force the dynamics transmits, the creepage
-//! the passage's contact solver finds).
+//! creepage's, the spin's, and the longitudinal creepage's (creepage
+//! control) or force's (force control: the force the dynamics transmits,
+//! the creepage the passage's contact solver finds).
 
 use super::TrackDynamics;
 use super::contact_point::{ContactLaw, ContactResponse, respond};
@@ -49,7 +58,7 @@ use super::creep_response::CreepResponse;
 use super::discrete::DiscreteTrack;
 use super::discrete_dynamics::{harmonics, parametric_path};
 use super::discrete3::{Discrete3, Discrete3Error};
-use super::section::Mat3;
+use super::section::{Mat3, Mat4, pad};
 use super::torsion::WheelsetTorsion;
 use super::wheelset::{Dir, WheelsetModel, dof};
 use num_complex::Complex64;
@@ -97,11 +106,13 @@ pub enum WheelSide {
 
 impl WheelSide {
     /// The wheel's receptance at the contact in the rail's axes (m/N; x
-    /// along with the rim's rotation, y across to the right, z down) at
-    /// `omega` (rad/s) and `speed` (m/s). The wheelset's axes have y to
-    /// the left and z up: its (x, y, z) block of wheel 0 turns by `S =
-    /// diag(1, -1, -1)` on both sides.
-    pub fn receptance(&self, omega: f64, speed: f64) -> Mat3 {
+    /// along with the rim's rotation, y across to the right, z down, and
+    /// the tread's rotation about z in rad/N, rad/(N m)) at `omega`
+    /// (rad/s) and `speed` (m/s). The wheelset's axes have y to the left
+    /// and z up: its (x, y, z, psi) block of wheel 0 turns by `S = diag(1,
+    /// -1, -1, -1)` on both sides (the rotation about z is an axial vector:
+    /// turned half round x it changes sign with z).
+    pub fn receptance(&self, omega: f64, speed: f64) -> Mat4 {
         self.receptance_between(omega, speed, 0, 0)
     }
 
@@ -109,15 +120,16 @@ impl WheelSide {
     /// `from`'s (m/N; wheel 0 the first rail's, 1 the second's; both in
     /// the rail's common axes, x along, y to the right, z down): the
     /// modal wheelset's block `S H_(at, from) S` (the point receptance for
-    /// `at == from`). The rigid wheel has no second wheel: zero between two.
-    pub fn receptance_between(&self, omega: f64, speed: f64, at: usize, from: usize) -> Mat3 {
+    /// `at == from`), with the tread's rotation about z. The rigid wheel has
+    /// no second wheel (zero between two) and no rotation about z.
+    pub fn receptance_between(&self, omega: f64, speed: f64, at: usize, from: usize) -> Mat4 {
         match self {
-            WheelSide::Rigid(w) if at == from => w.receptance(omega, speed),
-            WheelSide::Rigid(_) => Mat3::zeros(),
+            WheelSide::Rigid(w) if at == from => pad(&w.receptance(omega, speed)),
+            WheelSide::Rigid(_) => Mat4::zeros(),
             WheelSide::Modal { model, spin } => {
                 let h = model.receptance(omega, *spin);
-                let sign = [1.0, -1.0, -1.0];
-                Mat3::from_fn(|a, b| h[(dof(at, DIRECTIONS[a]), dof(from, DIRECTIONS[b]))] * (sign[a] * sign[b]))
+                let sign = [1.0, -1.0, -1.0, -1.0];
+                Mat4::from_fn(|a, b| h[(dof(at, DIRECTIONS[a]), dof(from, DIRECTIONS[b]))] * (sign[a] * sign[b]))
             }
         }
     }
@@ -139,8 +151,8 @@ impl WheelSide {
     }
 }
 
-/// The wheelset's directions of the rail's x, y, z.
-const DIRECTIONS: [Dir; 3] = [Dir::X, Dir::Y, Dir::Z];
+/// The wheelset's directions of the rail's x, y, z and the rotation about z.
+const DIRECTIONS: [Dir; 4] = [Dir::X, Dir::Y, Dir::Z, Dir::Psi];
 
 /// The wheel at the contact (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -180,6 +192,8 @@ pub struct ContactSignals {
     pub creepage_x: Vec<f64>,
     /// Lateral creepage (1).
     pub creepage_y: Vec<f64>,
+    /// Spin (1/m; zeros without the spin's channel).
+    pub spin: Vec<f64>,
 }
 
 /// The contact dynamics of one wheel at one speed over one periodic
@@ -225,8 +239,10 @@ impl ContactDynamics {
             .map(|n| {
                 let w = 2.0 * PI * n as f64 * speed.abs() / length;
                 let a_w = wheel.receptance(w, speed.abs());
+                let spin = law.force_per_spin.is_some();
                 let heads = match &rail {
-                    Rail3::Continuous(c) => c.head_receptances(w, &[0.0])?,
+                    Rail3::Continuous(c) if spin => c.head_receptances4(w, &[0.0])?,
+                    Rail3::Continuous(c) => c.head_receptances(w, &[0.0])?.iter().map(pad).collect(),
                     Rail3::Discrete { model, .. } => {
                         let d = model.section.track.sleeper_spacing;
                         let places: Vec<(f64, f64)> = (0..BAY_PLACES)
@@ -235,7 +251,11 @@ impl ContactDynamics {
                                 (x, x)
                             })
                             .collect();
-                        model.head_receptances(&places, w)?
+                        if spin {
+                            model.head_receptances4(&places, w)?
+                        } else {
+                            model.head_receptances(&places, w)?.iter().map(pad).collect()
+                        }
                     }
                 };
                 let law_w = response.as_ref().map_or(law, |r| law.at_frequency(&r.at(w / (2.0 * PI))));
@@ -283,6 +303,7 @@ impl ContactDynamics {
             force_x: vec![0.0; n],
             creepage_x: vec![0.0; n],
             creepage_y: vec![0.0; n],
+            spin: vec![0.0; n],
         };
         for i in 0..n {
             // The first sample above a sleeper.
@@ -290,7 +311,7 @@ impl ContactDynamics {
             let s = self.place(x);
             let p = (s.floor() as usize).min(places.saturating_sub(2));
             let t = if places > 1 { s - p as f64 } else { 0.0 };
-            let mut acc = [0.0f64; 4];
+            let mut acc = [0.0f64; 5];
             for (m, row) in self.table.iter().enumerate() {
                 let k = m + 1;
                 let (a, b) = (&row[p], &row[(p + 1).min(places - 1)]);
@@ -300,6 +321,7 @@ impl ContactDynamics {
                     mix(a.force[0], b.force[0]),
                     mix(a.creepage[0], b.creepage[0]),
                     mix(a.creepage[1], b.creepage[1]),
+                    mix(a.spin, b.spin),
                 ];
                 let phase = Complex64::from_polar(1.0, 2.0 * PI * k as f64 * x / length) * buf[k];
                 let weight = if 2 * k == n { 1.0 } else { 2.0 } / n as f64;
@@ -312,6 +334,7 @@ impl ContactDynamics {
             out.force_x[i] = acc[1];
             out.creepage_x[i] = acc[2];
             out.creepage_y[i] = acc[3];
+            out.spin[i] = acc[4];
         }
         out
     }

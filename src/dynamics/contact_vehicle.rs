@@ -36,7 +36,7 @@ use super::contact_point::ContactLaw;
 use super::creep_response::CreepResponse;
 use super::discrete_dynamics::harmonics;
 use super::discrete3::Discrete3Error;
-use super::section::Mat3;
+use super::section::{Mat4, pad, translations};
 use super::vehicle::{BAY_PLACES, bay_place, inputs_as_met, parametric_paths, static_receptances};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -64,7 +64,7 @@ pub struct VehicleWheel3 {
 }
 
 /// The channels of [`ContactSignals`], in the table's order.
-const CHANNELS: usize = 4;
+const CHANNELS: usize = 5;
 
 /// Several wheels' contact dynamics at one speed over one periodic
 /// stretch, tabulated.
@@ -106,7 +106,7 @@ impl ContactVehicle {
                 // The wheels' blocks: each wheel's point receptance, and
                 // between the two wheels of one wheelset (the same place,
                 // two rails) the wheelset's transfer receptance.
-                let own: Vec<Mat3> = (0..n * n)
+                let own: Vec<Mat4> = (0..n * n)
                     .map(|p| {
                         let (j, l) = (&wheels[p / n], &wheels[p % n]);
                         if p / n == p % n {
@@ -114,7 +114,7 @@ impl ContactVehicle {
                         } else if j.behind == l.behind && j.rail != l.rail {
                             j.side.receptance_between(w, speed, j.rail, l.rail)
                         } else {
-                            Mat3::zeros()
+                            Mat4::zeros()
                         }
                     })
                     .collect();
@@ -122,14 +122,20 @@ impl ContactVehicle {
                     .iter()
                     .map(|c| c.response.as_ref().map_or(c.law, |r| c.law.at_frequency(&r.at(w / (2.0 * PI)))))
                     .collect();
-                // Per place, the rail's [j][l] blocks.
-                let rails: Vec<Vec<Mat3>> = match &rail {
+                // Per place, the rail's [j][l] blocks (with the rotation
+                // about z where a wheel's law has the spin's channel).
+                let spin = laws.iter().any(|l| l.force_per_spin.is_some());
+                let rails: Vec<Vec<Mat4>> = match &rail {
                     Rail3::Continuous(model) => {
                         // The head's displacement at x_j = -s_j under a force
                         // at x_l = -s_l: distance s_l - s_j.
                         let distances: Vec<f64> =
                             (0..n * n).map(|p| wheels[p % n].behind - wheels[p / n].behind).collect();
-                        vec![model.head_receptances(w, &distances)?]
+                        if spin {
+                            vec![model.head_receptances4(w, &distances)?]
+                        } else {
+                            vec![model.head_receptances(w, &distances)?.iter().map(pad).collect()]
+                        }
                     }
                     Rail3::Discrete { model, .. } => {
                         let d = model.section.track.sleeper_spacing;
@@ -140,13 +146,20 @@ impl ContactVehicle {
                                 (0..n * n).map(move |q| (x - wheels[q % n].behind, x - wheels[q / n].behind))
                             })
                             .collect();
-                        model.head_receptances(&pairs, w)?.chunks(n * n).map(|c| c.to_vec()).collect()
+                        let blocks: Vec<Mat4> = if spin {
+                            model.head_receptances4(&pairs, w)?
+                        } else {
+                            model.head_receptances(&pairs, w)?.iter().map(pad).collect()
+                        };
+                        blocks.chunks(n * n).map(|c| c.to_vec()).collect()
                     }
                 };
                 // The two rails are not coupled (their sleepers' rocking
                 // is left out); the second rail is the first's mirror image
-                // in the common axes (y to the right): M A M, M = diag(1, -1, 1).
-                let rails: Vec<Vec<Mat3>> = rails
+                // in the common axes (y to the right): M A M, M = diag(1, -1,
+                // 1, -1) (the rotation about z, an axial vector, changes
+                // sign in a mirror that keeps z).
+                let rails: Vec<Vec<Mat4>> = rails
                     .into_iter()
                     .map(|blocks| {
                         blocks
@@ -155,7 +168,7 @@ impl ContactVehicle {
                             .map(|(p, a)| match (wheels[p / n].rail, wheels[p % n].rail) {
                                 (0, 0) => a,
                                 (1, 1) => mirror(&a),
-                                _ => Mat3::zeros(),
+                                _ => Mat4::zeros(),
                             })
                             .collect()
                     })
@@ -199,7 +212,7 @@ impl ContactVehicle {
         met.iter()
             .enumerate()
             .map(|(i, seen)| {
-                let mut out = [vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes]];
+                let mut out = std::array::from_fn::<_, CHANNELS, _>(|_| vec![0.0; nodes]);
                 for m in 0..nodes {
                     let x = m as f64 * dx;
                     let (p, q, t) = match &self.rail {
@@ -223,18 +236,19 @@ impl ContactVehicle {
                         }
                     }
                 }
-                let [normal, force_x, creepage_x, creepage_y] = out;
-                ContactSignals { normal, force_x, creepage_x, creepage_y }
+                let [normal, force_x, creepage_x, creepage_y, spin] = out;
+                ContactSignals { normal, force_x, creepage_x, creepage_y, spin }
             })
             .collect()
     }
 }
 
 /// The second rail's block of the first's in the common axes: `M A M`,
-/// `M = diag(1, -1, 1)` (the lateral direction mirrored).
-fn mirror(a: &Mat3) -> Mat3 {
-    let sign = [1.0, -1.0, 1.0];
-    Mat3::from_fn(|r, c| a[(r, c)] * (sign[r] * sign[c]))
+/// `M = diag(1, -1, 1, -1)` (the lateral direction mirrored, and with it
+/// the rotation about z).
+fn mirror(a: &Mat4) -> Mat4 {
+    let sign = [1.0, -1.0, 1.0, -1.0];
+    Mat4::from_fn(|r, c| a[(r, c)] * (sign[r] * sign[c]))
 }
 
 /// Eq. 1 for unit inputs at each wheel: the responses (rows `CHANNELS i +
@@ -243,16 +257,15 @@ fn mirror(a: &Mat3) -> Mat3 {
 /// rail's blocks `a_r[j n + l]` (at wheel `j` under a force at wheel `l`)
 /// and the wheels' laws at angular frequency `omega` (rad/s) and speed
 /// `speed` (m/s).
-fn solve(own: &[Mat3], a_r: &[Mat3], laws: &[ContactLaw], omega: f64, speed: f64) -> DMatrix<Complex64> {
+fn solve(own: &[Mat4], a_r: &[Mat4], laws: &[ContactLaw], omega: f64, speed: f64) -> DMatrix<Complex64> {
     let n = laws.len();
     let iwv = Complex64::new(0.0, omega / speed);
     let one = Complex64::new(1.0, 0.0);
-    // The relative displacements per force, A (3n x 3n).
-    let a = DMatrix::from_fn(3 * n, 3 * n, |r, c| {
-        let (j, l) = (r / 3, c / 3);
-        let block = a_r[j * n + l] + own[j * n + l];
-        block[(r % 3, c % 3)]
-    });
+    let blocks: Vec<Mat4> = a_r.iter().zip(own).map(|(r, w)| r + w).collect();
+    // The relative displacements per force, A (3n x 3n), and the relative
+    // rotations about z per force, R (n x 3n).
+    let a = DMatrix::from_fn(3 * n, 3 * n, |r, c| translations(&blocks[(r / 3) * n + c / 3])[(r % 3, c % 3)]);
+    let rot = DMatrix::from_fn(n, 3 * n, |j, c| blocks[j * n + c / 3][(3, c % 3)]);
     let mut m = DMatrix::<Complex64>::zeros(3 * n, 3 * n);
     let mut rhs = DMatrix::<Complex64>::zeros(3 * n, n);
     for (j, law) in laws.iter().enumerate() {
@@ -267,6 +280,12 @@ fn solve(own: &[Mat3], a_r: &[Mat3], laws: &[ContactLaw], omega: f64, speed: f64
                     m[(row, col)] -= c * a[(3 * j + l, col)];
                 }
             }
+            if let Some(per_spin) = law.force_per_spin {
+                let c = per_spin[e] * iwv;
+                for col in 0..3 * n {
+                    m[(row, col)] -= c * rot[(j, col)];
+                }
+            }
         }
         // Row 3j+2: (A f)_z + f_z / k_H = -r_j.
         let row = 3 * j + 2;
@@ -278,13 +297,16 @@ fn solve(own: &[Mat3], a_r: &[Mat3], laws: &[ContactLaw], omega: f64, speed: f64
     }
     let f = m.lu().solve(&rhs).expect("the contacts' system is regular for passive wheels and track");
     let d = &a * &f;
+    let spins = &rot * &f;
     DMatrix::from_fn(CHANNELS * n, n, |r, j| {
         let (i, c) = (r / CHANNELS, r % CHANNELS);
         match c {
             0 => -f[(3 * i + 2, j)],
             1 => f[(3 * i, j)],
             2 => iwv * d[(3 * i, j)],
-            _ => iwv * d[(3 * i + 1, j)],
+            3 => iwv * d[(3 * i + 1, j)],
+            _ if laws[i].force_per_spin.is_some() => iwv * spins[(i, j)],
+            _ => Complex64::new(0.0, 0.0),
         }
     })
 }

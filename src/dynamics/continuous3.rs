@@ -23,7 +23,7 @@
 //! the torsion rod's, `1 / (8 EI_z beta_y^3) + h_s^2 / (2 GJ gamma_t)`
 //! (tests/rail_head.rs).
 
-use super::section::{Mat3, Mat6, Section};
+use super::section::{Mat3, Mat4, Mat6, Section};
 use super::track::TrackConfig;
 use super::waves::{RootsError, Waves};
 use num_complex::Complex64;
@@ -62,5 +62,11 @@ impl Continuous3 {
     /// receptance.
     pub fn head_receptances(&self, omega: f64, distances: &[f64]) -> Result<Vec<Mat3>, RootsError> {
         Ok(self.section_receptances(omega, distances)?.iter().map(|g| self.section.head(g)).collect())
+    }
+
+    /// As [`Self::head_receptances`] with the head's rotation about `z` and
+    /// the moment about it (4 x 4, [`super::section::Mat4`]).
+    pub fn head_receptances4(&self, omega: f64, distances: &[f64]) -> Result<Vec<Mat4>, RootsError> {
+        Ok(self.section_receptances(omega, distances)?.iter().map(|g| self.section.head4(g)).collect())
     }
 }

@@ -22,7 +22,7 @@
 //! adaptive ([`crate::quadrature`], to [`TOLERANCE`] of the head's largest
 //! receptance). The head's receptance is `B^T G B`.
 
-use super::section::{Map63, Mat3, Mat6, Section};
+use super::section::{Mat3, Mat4, Mat6, Section, project};
 use super::track::TrackConfig;
 use super::waves::{RootsError, Waves};
 use crate::quadrature::{QuadratureError, integrate};
@@ -33,6 +33,10 @@ use std::f64::consts::PI;
 /// Relative tolerance of the zone integral (of the largest entry of the
 /// heads' receptances integrated together).
 pub const TOLERANCE: f64 = 1e-5;
+
+/// The arm (m) on which [`Discrete3::head_receptances4`] integrates the
+/// head's rotation about `z` and the moment about it.
+pub const ROTATION_ARM: f64 = 0.1;
 
 /// The most integrand evaluations per frequency.
 const MAX_EVALUATIONS: usize = 200_000;
@@ -52,9 +56,6 @@ pub enum Discrete3Error {
         source: QuadratureError,
     },
 }
-
-/// The head's 3 x 6 projections.
-type Map36 = SMatrix<Complex64, 3, 6>;
 
 /// A place's factors in the lattice sums (eq. 2 of [`super::waves`]):
 /// `x = cells d + xr`, `exp(i lambda_m xr)` and `exp(i lambda_m (d - xr))`.
@@ -99,22 +100,53 @@ impl Discrete3 {
     /// `omega` (rad/s): the head's displacement at `x1` per unit force on
     /// the head at `x0`.
     pub fn head_receptances(&self, pairs: &[(f64, f64)], omega: f64) -> Result<Vec<Mat3>, Discrete3Error> {
+        self.projected(&self.section.head_map(), pairs, omega)
+    }
+
+    /// As [`Self::head_receptances`] with the head's rotation about `z` and
+    /// the moment about it (4 x 4, [`super::section::Mat4`]).
+    ///
+    /// The integral's error is controlled on the largest entry, so the
+    /// moment is integrated per [`ROTATION_ARM`] (a force on that arm) and
+    /// the rotation as the displacement it gives there: every entry in
+    /// m/N, of one size (the rail's bending wavenumbers are a few per
+    /// metre), then scaled back.
+    pub fn head_receptances4(&self, pairs: &[(f64, f64)], omega: f64) -> Result<Vec<Mat4>, Discrete3Error> {
+        let mut b = self.section.head_map4();
+        for r in 0..6 {
+            b[(r, 3)] *= ROTATION_ARM;
+        }
+        let scale = [1.0, 1.0, 1.0, 1.0 / ROTATION_ARM];
+        Ok(self
+            .projected(&b, pairs, omega)?
+            .into_iter()
+            .map(|a| Mat4::from_fn(|r, c| a[(r, c)] * (scale[r] * scale[c])))
+            .collect())
+    }
+
+    /// `B^T G(x1; x0) B` of eq. 1 for the head map `b`.
+    fn projected<const N: usize>(
+        &self,
+        b: &SMatrix<Complex64, 6, N>,
+        pairs: &[(f64, f64)],
+        omega: f64,
+    ) -> Result<Vec<SMatrix<Complex64, N, N>>, Discrete3Error> {
         let s = &self.section;
         let d = s.track.sleeper_spacing;
         let waves = self.free_waves(omega)?;
         let ks = s.support(omega);
-        let b = s.head_map();
+        let b = *b;
         let bt = b.transpose();
         let identity_d = SMatrix::<Complex64, 6, 6>::identity() * Complex64::new(d, 0.0);
         // The head's projections of the waves' residues, P_m = B^T M_m and
         // Q_m = M_m B (B^T M_m^T = Q_m^T, M_m^T B = P_m^T), and each place's
         // factors of eq. 2 of [`super::waves`], which do not depend on kappa.
-        let p: Vec<Map36> = waves.modes.iter().map(|m| bt * m).collect();
-        let q: Vec<Map63> = waves.modes.iter().map(|m| m * b).collect();
+        let p: Vec<SMatrix<Complex64, N, 6>> = waves.modes.iter().map(|m| bt * m).collect();
+        let q: Vec<SMatrix<Complex64, 6, N>> = waves.modes.iter().map(|m| m * b).collect();
         let watched: Vec<Place> = pairs.iter().map(|&(_, x1)| Place::new(&waves, x1, d)).collect();
         let loads: Vec<Place> = pairs.iter().map(|&(x0, _)| Place::new(&waves, -x0, d)).collect();
         let z: [Complex64; 6] = std::array::from_fn(|m| (Complex64::i() * waves.lambda[m] * d).exp());
-        let integrand = |kappa: f64| -> Vec<Mat3> {
+        let integrand = |kappa: f64| -> Vec<SMatrix<Complex64, N, N>> {
             let zeta = Complex64::from_polar(1.0, kappa * d);
             let alpha: [Complex64; 6] = std::array::from_fn(|m| 1.0 / (1.0 - z[m] / zeta));
             let beta: [Complex64; 6] = std::array::from_fn(|m| zeta / (1.0 - z[m] * zeta));
@@ -127,8 +159,8 @@ impl Discrete3 {
                 .iter()
                 .zip(&loads)
                 .map(|(w, l)| {
-                    let mut tp = Map36::zeros();
-                    let mut tm = Map63::zeros();
+                    let mut tp = SMatrix::<Complex64, N, 6>::zeros();
+                    let mut tm = SMatrix::<Complex64, 6, N>::zeros();
                     for m in 0..6 {
                         tp += p[m] * (alpha[m] * w.ahead[m]) + q[m].transpose() * (beta[m] * w.behind[m]);
                         tm += q[m] * (alpha[m] * l.ahead[m]) + p[m].transpose() * (beta[m] * l.behind[m]);
@@ -143,7 +175,7 @@ impl Discrete3 {
         Ok(pairs
             .iter()
             .zip(taken)
-            .map(|(&(x0, x1), t)| s.head(&waves.green(x1 - x0)) - t / Complex64::new(2.0 * PI, 0.0))
+            .map(|(&(x0, x1), t)| project(&b, &waves.green(x1 - x0)) - t / Complex64::new(2.0 * PI, 0.0))
             .collect())
     }
 }

@@ -2,31 +2,33 @@
 //! (what `corrugation track` writes beside the vertical ones): the discrete
 //! track's point receptances at places across a sleeper bay, the continuous
 //! track's, and the transfer receptances between the wheels of a vehicle,
-//! each a 3 x 3 matrix (the head's displacement in direction `i` per unit
-//! force on the head in direction `j`; axes of [`super::section`]: `x`
-//! along the rail, `y` across to the right, `z` down).
+//! each a 4 x 4 matrix (the head's displacement in direction `i` per unit
+//! force on the head in direction `j`, and its rotation about `z` per
+//! force and per moment about `z`; axes of [`super::section`]: `x` along
+//! the rail, `y` across to the right, `z` down).
 
 use super::continuous3::Continuous3;
 use super::discrete3::{Discrete3, Discrete3Error};
-use super::section::Mat3;
+use super::section::Mat4;
 use super::track::TrackConfig;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
-/// The head's receptances (m/N) over a sweep.
+/// The head's receptances (m/N; the rotation's rad/N and rad/(N m)) over a
+/// sweep.
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeadResponse {
     /// The contact's offset right of the rail's centre line (m).
     pub contact_offset: f64,
     /// Discrete track, point receptances, `[position][frequency]`.
-    pub discrete: Vec<Vec<Mat3>>,
+    pub discrete: Vec<Vec<Mat4>>,
     /// Continuous track, point receptance, `[frequency]`.
-    pub continuous: Vec<Mat3>,
+    pub continuous: Vec<Mat4>,
     /// Discrete track, displacement at each distance ahead of a unit force at
     /// each source, `[source][distance][frequency]` (empty for one wheel).
-    pub transfer: Vec<Vec<Vec<Mat3>>>,
+    pub transfer: Vec<Vec<Vec<Mat4>>>,
     /// Continuous track, `[distance][frequency]`.
-    pub continuous_transfer: Vec<Vec<Mat3>>,
+    pub continuous_transfer: Vec<Vec<Mat4>>,
 }
 
 /// The head's receptances of `track` with the contact `contact_offset` (m)
@@ -51,11 +53,11 @@ pub fn head_response(
     }
     let mut along = vec![0.0];
     along.extend_from_slice(distances);
-    let by_frequency: Vec<(Vec<Mat3>, Vec<Mat3>)> = frequency
+    let by_frequency: Vec<(Vec<Mat4>, Vec<Mat4>)> = frequency
         .par_iter()
         .map(|f| {
             let w = 2.0 * PI * f;
-            Ok((discrete.head_receptances(&pairs, w)?, continuous.head_receptances(w, &along)?))
+            Ok((discrete.head_receptances4(&pairs, w)?, continuous.head_receptances4(w, &along)?))
         })
         .collect::<Result<_, Discrete3Error>>()?;
     let n = position.len();

@@ -52,8 +52,11 @@
 //! ```
 //! `h_n`, `h_s` the head top's height above the neutral axis and the shear
 //! centre: a force `F` on the head loads the section by `B F`, and the head
-//! moves by `B^T q` ([`head_map`]): the head's receptance is `B^T G B`,
-//! `G` the section's.
+//! moves by `B^T q` ([`Section::head_map`]): the head's receptance is `B^T
+//! G B`, `G` the section's. With the head's rotation about the vertical,
+//! `chi_head = chi` (a moment about `+z` on the head loads `chi` alone), the
+//! map has a fourth column and the receptance is 4 x 4
+//! ([`Section::head_map4`]): what the spin creepage's variation needs.
 
 use super::rail::RailSection;
 use super::track::{Damping, TrackConfig};
@@ -66,6 +69,21 @@ pub type Mat6 = SMatrix<Complex64, 6, 6>;
 pub type Mat3 = SMatrix<Complex64, 3, 3>;
 /// The map from head forces (x, y, z) to section loads.
 pub type Map63 = SMatrix<Complex64, 6, 3>;
+/// The head's 4 x 4 receptance (x, y, z, and the rotation about `z`:
+/// displacements in m, the rotation in rad; forces in N, the moment in N m).
+pub type Mat4 = SMatrix<Complex64, 4, 4>;
+/// The map from head forces and the moment about `z` to section loads.
+pub type Map64 = SMatrix<Complex64, 6, 4>;
+
+/// `a` with a zero fourth row and column (no rotation about `z`).
+pub fn pad(a: &Mat3) -> Mat4 {
+    Mat4::from_fn(|r, c| if r < 3 && c < 3 { a[(r, c)] } else { ZERO })
+}
+
+/// The translations' 3 x 3 block of `a`.
+pub fn translations(a: &Mat4) -> Mat3 {
+    a.fixed_view::<3, 3>(0, 0).into_owned()
+}
 
 /// The section's freedoms, in the order of the matrices (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -88,6 +106,7 @@ pub enum Dof {
 pub const HEAD_DIRECTIONS: [&str; 3] = ["x", "y", "z"];
 
 const ZERO: Complex64 = Complex64::new(0.0, 0.0);
+const ONE: Complex64 = Complex64::new(1.0, 0.0);
 
 /// The rail and its supports, with the damping made complex (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -278,11 +297,36 @@ impl Section {
         ])
     }
 
+    /// The map of [`Self::head_map`] with a fourth column, the moment
+    /// about `z` on the head (module docs).
+    pub fn head_map4(&self) -> Map64 {
+        let b = self.head_map();
+        Map64::from_fn(|r, c| {
+            if c < 3 {
+                b[(r, c)]
+            } else if r == Dof::Chi as usize {
+                ONE
+            } else {
+                ZERO
+            }
+        })
+    }
+
     /// The head's receptance `B^T G B` of the section's `g`.
     pub fn head(&self, g: &Mat6) -> Mat3 {
-        let b = self.head_map();
-        b.transpose() * g * b
+        project(&self.head_map(), g)
     }
+
+    /// The head's 4 x 4 receptance (with the rotation about `z`) of the
+    /// section's `g`.
+    pub fn head4(&self, g: &Mat6) -> Mat4 {
+        project(&self.head_map4(), g)
+    }
+}
+
+/// `B^T G B`.
+pub fn project<const N: usize>(b: &SMatrix<Complex64, 6, N>, g: &Mat6) -> SMatrix<Complex64, N, N> {
+    b.transpose() * g * b
 }
 
 /// Zero 6 x 6 (a lattice sum's start).

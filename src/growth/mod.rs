@@ -460,13 +460,19 @@ fn passage_with<'o>(
         if let Some(c) = signals.as_ref().map(|s| &s[w]) {
             // The dynamics in every direction: the creepage's variation
             // (creepage control), or the force's (force control: the
-            // contact solver finds the creepage), and the lateral creepage's.
+            // contact solver finds the creepage), the lateral creepage's
+            // and the spin's.
             if spec.creepage_x.is_some() {
                 spec.dynamic_creepage_x = signal(&c.creepage_x);
             } else {
                 spec.dynamic_longitudinal_force = signal(&c.force_x);
             }
             spec.dynamic_creepage_y = signal(&c.creepage_y);
+            // The spin's variation (zeros without the spin's channel: the
+            // spin then stays the mean's, bit for bit).
+            if c.spin.iter().any(|v| *v != 0.0) {
+                spec.dynamic_spin = signal(&c.spin);
+            }
         }
         // The wheelset's torsion: the creepage's answer to the normal
         // force's variation (the imposed harmonics' and the dynamic force).

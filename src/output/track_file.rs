@@ -20,11 +20,14 @@
 //! (frequency, response, force)` and `_imag`, and with several wheels
 //! `head_transfer_real(source, distance, frequency, response, force)`,
 //! `continuous_head_transfer_real(distance, frequency, response, force)`
-//! and their `_imag`.
+//! and their `_imag`; beside each, the head's rotation about `z`:
+//! `<name>_rotation_real(..., force)` (rad/N per force in `x`, `y`, `z`; by
+//! reciprocity the displacement per moment about `z`) and
+//! `<name>_rotation_per_moment_real(...)` (rad/(N m)), and their `_imag`.
 
 use super::netcdf::{NcError, write_atomically};
 use crate::dynamics::head_response::HeadResponse;
-use crate::dynamics::section::Mat3;
+use crate::dynamics::section::Mat4;
 use crate::dynamics::track_response::TrackResponse;
 use ndarray::{Array0, Array1, Array2, Array3, ArrayD, Dimension, IxDyn};
 use std::path::Path;
@@ -152,19 +155,48 @@ fn write_head(g: &super::netcdf::NcGroup, r: &TrackResponse, h: &HeadResponse) -
     g.coord_str("response", &axes, "", &format!("direction of the head's displacement: {along}"))?;
     g.coord_str("force", &axes, "", &format!("direction of the force on the head: {along}"))?;
     g.attr_f64("contact_offset", h.contact_offset)?;
-    // (outer indices..., frequency) -> the 3 x 3 matrices.
-    let write = |name: &str, dims: &[&str], shape: &[usize], at: &dyn Fn(&[usize]) -> Mat3, long: &str| {
-        let mut full = shape.to_vec();
-        full.extend([3, 3]);
-        for (suffix, part, re) in [("real", "real", true), ("imag", "imaginary", false)] {
-            let a = ArrayD::from_shape_fn(IxDyn(&full), |ix: IxDyn| {
-                let ix: Vec<usize> = (0..ix.ndim()).map(|k| ix[k]).collect();
-                let c = at(&ix[..ix.len() - 2])[(ix[ix.len() - 2], ix[ix.len() - 1])];
-                if re { c.re } else { c.im }
-            });
-            let mut all: Vec<&str> = dims.to_vec();
-            all.extend(["response", "force"]);
-            g.var_f64(&format!("{name}_{suffix}"), &all, a.view(), "m/N", &format!("{part} part of the {long}"))?;
+    // (outer indices..., frequency) -> the 4 x 4 matrices: the 3 x 3
+    // translations (m/N), the rotation about z per force (rad/N; by
+    // reciprocity the displacement per moment) and per moment (rad/(N m)).
+    let write = |name: &str, dims: &[&str], shape: &[usize], at: &dyn Fn(&[usize]) -> Mat4, long: &str| {
+        // (name's tail, inner dimensions, first entry, units, what).
+        type Part<'a> = (&'a str, &'a [&'a str], [usize; 2], &'a str, &'a str);
+        let parts: [Part; 3] = [
+            ("", &["response", "force"], [0, 0], "m/N", ""),
+            (
+                "_rotation",
+                &["force"],
+                [3, 0],
+                "rad/N",
+                ": the head's rotation about z per force (by reciprocity its displacement per moment about z, m/(N m))",
+            ),
+            ("_rotation_per_moment", &[], [3, 3], "rad/(N m)", ": the head's rotation about z per moment about z"),
+        ];
+        for (tail, inner, [r0, c0], units, what) in parts {
+            let mut full = shape.to_vec();
+            full.extend(std::iter::repeat_n(3, inner.len()));
+            for (suffix, part, re) in [("real", "real", true), ("imag", "imaginary", false)] {
+                let a = ArrayD::from_shape_fn(IxDyn(&full), |ix: IxDyn| {
+                    let ix: Vec<usize> = (0..ix.ndim()).map(|k| ix[k]).collect();
+                    let (outer, rest) = ix.split_at(shape.len());
+                    let (r, c) = match rest {
+                        [r, c] => (r0 + r, c0 + c),
+                        [c] => (r0, c0 + c),
+                        _ => (r0, c0),
+                    };
+                    let v = at(outer)[(r, c)];
+                    if re { v.re } else { v.im }
+                });
+                let mut all: Vec<&str> = dims.to_vec();
+                all.extend(inner);
+                g.var_f64(
+                    &format!("{name}{tail}_{suffix}"),
+                    &all,
+                    a.view(),
+                    units,
+                    &format!("{part} part of the {long}{what}"),
+                )?;
+            }
         }
         Ok::<(), NcError>(())
     };

@@ -118,6 +118,10 @@ pub enum Directions {
         /// How the creep forces answer a variation at its own frequency
         /// (`dynamics.creep_forces`).
         creep_forces: CreepForces,
+        /// Whether the spin creepage's variation is in the loop (the rail
+        /// head's and the wheel's rotation about the vertical,
+        /// `dynamics.spin`).
+        spin: bool,
     },
 }
 

@@ -13,7 +13,7 @@
 //! between the contact points, `r` the rolling radius). The spin `Omega =
 //! V / r > 0` turns the wheelset about `+y` when it rolls forwards.
 //!
-//! The eight degrees of freedom, index `4 w + d` ([`dof`]), `d` in [`Dir`]:
+//! The ten degrees of freedom, index `5 w + d` ([`dof`]), `d` in [`Dir`]:
 //! - `d = 0` (`x`): the longitudinal displacement (m) of the wheel's
 //!   material at the contact, all of it: the axle's bending in the
 //!   horizontal plane and `-r theta` from the rotation about the axle
@@ -30,6 +30,13 @@
 //!   `F_x` at the contact already turns the wheel: its moment `-r F_x` is
 //!   part of the `x` column (the `theta` row of the `x` column is the
 //!   rotation per longitudinal force).
+//! - `d = 4` (`psi`): the rotation (rad) of the wheel's tread at the
+//!   contact about the vertical (`+z`, up): the wheelset's yaw, the rims'
+//!   tilt about `z` in the axle's horizontal bending, the local slope of a
+//!   wheel's axial (out-of-plane) mode along the rim; its load a moment
+//!   about `+z` at the contact (N m). The wheel's share of the spin
+//!   creepage's variation is `i w psi / V` (in the rail's axes, `z` down,
+//!   with the opposite sign: [`crate::dynamics::contact_point`]).
 //!
 //! Time dependence `exp(+i w t)`, as in [`crate::dynamics`]: a passive
 //! receptance has a negative imaginary point receptance.
@@ -38,7 +45,7 @@
 //!
 //! Modes `k` with natural angular frequencies `w_k` (the undamped free
 //! wheelset's or the rigid wheelset's on its suspension), mass-normalised
-//! participations `phi_k` (the mode's displacement at the eight degrees of
+//! participations `phi_k` (the mode's displacement at the ten degrees of
 //! freedom per unit modal coordinate: `1/sqrt(kg)` for displacements,
 //! `rad/(m sqrt(kg))` for the rotation) and modal coordinates `q_k`
 //! (`u = Phi q`). In the non-rotating (Eulerian) frame the spinning
@@ -106,8 +113,8 @@ use num_complex::Complex64;
 use std::f64::consts::PI;
 use std::fmt;
 
-/// The number of degrees of freedom of the receptance: 2 wheels x [x, y, z, theta].
-pub const DOFS: usize = 8;
+/// The number of degrees of freedom of the receptance: 2 wheels x [x, y, z, theta, psi].
+pub const DOFS: usize = 10;
 
 /// The receptance matrix at the contacts (module docs: index [`dof`]).
 pub type Receptance = SMatrix<Complex64, DOFS, DOFS>;
@@ -123,21 +130,24 @@ pub enum Dir {
     Z = 2,
     /// Rotation about the axle (rad), moment about `+y` (N m).
     Theta = 3,
+    /// Rotation of the tread at the contact about the vertical `+z` (rad),
+    /// moment about `+z` (N m).
+    Psi = 4,
 }
 
 impl Dir {
     /// The four directions in their order.
-    pub const ALL: [Dir; 4] = [Dir::X, Dir::Y, Dir::Z, Dir::Theta];
+    pub const ALL: [Dir; 5] = [Dir::X, Dir::Y, Dir::Z, Dir::Theta, Dir::Psi];
 
-    /// The name used in tables and messages: `x`, `y`, `z`, `theta`.
+    /// The name used in tables and messages: `x`, `y`, `z`, `theta`, `psi`.
     pub fn name(self) -> &'static str {
-        ["x", "y", "z", "theta"][self as usize]
+        ["x", "y", "z", "theta", "psi"][self as usize]
     }
 }
 
-/// The index of direction `dir` at wheel `wheel` (0 or 1): `4 wheel + dir`.
+/// The index of direction `dir` at wheel `wheel` (0 or 1): `5 wheel + dir`.
 pub const fn dof(wheel: usize, dir: Dir) -> usize {
-    4 * wheel + dir as usize
+    5 * wheel + dir as usize
 }
 
 /// A mode's damping.
@@ -189,9 +199,9 @@ pub struct Mode {
     pub frequency: f64,
     /// Damping.
     pub damping: Damping,
-    /// Mass-normalised participation at the eight degrees of freedom
+    /// Mass-normalised participation at the ten degrees of freedom
     /// ([`dof`]): 1/sqrt(kg) for the displacements, rad/(m sqrt(kg)) for
-    /// the rotation.
+    /// the rotations.
     pub shape: [f64; DOFS],
 }
 

@@ -25,7 +25,8 @@
 //!
 //! The contact of wheel `w` at `p = (0, y_w, -r)` moves by `t + rot x p`:
 //! `u_x = u - r theta - y_w psi`, `u_y = v + r phi`, `u_z = w + y_w phi`,
-//! and the wheel turns by `theta`. Roll and yaw are coupled by the spin
+//! the wheel turns by `theta` about the axle and its tread at the contact
+//! by `psi` about the vertical. Roll and yaw are coupled by the spin
 //! (Euler's equations: `I_x phi'' - I_y Omega psi' = M_x`, `I_z psi'' + I_y
 //! Omega phi' = M_z`), eq. 3 of [`super`] with the wheels' tilts.
 
@@ -87,6 +88,8 @@ impl RigidWheelset {
                 for d in Dir::ALL {
                     shape[dof(w, d)] = f(w, d);
                 }
+                // The tread turns about the vertical with the wheel.
+                shape[dof(w, Dir::Psi)] = tilt[w][1];
             }
             out.push(TiltedMode { mode: Mode { name: name.into(), frequency: hz(w2), damping, shape }, tilt });
         };

@@ -39,7 +39,9 @@
 //! deflection (vertical in the vertical plane, longitudinal in the
 //! horizontal one) and, in the vertical plane, the rim's tilt `a_x` times `r`
 //! laterally (the contact, `r` below the axle, swings sideways when the
-//! wheel tilts); the rim's tilts couple the planes by eq. 3 of [`super`].
+//! wheel tilts) and, in the horizontal plane, the rim's tilt about `z` as
+//! the tread's rotation about the vertical; the rim's tilts couple the
+//! planes by eq. 3 of [`super`].
 //! The two planes' modes are the same free-free modes: the primary
 //! suspension, three orders softer than the bending, acts on the rigid-body
 //! modes only.
@@ -51,8 +53,10 @@
 //! of the web (110 kg; its displacement grows from the hub to the rim), 108
 //! kg; for the radial modes the rim, 90 kg. Its `sin n phi` partner does not
 //! move the contact axially or radially and enters through the rotation
-//! only (module [`super`], `beta = 1` axial, `(n^2 - 1) / (n^2 + 1)`
-//! radial). The umbrella mode: each rim (216.7 kg) on the web's axial spring
+//! (module [`super`], `beta = 1` axial, `(n^2 - 1) / (n^2 + 1)` radial)
+//! and, for the axial modes, through the tread's rotation about the
+//! vertical at the contact, the rim's slope `n / r` times the mode's
+//! amplitude (what a wheel's axial vibration does to the spin creepage). The umbrella mode: each rim (216.7 kg) on the web's axial spring
 //! at 450 Hz (hub held), the rest of the wheelset (767 kg) between: the
 //! wheels in antiphase at 450 Hz, in phase (the axle against them) at 450
 //! Hz `sqrt(1 + 2 m_r / m_c)` = 563 Hz. Damping (ratios): 1 % for the
@@ -177,6 +181,14 @@ pub fn default_model(d: &Design) -> Result<WheelsetModel, WheelsetError> {
                 };
                 let mut shape = [0.0; super::DOFS];
                 shape[dof(w, dir)] = 1.0 / mass.sqrt();
+                // The sin partner's axial displacement a sin(n phi) is
+                // still at the contact but slopes along the rim: the
+                // tread turns about the vertical by -(n / r) a (phi
+                // grows backwards from the contact, x = -r phi).
+                let mut partner = [0.0; super::DOFS];
+                if dir == Dir::Y {
+                    partner[dof(w, Dir::Psi)] = -n_f / r / mass.sqrt();
+                }
                 let damping = Damping::Ratio(d.wheel_damping);
                 let name = format!("wheel {w}: {n} nodal diameters, {family}");
                 modes.push(Mode { name: format!("{name} (cos)"), frequency: f, damping, shape });
@@ -184,7 +196,7 @@ pub fn default_model(d: &Design) -> Result<WheelsetModel, WheelsetError> {
                     name: format!("{name} (sin, still at the contact)"),
                     frequency: f,
                     damping,
-                    shape: [0.0; super::DOFS],
+                    shape: partner,
                 });
                 let c = modes.len() - 2;
                 couplings.push(Gyroscopic { a: c, b: c + 1, coefficient: 2.0 * beta * n_f });
@@ -233,6 +245,7 @@ fn bending_modes(r: f64, damping: f64) -> Vec<TiltedMode> {
                     tilts[wheel][0] = tilt[wheel];
                 } else {
                     tilts[wheel][1] = -tilt[wheel];
+                    shape[dof(wheel, Dir::Psi)] = -tilt[wheel];
                 }
             }
             out.push(TiltedMode {

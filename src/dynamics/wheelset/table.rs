@@ -13,7 +13,8 @@
 //! | `frequency` | Hz | natural frequency of the non-rotating free wheelset, >= 1 Hz |
 //! | `damping_ratio` or `loss_factor` | 1 | one of the two columns (or both, one value per row): viscous ratio in (0, 1), loss factor > 0 |
 //! | `x0`, `y0`, `z0`, `theta0` | 1/sqrt(kg); rad/(m sqrt(kg)) | the mass-normalised mode (unit modal mass, 1 kg) at wheel 0's contact (`+y` side): longitudinal (with the rotation's `-r theta`), lateral, vertical displacement, rotation about the axle |
-//! | `x1`, `y1`, `z1`, `theta1` | same | at wheel 1's contact (`-y` side) |
+//! | `psi0` (optional) | rad/(m sqrt(kg)) | wheel 0's tread's rotation about the vertical (`+z`) at the contact (0 where absent) |
+//! | `x1`, `y1`, `z1`, `theta1`, `psi1` | same | at wheel 1's contact (`-y` side) |
 //! | `partner` (optional) | | the name of a mode this one is coupled to by the rotation, or empty |
 //! | `coefficient` (optional) | 1 | `G_ab` of eq. 1 of [`super`] (this mode `a`, the partner `b`); the partner's row may give the same coupling as `-G_ab` |
 //!
@@ -37,7 +38,10 @@ use super::{DOFS, Damping, Gyroscopic, Mode};
 use std::fmt;
 
 /// The participation columns, in the order of [`super::dof`].
-pub const SHAPE_COLUMNS: [&str; DOFS] = ["x0", "y0", "z0", "theta0", "x1", "y1", "z1", "theta1"];
+pub const SHAPE_COLUMNS: [&str; DOFS] = ["x0", "y0", "z0", "theta0", "psi0", "x1", "y1", "z1", "theta1", "psi1"];
+
+/// The participation columns a table may leave out (0 where absent).
+const OPTIONAL_COLUMNS: [&str; 2] = ["psi0", "psi1"];
 
 /// Why a mode needs damping.
 const UNDAMPED: &str = " (an undamped mode's receptance is infinite at its frequency: give the structure's damping)";
@@ -96,7 +100,10 @@ pub fn parse(text: &str) -> Result<ModalTable, TableError> {
         column(name).ok_or_else(|| at(header_line, format!("missing column `{name}` (columns: {})", known.join(", "))))
     };
     let (name_col, freq_col) = (need("name")?, need("frequency")?);
-    let shape_cols: Vec<usize> = SHAPE_COLUMNS.iter().map(|c| need(c)).collect::<Result<_, _>>()?;
+    let shape_cols: Vec<Option<usize>> = SHAPE_COLUMNS
+        .iter()
+        .map(|c| if OPTIONAL_COLUMNS.contains(c) { Ok(column(c)) } else { need(c).map(Some) })
+        .collect::<Result<_, _>>()?;
     let (ratio_col, loss_col) = (column("damping_ratio"), column("loss_factor"));
     if ratio_col.is_none() && loss_col.is_none() {
         return Err(at(header_line, "missing a damping column: `damping_ratio` or `loss_factor`".into()));
@@ -150,7 +157,8 @@ pub fn parse(text: &str) -> Result<ModalTable, TableError> {
             _ => return Err(at(line, "give exactly one of damping_ratio and loss_factor".into())),
         };
         let mut shape = [0.0; DOFS];
-        for (k, &c) in shape_cols.iter().enumerate() {
+        for (k, c) in shape_cols.iter().enumerate() {
+            let Some(c) = *c else { continue };
             shape[k] = number(c, SHAPE_COLUMNS[k])?
                 .ok_or_else(|| at(line, format!("{} missing (0 where the mode does not move)", SHAPE_COLUMNS[k])))?;
         }

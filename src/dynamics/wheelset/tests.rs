@@ -95,7 +95,7 @@ fn rigid_direct(r: &RigidWheelset, omega: f64, spin: f64) -> Receptance {
     // I_x phi'' - I_y Omega psi' = M_x, I_z psi'' + I_y Omega phi' = M_z.
     a[(3, 5)] = Complex64::new(0.0, -omega * spin * r.spin_inertia);
     a[(5, 3)] = Complex64::new(0.0, omega * spin * r.spin_inertia);
-    let mut t = SMatrix::<Complex64, 8, 6>::zeros();
+    let mut t = SMatrix::<Complex64, DOFS, 6>::zeros();
     for (w, y) in [(0, r.contact_half_spacing), (1, -r.contact_half_spacing)] {
         let row = |d: Dir| dof(w, d);
         let one = Complex64::from(1.0);
@@ -107,6 +107,7 @@ fn rigid_direct(r: &RigidWheelset, omega: f64, spin: f64) -> Receptance {
         t[(row(Dir::Z), 2)] = one;
         t[(row(Dir::Z), 3)] = Complex64::from(y);
         t[(row(Dir::Theta), 4)] = one;
+        t[(row(Dir::Psi), 5)] = one;
     }
     t * a.try_inverse().expect("regular") * t.transpose()
 }
@@ -378,14 +379,14 @@ proptest::proptest! {
     #[test]
     fn a_written_table_reads_back_exactly(
         rows in proptest::collection::vec(
-            (1.0f64..1e4, 1e-6f64..0.5, proptest::bool::ANY, proptest::array::uniform8(-1.0f64..1.0)),
+            (1.0f64..1e4, 1e-6f64..0.5, proptest::bool::ANY, proptest::array::uniform10(-1.0f64..1.0)),
             1..12,
         ),
         g in -10.0f64..10.0,
     ) {
         // Rust prints an f64 as the shortest text that reads back to the
         // same number: a table written with `{}` is read bit for bit.
-        let mut text = String::from("name,frequency,damping_ratio,loss_factor,x0,y0,z0,theta0,x1,y1,z1,theta1,partner,coefficient\n");
+        let mut text = format!("name,frequency,damping_ratio,loss_factor,{},partner,coefficient\n", table::SHAPE_COLUMNS.join(","));
         for (i, (f, d, ratio, shape)) in rows.iter().enumerate() {
             let (r, l) = if *ratio { (format!("{d}"), String::new()) } else { (String::new(), format!("{d}")) };
             let s: Vec<String> = shape.iter().map(|v| format!("{v}")).collect();
