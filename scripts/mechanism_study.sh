@@ -95,7 +95,10 @@ for name in $cases; do
     low_rail) mechanism low_rail "$out/low_rail.toml" ;;
     two_rails)
       mechanism two_rails configs/curve_two_rails.toml
-      .venv/bin/python scripts/rails_summary.py "$out"/two_rails_v*.h5 "$out"/low_rail_v*.h5 > "$out/rails_summary.csv"
+      # The low rail alone beside, where the study ran it.
+      lows=()
+      for f in "$out"/low_rail_v*.h5; do [ -e "$f" ] && lows+=("$f"); done
+      .venv/bin/python scripts/rails_summary.py "$out"/two_rails_v*.h5 "${lows[@]}" > "$out/rails_summary.csv"
       cat "$out/rails_summary.csv"
       ;;
     *) echo "unknown mechanism $name (single, braked, torsion, modal, bogie, curve, rutting, low_rail, two_rails)" >&2; exit 2 ;;

@@ -241,10 +241,10 @@ pub fn estimate(s: &Scene) -> CostEstimate {
 /// The dynamics in every direction's tables and creep response (one wheel;
 /// `step` the contact's cost per step of the passage, s): the tables per
 /// harmonic on 2 cores; the creep response's runs (each input two runs of
-/// opposite sign, the longitudinal and lateral creepage and the normal
-/// force; 10 patch lengths each with the creepage's run-in, the lateral
-/// runs twice the others: they break the symmetry the fixed grid folds)
-/// two at a time on 2 cores.
+/// opposite sign, the longitudinal and lateral creepage, the spin with
+/// `dynamics.spin` and the normal force; 10 patch lengths each with the
+/// creepage's run-in, the lateral and the spin's runs twice the others:
+/// they break the symmetry the fixed grid folds) two at a time on 2 cores.
 fn directions_cost(
     s: &Scene,
     g: &crate::rail_grid::RailGrid,
@@ -252,7 +252,7 @@ fn directions_cost(
     d: &crate::build::Derived,
 ) -> Option<DirectionsCost> {
     let gr = s.growth.as_ref()?;
-    let (Directions::All { creep_forces, .. }, Some(_)) = (gr.directions, gr.dynamics.unsprung_mass()) else {
+    let (Directions::All { creep_forces, spin, .. }, Some(_)) = (gr.directions, gr.dynamics.unsprung_mass()) else {
         return None;
     };
     let per_harmonic = match gr.dynamics {
@@ -270,8 +270,10 @@ fn directions_cost(
         CreepForces::Transient => {
             let step_length = s.contact.model.fixed_grid().map_or(s.step_length, |f| f.dx);
             let steps = 10.0 * 2.0 * d.patch_mean.a / step_length;
-            // 2 + 2 + 2 x 2 run-equivalents, two at a time.
-            classes * 8.0 * steps * step / 2.0
+            // 2 + 2 + 2 x 2 run-equivalents (+ 2 x 2 for the spin), two
+            // at a time.
+            let runs = if spin { 12.0 } else { 8.0 };
+            classes * runs * steps * step / 2.0
         }
     };
     Some(DirectionsCost { tables, creep_response })

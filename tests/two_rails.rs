@@ -191,6 +191,13 @@ fn a_two_rail_study_writes_both_rails_and_resumes_bit_for_bit() {
     );
     let n2 = read_f64(&full, "second_rail/contact/pass_00000", "normal_force").unwrap();
     assert!(n2.iter().all(|n| (n - 1.1e5).abs() < 0.2e5), "the second rail's load about its mean");
+    // The spin varies on both rails (dynamics.spin, the default), about
+    // each rail's mean (the first's 0, the second's its mirror image, 0).
+    for g in ["", "second_rail/"] {
+        let spin = read_f64(&full, &format!("{g}contact/pass_00000"), "spin").unwrap();
+        let (lo, hi) = spin.iter().fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(*v), b.max(*v)));
+        assert!(hi - lo > 1e-9 && lo < 0.0 && hi > 0.0, "{g}: spin in [{lo}, {hi}] 1/m");
+    }
     run_scene(&study(2, &[]), &part, &mut |_| {}).unwrap();
     resume(&part, Some(1), None, &mut |_| {}).unwrap();
     for g in ["", "second_rail/"] {
@@ -199,6 +206,17 @@ fn a_two_rail_study_writes_both_rails_and_resumes_bit_for_bit() {
             let (a, b) = (read_f64(&full, &group, v).unwrap(), read_f64(&part, &group, v).unwrap());
             assert!(a == b, "{group}/{v}: {:?} vs {:?}", a.shape(), b.shape());
         }
+    }
+}
+
+#[test]
+fn without_the_spins_channel_the_spin_stays_at_its_mean() {
+    let dir = tempfile::tempdir().unwrap();
+    let f = dir.path().join("off.h5");
+    run_scene(&study(1, &["dynamics.spin=false", "rolling.spin=0.5"]), &f, &mut |_| {}).unwrap();
+    for (g, mean) in [("", 0.5), ("second_rail/", -0.5)] {
+        let spin = read_f64(&f, &format!("{g}contact/pass_00000"), "spin").unwrap();
+        assert!(spin.iter().all(|v| *v == mean), "{g}: the spin left its mean {mean}");
     }
 }
 
