@@ -52,12 +52,12 @@ mkdir -p "$out"
 bin=${CORRUGATION_BIN:-./target/release/corrugation}
 [ -n "${CORRUGATION_BIN:-}" ] || cargo build --release --quiet
 short=()
-for kv in ${SET:-}; do
-  short+=(--set "$kv")
-done
 if [ -n "${PASSES:-}" ]; then
   short=(--set "growth.passes=$PASSES" --set "growth.store_every=$PASSES" --set "growth.checkpoint_every=$PASSES")
 fi
+for kv in ${SET:-}; do
+  short+=(--set "$kv")
+done
 "$bin" track --overwrite configs/growth_discrete.toml -o "$out/track.h5" --set "dynamics.directions=$directions"
 # The curve's low rail alone: curve_two_rails.toml without its second rail.
 awk '/^\[second_rail\]/ {skip = 1; next} /^\[/ {skip = 0} !skip' configs/curve_two_rails.toml > "$out/low_rail.toml"
