@@ -17,18 +17,7 @@ bin=${CORRUGATION_BIN:-./target/release/corrugation}
 out=out/dynamics_cost
 mkdir -p "$out"
 runs=${RUNS:-3}
-median() { sort -n | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
-time_run() { # config passes settings... -> median wall seconds
-  local config=$1 passes=$2; shift 2
-  for _ in $(seq "$runs"); do
-    local t0 t1
-    t0=$(date +%s.%N)
-    "$bin" run --overwrite "configs/$config.toml" -o "$out/run.h5" --set "growth.passes=$passes" \
-      --set 'growth.contact_history=[]' "$@" > /dev/null 2>&1
-    t1=$(date +%s.%N)
-    echo "$t1 - $t0" | bc -l
-  done | median
-}
+source scripts/timing.sh
 echo "config,case,one_passage_s,three_passages_s,passage_s,setup_s,setup_in_passages" > "$out/summary.csv"
 printf '%-16s %-10s %10s %10s %10s %12s\n' config case "passage s" "set-up s" "set-up/pass" "1 pass s"
 for config in growth_exact growth_discrete; do
@@ -38,8 +27,8 @@ for config in growth_exact growth_discrete; do
       steady) set=(--set dynamics.directions=all --set dynamics.creep_forces=steady) ;;
       transient) set=(--set dynamics.directions=all --set dynamics.creep_forces=transient) ;;
     esac
-    one=$(time_run "$config" 1 "${set[@]}")
-    three=$(time_run "$config" 3 "${set[@]}")
+    one=$(time_run "configs/$config.toml" 1 "${set[@]}")
+    three=$(time_run "configs/$config.toml" 3 "${set[@]}")
     passage=$(echo "($three - $one) / 2" | bc -l)
     setup=$(echo "$one - $passage" | bc -l)
     ratio=$(echo "$setup / $passage" | bc -l)

@@ -20,18 +20,7 @@ runs=${RUNS:-3}
 awk '/^\[second_rail\]/ {skip = 1; next} /^\[/ {skip = 0} !skip' configs/curve_two_rails.toml \
   > "$out/straight.toml"
 cp configs/curve_two_rails.toml "$out/curve.toml"
-median() { sort -n | awk '{a[NR]=$1} END {print (NR % 2) ? a[(NR+1)/2] : (a[NR/2] + a[NR/2+1]) / 2}'; }
-time_run() { # config passes settings... -> median wall seconds
-  local config=$1 passes=$2; shift 2
-  for _ in $(seq "$runs"); do
-    local t0 t1
-    t0=$(date +%s.%N)
-    "$bin" run --overwrite "$config" -o "$out/run.h5" --set "growth.passes=$passes" \
-      --set 'growth.contact_history=[]' "$@" > /dev/null 2>&1
-    t1=$(date +%s.%N)
-    echo "$t1 - $t0" | bc -l
-  done | median
-}
+source scripts/timing.sh
 echo "case,one_passage_s,two_passages_s,passage_s,setup_s" > "$out/summary.csv"
 printf '%-10s %10s %10s %10s\n' case "passage s" "set-up s" "1 pass s"
 for case in straight curve; do

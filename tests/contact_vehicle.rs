@@ -4,6 +4,7 @@
 //! src/dynamics/vehicle.rs) with the head's vertical receptances; wheels
 //! far apart are each the single wheel; a bogie study in every direction
 //! runs and resumes bit for bit.
+mod common;
 use corrugation::config::load_str;
 use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
@@ -56,22 +57,12 @@ fn vehicle(behind: &[f64], slopes: bool, nodes: usize, dx: f64, speed: f64) -> C
 }
 
 fn worst(a: &[f64], b: &[f64]) -> f64 {
-    let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale
+    common::worst_scaled(a, b, 1.0)
 }
 
 /// A profile of three harmonics of the stretch.
 fn profile(nodes: usize, dx: f64) -> Vec<f64> {
-    let length = nodes as f64 * dx;
-    (0..nodes)
-        .map(|i| {
-            let x = i as f64 * dx;
-            [(5, 1e-6, 0.3), (17, 5e-7, 1.1), (40, 2e-7, 2.0)]
-                .iter()
-                .map(|(n, a, p)| a * (2.0 * PI * *n as f64 * x / length + p).cos())
-                .sum::<f64>()
-        })
-        .collect()
+    common::three_harmonics(nodes, dx, 0.0)
 }
 
 #[test]

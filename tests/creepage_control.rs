@@ -192,9 +192,9 @@ fn a_growth_passage_under_creepage_control_wears_a_smooth_rail_evenly() {
         &mut |_, _| {},
     )
     .unwrap();
-    let line = g.wear.row(grid.ny / 2).to_vec();
+    let line = g.rails[0].wear.row(grid.ny / 2).to_vec();
     let (lo, hi) = line.iter().fold((f64::MAX, f64::MIN), |(a, b), v| (a.min(*v), b.max(*v)));
-    let force = g.passage.history.longitudinal_force.last().unwrap();
+    let force = g.rails[0].leading.history.longitudinal_force.last().unwrap();
     eprintln!("centre-line wear {lo:.6e} .. {hi:.6e} m; force {force:.6e} N");
     assert!(hi - lo < 1e-3 * hi, "{lo} .. {hi}");
 }

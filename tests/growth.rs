@@ -60,13 +60,13 @@ fn periodic_passage_wears_every_node_once() {
         &mut |_, _| {},
     )
     .unwrap();
-    let centre = g.wear.row(grid.ny / 2).to_vec();
+    let centre = g.rails[0].wear.row(grid.ny / 2).to_vec();
     let mean = centre.iter().sum::<f64>() / centre.len() as f64;
     assert!(mean > 0.0);
     for (i, w) in centre.iter().enumerate() {
         assert!(rel(*w, mean) < 0.01, "node {i}: {w} vs {mean}");
     }
-    assert!(rel(g.wear.sum(), g.passage.wear.sum()) < 1e-12);
+    assert!(rel(g.rails[0].wear.sum(), g.rails[0].leading.wear.sum()) < 1e-12);
 }
 
 use corrugation::config::load_str;

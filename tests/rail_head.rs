@@ -11,10 +11,10 @@
 //! lateral beam's rotational receptance, reciprocal and passive.
 use corrugation::dynamics::continuous3::Continuous3;
 use corrugation::dynamics::discrete::DiscreteTrack;
-use corrugation::dynamics::discrete3::Discrete3;
-use corrugation::dynamics::discrete3::ROTATION_ARM;
-use corrugation::dynamics::section::{Mat3, Mat4, Mat6, Section, translations};
+use corrugation::dynamics::discrete3::{Discrete3, ROTATION_ARM};
+use corrugation::dynamics::section::{Mat4, Mat6, Section, translations};
 use corrugation::dynamics::track::TrackConfig;
+use nalgebra::SMatrix;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -238,67 +238,53 @@ fn on_the_arm(a: &Mat4) -> Mat4 {
     Mat4::from_fn(|r, col| a[(r, col)] * (s[r] * s[col]))
 }
 
-#[test]
-fn the_four_by_four_receptances_are_reciprocal_and_passive() {
-    let t = TrackConfig::default();
-    let cont = Continuous3::new(&t, 0.012);
-    let disc = Discrete3::new(&t, 0.012);
-    for f in [60.0, 500.0, 1050.0, 3000.0] {
-        let w = 2.0 * PI * f;
-        let point = cont.head_receptances4(w, &[0.0, 0.9, -0.9]).unwrap();
-        let pairs = [(0.11, 0.11), (0.11, 0.47), (0.47, 0.11)];
-        let h = disc.head_receptances4(&pairs, w).unwrap();
-        for (name, a, b_t) in [
-            ("continuous point", point[0], point[0].transpose()),
-            ("continuous transfer", point[1], point[2].transpose()),
-            ("discrete point", h[0], h[0].transpose()),
-            ("discrete transfer", h[1], h[2].transpose()),
-        ] {
-            let (a, b_t) = (on_the_arm(&a), on_the_arm(&b_t));
-            assert!((a - b_t).norm() < 1e-9 * a.norm(), "{name} {f} Hz: not reciprocal: {a} vs {b_t}");
-        }
-        // Off the sleeper and mid-span the bay turns the head about z
-        // under a lateral force.
-        assert!(on_the_arm(&h[0])[(3, 1)].norm() > 1e-3 * on_the_arm(&h[0])[(1, 1)].norm(), "{f} Hz: {}", h[0]);
-        for (name, a) in [("continuous", point[0]), ("discrete", h[0])] {
-            let a = on_the_arm(&a);
-            let anti = (a - a.adjoint()) / Complex64::new(0.0, 2.0);
-            let eig = anti.symmetric_eigenvalues();
-            assert!(eig.iter().all(|e| *e <= 1e-12 * a.norm()), "{name} {f} Hz: eigenvalues {eig}");
-        }
-    }
-}
-
 /// Reciprocity: the response at 1 to a force at 0 is the transposed
 /// response at 0 to a force at 1.
-fn reciprocal(a: &Mat3, b_t: &Mat3, what: &str) {
+fn reciprocal<const N: usize>(a: &SMatrix<Complex64, N, N>, b_t: &SMatrix<Complex64, N, N>, what: &str) {
     let scale = a.norm();
     assert!((a - b_t).norm() < 1e-9 * scale, "{what}: not reciprocal: {a} vs {b_t}");
 }
 
+/// Passivity: the power a force F puts in, -w Im(F^H A F) / 2, is
+/// positive for every F: (A - A^H) / (2 i) is negative semi-definite.
+fn passive<const N: usize>(a: &SMatrix<Complex64, N, N>, what: &str) {
+    let anti = (a - a.adjoint()) / Complex64::new(0.0, 2.0);
+    let eig = nalgebra::DMatrix::from_iterator(N, N, anti.iter().copied()).symmetric_eigenvalues();
+    assert!(eig.iter().all(|e| *e <= 1e-12 * a.norm()), "{what}: eigenvalues {eig}");
+}
+
+/// The continuous head's point and +-0.9 m transfer receptances `p` and
+/// the discrete head's at 0.11 m and between 0.11 and 0.47 m `d` (both
+/// ways) reciprocal, the point receptances passive.
+fn reciprocal_and_passive<const N: usize>(p: &[SMatrix<Complex64, N, N>], d: &[SMatrix<Complex64, N, N>], what: &str) {
+    // The point receptance symmetric (not enforced by the residues).
+    reciprocal(&p[0], &p[0].transpose(), &format!("{what}: continuous point"));
+    reciprocal(&p[1], &p[2].transpose(), &format!("{what}: continuous transfer"));
+    reciprocal(&d[0], &d[0].transpose(), &format!("{what}: discrete point"));
+    reciprocal(&d[1], &d[2].transpose(), &format!("{what}: discrete transfer"));
+    passive(&p[0], &format!("{what}: continuous"));
+    passive(&d[0], &format!("{what}: discrete"));
+}
+
 #[test]
-fn coupled_receptances_are_reciprocal() {
+fn coupled_receptances_are_reciprocal_and_passive() {
+    // The 3 x 3 receptances, and the 4 x 4 with the rotation about z (its
+    // row and column per the integral's arm: every entry in m/N).
     let t = TrackConfig::default();
     let cont = Continuous3::new(&t, 0.012);
     let disc = Discrete3::new(&t, 0.012);
+    let (distances, pairs) = ([0.0, 0.9, -0.9], [(0.11, 0.11), (0.11, 0.47), (0.47, 0.11)]);
     for f in [60.0, 500.0, 1050.0, 3000.0] {
         let w = 2.0 * PI * f;
-        let point = cont.head_receptances(w, &[0.0, 0.9, -0.9]).unwrap();
-        // The point receptance symmetric (not enforced by the residues).
-        reciprocal(&point[0], &point[0].transpose(), &format!("continuous point {f} Hz"));
-        reciprocal(&point[1], &point[2].transpose(), &format!("continuous transfer {f} Hz"));
-        let pairs = [(0.11, 0.11), (0.11, 0.47), (0.47, 0.11)];
-        let h = disc.head_receptances(&pairs, w).unwrap();
-        reciprocal(&h[0], &h[0].transpose(), &format!("discrete point {f} Hz"));
-        reciprocal(&h[1], &h[2].transpose(), &format!("discrete transfer {f} Hz"));
-        for (name, a) in [("continuous", point[0]), ("discrete", h[0])] {
-            // Passivity: the power a force F puts in, -w Im(F^H A F) / 2,
-            // is positive for every F: (A - A^H) / (2 i) is negative
-            // semi-definite.
-            let anti = (a - a.adjoint()) / Complex64::new(0.0, 2.0);
-            let eig = anti.map(|v| v).symmetric_eigenvalues();
-            assert!(eig.iter().all(|e| *e <= 1e-12 * a.norm()), "{name} {f} Hz: eigenvalues {eig}");
-        }
+        let (p, d) = (cont.head_receptances(w, &distances).unwrap(), disc.head_receptances(&pairs, w).unwrap());
+        reciprocal_and_passive(&p, &d, &format!("3 x 3, {f} Hz"));
+        let arm = |a: Vec<Mat4>| -> Vec<Mat4> { a.iter().map(on_the_arm).collect() };
+        let (p4, d4) =
+            (arm(cont.head_receptances4(w, &distances).unwrap()), arm(disc.head_receptances4(&pairs, w).unwrap()));
+        reciprocal_and_passive(&p4, &d4, &format!("4 x 4, {f} Hz"));
+        // Off the sleeper and mid-span the bay turns the head about z
+        // under a lateral force.
+        assert!(d4[0][(3, 1)].norm() > 1e-3 * d4[0][(1, 1)].norm(), "{f} Hz: {}", d4[0]);
     }
 }
 

@@ -5,6 +5,8 @@
 //! reaches the first rail's contact through the wheelset; a two-rail study
 //! resumes bit for bit, both rails; a second rail the scene cannot carry is
 //! refused naming the key.
+mod common;
+use common::{largest, worst_scaled};
 use corrugation::build::wheelset_model;
 use corrugation::config::load_str;
 use corrugation::dynamics::TrackDynamics;
@@ -16,7 +18,6 @@ use corrugation::dynamics::track::TrackConfig;
 use corrugation::output::netcdf::{read_attr_str, read_f64};
 use corrugation::run::{resume, run_scene};
 use num_complex::Complex64;
-use std::f64::consts::PI;
 
 const CURVE: &str = include_str!("../configs/curve_two_rails.toml");
 
@@ -76,25 +77,7 @@ fn wheelset(second: ContactLaw) -> ContactVehicle {
 
 /// Three harmonics of the stretch, phase `p`.
 fn profile(p: f64) -> Vec<f64> {
-    let length = NODES as f64 * DX;
-    (0..NODES)
-        .map(|i| {
-            let x = i as f64 * DX;
-            [(5, 1e-6, 0.3), (17, 5e-7, 1.1), (40, 2e-7, 2.0)]
-                .iter()
-                .map(|(n, a, q)| a * (2.0 * PI * *n as f64 * x / length + q + p).cos())
-                .sum::<f64>()
-        })
-        .collect()
-}
-
-fn peak(a: &[f64]) -> f64 {
-    a.iter().fold(0.0f64, |m, v| m.max(v.abs()))
-}
-
-/// max |a - s b| / max |b|.
-fn worst(a: &[f64], b: &[f64], s: f64) -> f64 {
-    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - s * y).abs())) / peak(b)
+    common::three_harmonics(NODES, DX, p)
 }
 
 #[test]
@@ -120,7 +103,7 @@ fn the_second_rail_without_its_contact_is_one_rail() {
         ("spin", &both[0].spin, &single.spin),
     ] {
         // The free wheel's spring carries 1e-6 N/m x 1e-6 m: nothing.
-        assert!(worst(a, b, 1.0) < 1e-9, "{name}: {}", worst(a, b, 1.0));
+        assert!(worst_scaled(a, b, 1.0) < 1e-9, "{name}: {}", worst_scaled(a, b, 1.0));
     }
 }
 
@@ -134,13 +117,13 @@ fn a_symmetric_wheelset_on_mirror_image_contacts_answers_symmetrically() {
     let two = wheelset(mirrored(&law()));
     let r = profile(0.0);
     let s = two.contact_signals(&[r.clone(), r], DX, SPEED).unwrap();
-    assert!(peak(&s[0].normal) > 100.0 && peak(&s[0].creepage_y) > 1e-9);
-    assert!(worst(&s[1].normal, &s[0].normal, 1.0) < 1e-9, "{}", worst(&s[1].normal, &s[0].normal, 1.0));
-    assert!(worst(&s[1].creepage_x, &s[0].creepage_x, 1.0) < 1e-9);
-    assert!(worst(&s[1].creepage_y, &s[0].creepage_y, -1.0) < 1e-9);
+    assert!(largest(&s[0].normal) > 100.0 && largest(&s[0].creepage_y) > 1e-9);
+    assert!(worst_scaled(&s[1].normal, &s[0].normal, 1.0) < 1e-9, "{}", worst_scaled(&s[1].normal, &s[0].normal, 1.0));
+    assert!(worst_scaled(&s[1].creepage_x, &s[0].creepage_x, 1.0) < 1e-9);
+    assert!(worst_scaled(&s[1].creepage_y, &s[0].creepage_y, -1.0) < 1e-9);
     // The spin, as the lateral creepage, changes sign in the mirror.
-    assert!(peak(&s[0].spin) > 0.0);
-    assert!(worst(&s[1].spin, &s[0].spin, -1.0) < 1e-9, "{}", worst(&s[1].spin, &s[0].spin, -1.0));
+    assert!(largest(&s[0].spin) > 0.0);
+    assert!(worst_scaled(&s[1].spin, &s[0].spin, -1.0) < 1e-9, "{}", worst_scaled(&s[1].spin, &s[0].spin, -1.0));
 }
 
 #[test]
@@ -150,9 +133,9 @@ fn the_second_rails_profile_reaches_the_first_rails_contact_through_the_wheelset
     // than the second's own, and not by nothing.
     let two = wheelset(law());
     let s = two.contact_signals(&[vec![0.0; NODES], profile(0.0)], DX, SPEED).unwrap();
-    let (first, second) = (peak(&s[0].normal), peak(&s[1].normal));
+    let (first, second) = (largest(&s[0].normal), largest(&s[1].normal));
     assert!(first > 1e-3 * second && first < second, "first {first} N, second {second} N");
-    assert!(peak(&s[0].creepage_x) > 0.0);
+    assert!(largest(&s[0].creepage_x) > 0.0);
 }
 
 fn study(passes: usize, extra: &[&str]) -> corrugation::config::Resolved {

@@ -234,15 +234,14 @@ impl ContactDynamics {
     ) -> Result<Self, Discrete3Error> {
         let length = nodes as f64 * dx;
         let n_max = harmonics(nodes, dx, speed);
+        let spin = law.force_per_spin.is_some();
         let table = (1..=n_max)
             .into_par_iter()
             .map(|n| {
                 let w = 2.0 * PI * n as f64 * speed.abs() / length;
                 let a_w = wheel.receptance(w, speed.abs());
-                let spin = law.force_per_spin.is_some();
                 let heads = match &rail {
-                    Rail3::Continuous(c) if spin => c.head_receptances4(w, &[0.0])?,
-                    Rail3::Continuous(c) => c.head_receptances(w, &[0.0])?.iter().map(pad).collect(),
+                    Rail3::Continuous(c) => c.heads(w, &[0.0], spin)?,
                     Rail3::Discrete { model, .. } => {
                         let d = model.section.track.sleeper_spacing;
                         let places: Vec<(f64, f64)> = (0..BAY_PLACES)
@@ -251,11 +250,7 @@ impl ContactDynamics {
                                 (x, x)
                             })
                             .collect();
-                        if spin {
-                            model.head_receptances4(&places, w)?
-                        } else {
-                            model.head_receptances(&places, w)?.iter().map(pad).collect()
-                        }
+                        model.heads(&places, w, spin)?
                     }
                 };
                 let law_w = response.as_ref().map_or(law, |r| law.at_frequency(&r.at(w / (2.0 * PI))));

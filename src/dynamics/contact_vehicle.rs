@@ -36,7 +36,7 @@ use super::contact_point::ContactLaw;
 use super::creep_response::CreepResponse;
 use super::discrete_dynamics::harmonics;
 use super::discrete3::Discrete3Error;
-use super::section::{Mat4, pad, translations};
+use super::section::Mat4;
 use super::vehicle::{BAY_PLACES, bay_place, inputs_as_met, parametric_paths, static_receptances};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -131,11 +131,7 @@ impl ContactVehicle {
                         // at x_l = -s_l: distance s_l - s_j.
                         let distances: Vec<f64> =
                             (0..n * n).map(|p| wheels[p % n].behind - wheels[p / n].behind).collect();
-                        if spin {
-                            vec![model.head_receptances4(w, &distances)?]
-                        } else {
-                            vec![model.head_receptances(w, &distances)?.iter().map(pad).collect()]
-                        }
+                        vec![model.heads(w, &distances, spin)?]
                     }
                     Rail3::Discrete { model, .. } => {
                         let d = model.section.track.sleeper_spacing;
@@ -146,12 +142,7 @@ impl ContactVehicle {
                                 (0..n * n).map(move |q| (x - wheels[q % n].behind, x - wheels[q / n].behind))
                             })
                             .collect();
-                        let blocks: Vec<Mat4> = if spin {
-                            model.head_receptances4(&pairs, w)?
-                        } else {
-                            model.head_receptances(&pairs, w)?.iter().map(pad).collect()
-                        };
-                        blocks.chunks(n * n).map(|c| c.to_vec()).collect()
+                        model.heads(&pairs, w, spin)?.chunks(n * n).map(|c| c.to_vec()).collect()
                     }
                 };
                 // The two rails are not coupled (their sleepers' rocking
@@ -264,7 +255,7 @@ fn solve(own: &[Mat4], a_r: &[Mat4], laws: &[ContactLaw], omega: f64, speed: f64
     let blocks: Vec<Mat4> = a_r.iter().zip(own).map(|(r, w)| r + w).collect();
     // The relative displacements per force, A (3n x 3n), and the relative
     // rotations about z per force, R (n x 3n).
-    let a = DMatrix::from_fn(3 * n, 3 * n, |r, c| translations(&blocks[(r / 3) * n + c / 3])[(r % 3, c % 3)]);
+    let a = DMatrix::from_fn(3 * n, 3 * n, |r, c| blocks[(r / 3) * n + c / 3][(r % 3, c % 3)]);
     let rot = DMatrix::from_fn(n, 3 * n, |j, c| blocks[j * n + c / 3][(3, c % 3)]);
     let mut m = DMatrix::<Complex64>::zeros(3 * n, 3 * n);
     let mut rhs = DMatrix::<Complex64>::zeros(3 * n, n);

@@ -23,7 +23,7 @@
 //! the torsion rod's, `1 / (8 EI_z beta_y^3) + h_s^2 / (2 GJ gamma_t)`
 //! (tests/rail_head.rs).
 
-use super::section::{Mat3, Mat4, Mat6, Section};
+use super::section::{Mat3, Mat4, Mat6, Section, pad};
 use super::track::TrackConfig;
 use super::waves::{RootsError, Waves};
 use num_complex::Complex64;
@@ -68,5 +68,15 @@ impl Continuous3 {
     /// the moment about it (4 x 4, [`super::section::Mat4`]).
     pub fn head_receptances4(&self, omega: f64, distances: &[f64]) -> Result<Vec<Mat4>, RootsError> {
         Ok(self.section_receptances(omega, distances)?.iter().map(|g| self.section.head4(g)).collect())
+    }
+
+    /// [`Self::head_receptances4`] with the rotation about `z`, or without
+    /// it the 3 x 3 receptances with a zero fourth row and column.
+    pub fn heads(&self, omega: f64, distances: &[f64], rotation: bool) -> Result<Vec<Mat4>, RootsError> {
+        if rotation {
+            self.head_receptances4(omega, distances)
+        } else {
+            Ok(self.head_receptances(omega, distances)?.iter().map(pad).collect())
+        }
     }
 }

@@ -22,7 +22,7 @@
 //! adaptive ([`crate::quadrature`], to [`TOLERANCE`] of the head's largest
 //! receptance). The head's receptance is `B^T G B`.
 
-use super::section::{Mat3, Mat4, Mat6, Section, project};
+use super::section::{Mat3, Mat4, Mat6, Section, pad, project};
 use super::track::TrackConfig;
 use super::waves::{RootsError, Waves};
 use crate::quadrature::{QuadratureError, integrate};
@@ -122,6 +122,17 @@ impl Discrete3 {
             .into_iter()
             .map(|a| Mat4::from_fn(|r, c| a[(r, c)] * (scale[r] * scale[c])))
             .collect())
+    }
+
+    /// [`Self::head_receptances4`] with the rotation about `z`, or without
+    /// it the 3 x 3 receptances (their own integral, whose error control
+    /// sees the translations alone) with a zero fourth row and column.
+    pub fn heads(&self, pairs: &[(f64, f64)], omega: f64, rotation: bool) -> Result<Vec<Mat4>, Discrete3Error> {
+        if rotation {
+            self.head_receptances4(pairs, omega)
+        } else {
+            Ok(self.head_receptances(pairs, omega)?.iter().map(pad).collect())
+        }
     }
 
     /// `B^T G(x1; x0) B` of eq. 1 for the head map `b`.

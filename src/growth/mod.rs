@@ -146,24 +146,12 @@ pub fn linear_roughness(profile: &Array2<f64>, grid: &RailGrid, a: f64, b: f64) 
 /// What one growth passage produced.
 #[derive(Debug, Clone)]
 pub struct GrowthPass {
-    /// The leading wheel's passage on the extended grid (history, unfolded
-    /// wear), with the fallback steps of every wheel's.
-    pub passage: PassageResult,
-    /// The other wheels' patch histories on the first rail, the second
-    /// wheel first (empty for one wheel).
-    pub wheel_histories: Vec<PatchHistory>,
-    /// Wear of one simulated wheel passage on the periodic grid (m): with
-    /// several wheels, the mean of theirs.
-    pub wear: Array2<f64>,
-    /// The leading wheel's dynamic normal force on the periodic grid (N).
-    pub dynamic_force: Vec<f64>,
-    /// Steps inside the stretch where a wheel left the rail (N <= 0),
-    /// summed over the wheels: the linear track model is not valid there.
-    pub contact_loss_steps: usize,
-    /// Steps at which the linear profile contact's pressure vanished well
-    /// inside the patch, summed over the wheels: the linearisation beyond
-    /// its range.
-    pub clipped_steps: usize,
+    /// What it left on each rail: the first rail's, then the wheelset's
+    /// second rail's where it has one.
+    pub rails: Vec<RailPass>,
+    /// Steps at which the fixed grid's CG solver handed over to
+    /// Gauss-Seidel, summed over every wheel of every rail.
+    pub fallback_steps: usize,
     /// Whether the passage took the linear profile contact (its pressure
     /// and its equivalent roughness); otherwise the nonlinear one (or
     /// Hertz's).
@@ -171,25 +159,28 @@ pub struct GrowthPass {
     /// Why `Auto`'s linear contact stopped, if it did and the passage was
     /// run again with the nonlinear contact.
     pub rerun: Option<String>,
-    /// The wheelset's second rail's part of the passage, where it has one.
-    pub second_rail: Option<RailPass>,
 }
 
-/// What one growth passage left on the wheelset's second rail.
+/// What one growth passage left on one rail.
 #[derive(Debug, Clone)]
 pub struct RailPass {
-    /// Its leading wheel's patch history.
-    pub history: PatchHistory,
-    /// Its other wheels' patch histories (a vehicle of several
-    /// wheelsets), the second wheel first.
+    /// Its leading wheel's passage on the extended grid (history, unfolded
+    /// wear; its own fallback steps).
+    pub leading: PassageResult,
+    /// Its other wheels' patch histories (a vehicle of several wheels),
+    /// the second wheel first (empty for one wheel).
     pub wheel_histories: Vec<PatchHistory>,
-    /// Its wear of one wheel passage on the periodic grid (m).
+    /// Wear of one simulated wheel passage on the periodic grid (m): with
+    /// several wheels, the mean of theirs.
     pub wear: Array2<f64>,
-    /// Its wheel's dynamic normal force on the periodic grid (N).
+    /// Its leading wheel's dynamic normal force on the periodic grid (N).
     pub dynamic_force: Vec<f64>,
-    /// Steps inside the stretch where its wheel left the rail.
+    /// Steps inside the stretch where a wheel left the rail (N <= 0),
+    /// summed over its wheels: the linear track model is not valid there.
     pub contact_loss_steps: usize,
-    /// Steps where its linear profile contact's pressure vanished inside.
+    /// Steps at which the linear profile contact's pressure vanished well
+    /// inside the patch, summed over its wheels: the linearisation beyond
+    /// its range.
     pub clipped_steps: usize,
 }
 
@@ -552,36 +543,26 @@ fn passage_with<'o>(
             *wear /= *n as f64;
         }
     }
-    let mut leading = leading.into_iter();
-    let first = leading.next().flatten().expect("one wheel at least");
-    let passage = PassageResult { fallback_steps, ..first };
-    let mut wear = wear.into_iter();
-    let first_wear = wear.next().expect("one rail");
-    let mut histories = wheel_histories.into_iter();
-    let wheel_histories = histories.next().expect("one rail");
-    let second_rail = leading.next().flatten().map(|p| {
-        let w = rail_of.iter().position(|&r| r == 1).expect("a wheel on the second rail");
-        RailPass {
-            history: p.history,
-            wheel_histories: histories.next().unwrap_or_default(),
-            wear: wear.next().expect("the second rail's wear"),
-            dynamic_force: forces[w].clone(),
-            contact_loss_steps: contact_loss_steps[1],
-            clipped_steps: clipped_steps[1],
-        }
-    });
-    let dynamic_force = forces.into_iter().next().expect("one wheel at least");
-    Ok(GrowthPass {
-        wheel_histories,
-        passage,
-        wear: first_wear,
-        dynamic_force,
-        contact_loss_steps: contact_loss_steps[0],
-        clipped_steps: clipped_steps[0],
-        linear_contact,
-        rerun: None,
-        second_rail,
-    })
+    // Each rail's leading wheel, its other wheels' histories, its wear and
+    // its leading wheel's dynamic force.
+    let rails = leading
+        .into_iter()
+        .zip(wheel_histories)
+        .zip(wear)
+        .enumerate()
+        .map(|(r, ((lead, wheel_histories), wear))| {
+            let w = rail_of.iter().position(|&q| q == r).expect("a wheel on every rail");
+            RailPass {
+                leading: lead.expect("a passage per rail"),
+                wheel_histories,
+                wear,
+                dynamic_force: forces[w].clone(),
+                contact_loss_steps: contact_loss_steps[r],
+                clipped_steps: clipped_steps[r],
+            }
+        })
+        .collect();
+    Ok(GrowthPass { rails, fallback_steps, linear_contact, rerun: None })
 }
 
 /// How a passage's dynamics sees the profile (module docs of

@@ -27,7 +27,7 @@ use super::spectrum::wavelengths;
 use super::state::RunState;
 use super::stop::rails_stop_reason;
 use super::traffic::change_rate;
-use super::{Rail, growth_passage_rails};
+use super::{Rail, RailPass, growth_passage_rails};
 use crate::build::{Derived, DynamicsError, build_deposit, build_solver, derive, study_grid, track_dynamics};
 use crate::contact::{ContactError, Elements, TangentialSolver};
 use crate::dynamics::TrackDynamics;
@@ -341,13 +341,11 @@ impl<'a> Study<'a> {
             let scaled = (done * steps).checked_div(total).unwrap_or(0);
             progress(Event::Steps { done: (pass - first) * steps + scaled, total: total_steps })
         };
-        let (mut loss, mut clipped, mut linear_contact) = (0, 0, false);
+        let mut linear_contact = false;
         let fallbacks;
-        let mut others = Vec::new();
-        let mut second = None;
-        let (wear, history) = match growth {
+        let rails: Vec<RailPass> = match growth {
             None => {
-                let r = run_passage(
+                let mut r = run_passage(
                     &self.d.passage,
                     &self.d.shape,
                     self.solver.as_mut(),
@@ -358,7 +356,15 @@ impl<'a> Study<'a> {
                 )
                 .map_err(fail)?;
                 fallbacks = r.fallback_steps;
-                (r.wear, r.history)
+                let wear = std::mem::take(&mut r.wear);
+                vec![RailPass {
+                    leading: r,
+                    wheel_histories: Vec::new(),
+                    wear,
+                    dynamic_force: Vec::new(),
+                    contact_loss_steps: 0,
+                    clipped_steps: 0,
+                }]
             }
             Some(_) => {
                 let model = &mut self.models[class];
@@ -400,14 +406,11 @@ impl<'a> Study<'a> {
                     }
                     g => g.map_err(fail)?,
                 };
-                loss = g.contact_loss_steps;
-                clipped = g.clipped_steps;
                 linear_contact = g.linear_contact;
                 let names = self.scene.second_rail.as_ref().map(|r| r.names.clone());
                 let on = |k: usize| names.as_ref().map_or_else(String::new, |n| format!(" (the {})", n[k]));
-                let clipped_all =
-                    [(clipped, on(0))].into_iter().chain(g.second_rail.as_ref().map(|r| (r.clipped_steps, on(1))));
-                for (steps, rail) in clipped_all.filter(|(c, _)| *c > 0) {
+                let clipped = g.rails.iter().enumerate().map(|(k, r)| (r.clipped_steps, on(k)));
+                for (steps, rail) in clipped.filter(|(c, _)| *c > 0) {
                     progress(Event::Warning {
                         pass,
                         message: format!(
@@ -427,9 +430,7 @@ impl<'a> Study<'a> {
                         ),
                     });
                 }
-                let lost = [(g.contact_loss_steps, on(0))]
-                    .into_iter()
-                    .chain(g.second_rail.as_ref().map(|r| (r.contact_loss_steps, on(1))));
+                let lost = g.rails.iter().enumerate().map(|(k, r)| (r.contact_loss_steps, on(k)));
                 for (steps, rail) in lost.filter(|(c, _)| *c > 0) {
                     progress(Event::Warning {
                         pass,
@@ -439,7 +440,7 @@ impl<'a> Study<'a> {
                         ),
                     });
                 }
-                fallbacks = g.passage.fallback_steps;
+                fallbacks = g.fallback_steps;
                 // The wear one passage of this class leaves on the smooth
                 // rail, where its track forces a dynamic force there (the
                 // discrete supports' parametric excitation): it does not
@@ -449,13 +450,9 @@ impl<'a> Study<'a> {
                     let smooth = Array2::zeros(self.state.profile.raw_dim());
                     let two = self.state.second_rail.is_some();
                     let w0 = passage([Some(&smooth), two.then_some(&smooth)], false, &mut |_, _| {}).map_err(fail)?;
-                    let mut forced = vec![line(&w0.wear)];
-                    forced.extend(w0.second_rail.as_ref().map(|r| line(&r.wear)));
-                    model.forced = Some(forced);
+                    model.forced = Some(w0.rails.iter().map(|r| line(&r.wear)).collect());
                 }
-                others = g.wheel_histories;
-                second = g.second_rail;
-                (g.wear, g.passage.history)
+                g.rails
             }
         };
         if fallbacks > 0 {
@@ -468,8 +465,8 @@ impl<'a> Study<'a> {
             });
         }
         let cpu_seconds = clock.elapsed().as_secs_f64();
-        let second_line = second.as_ref().map(|r| line(&r.wear));
-        let (m, rho) = self.traffic_scale(class, &line(&wear), second_line.as_deref());
+        let wear_lines: Vec<Vec<f64>> = rails.iter().map(|r| line(&r.wear)).collect();
+        let (m, rho) = self.traffic_scale(class, &wear_lines);
         let profile_contact = match normal {
             NormalContact::Hertz => 0.0,
             _ if linear_contact => PROFILE_LINEAR,
@@ -492,12 +489,14 @@ impl<'a> Study<'a> {
             },
             keep_history,
         };
-        let max_wear = wear.iter().cloned().fold(0.0, f64::max);
-        let row = keep.apply(&mut self.state, wear, (history, others), (loss, clipped));
-        let second_row = match (self.state.second_rail.as_deref_mut(), second) {
-            (Some(state), Some(r)) => {
-                Some(keep.apply(state, r.wear, (r.history, r.wheel_histories), (r.contact_loss_steps, r.clipped_steps)))
-            }
+        let max_wear = rails[0].wear.iter().cloned().fold(0.0, f64::max);
+        let mut rails = rails.into_iter();
+        let kept = |state: &mut RunState, r: RailPass| {
+            keep.apply(state, r.wear, (r.leading.history, r.wheel_histories), (r.contact_loss_steps, r.clipped_steps))
+        };
+        let row = kept(&mut self.state, rails.next().expect("the first rail"));
+        let second_row = match (self.state.second_rail.as_deref_mut(), rails.next()) {
+            (Some(state), Some(r)) => Some(kept(state, r)),
             _ => None,
         };
         let names = self.scene.second_rail.as_ref().map(|r| &r.names);
@@ -540,12 +539,12 @@ impl<'a> Study<'a> {
     }
 
     /// The traffic scale m of a passage of `class` whose centre-line wear
-    /// is `wear`, and the relative profile change rho per real passage it
-    /// bounds. With imposed dynamics the wear does not depend on the
+    /// is `wear` on each rail (the first rail's first), and the relative
+    /// profile change rho per real passage it bounds. With imposed dynamics the wear does not depend on the
     /// profile: the update is exact for any m (growth::traffic), rho = 0.
     /// The adaptive m rises from the last m of the same class: classes
     /// whose wear changes the profile faster keep a smaller m.
-    fn traffic_scale(&self, class: usize, wear: &[f64], second: Option<&[f64]>) -> (f64, f64) {
+    fn traffic_scale(&self, class: usize, wear: &[Vec<f64>]) -> (f64, f64) {
         // Each rail's rate (the second rail's against its own profile);
         // the faster one bounds the update.
         let rate = |k: usize, profile: &Array2<f64>, wear: &[f64]| {
@@ -557,11 +556,9 @@ impl<'a> Study<'a> {
         };
         let rho = match self.models.get(class) {
             Some(model) if model.dynamics.is_some() => {
-                let first = rate(0, &self.state.profile, wear);
-                match (second, self.state.second_rail.as_deref()) {
-                    (Some(w), Some(s)) => first.max(rate(1, &s.profile, w)),
-                    _ => first,
-                }
+                let profiles =
+                    std::iter::once(&self.state).chain(self.state.second_rail.as_deref()).map(|s| &s.profile);
+                profiles.zip(wear).enumerate().map(|(k, (p, w))| rate(k, p, w)).fold(f64::MIN, f64::max)
             }
             _ => 0.0,
         };

@@ -92,3 +92,29 @@ pub fn fixed_grid(
         solver,
     ))
 }
+
+/// A profile of three harmonics (5th, 17th, 40th) of a periodic stretch of
+/// `nodes` samples every `dx` (m), shifted in phase by `phase` (rad): 1,
+/// 0.5 and 0.2 um.
+pub fn three_harmonics(nodes: usize, dx: f64, phase: f64) -> Vec<f64> {
+    let length = nodes as f64 * dx;
+    (0..nodes)
+        .map(|i| {
+            let x = i as f64 * dx;
+            [(5, 1e-6, 0.3), (17, 5e-7, 1.1), (40, 2e-7, 2.0)]
+                .iter()
+                .map(|(n, a, q)| a * (2.0 * std::f64::consts::PI * *n as f64 * x / length + q + phase).cos())
+                .sum::<f64>()
+        })
+        .collect()
+}
+
+/// The largest magnitude of `a`.
+pub fn largest(a: &[f64]) -> f64 {
+    a.iter().fold(0.0f64, |m, v| m.max(v.abs()))
+}
+
+/// `max |a - s b| / max |b|`.
+pub fn worst_scaled(a: &[f64], b: &[f64], s: f64) -> f64 {
+    a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - s * y).abs())) / largest(b)
+}
