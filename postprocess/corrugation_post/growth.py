@@ -44,6 +44,7 @@ class GrowthCurves:
     wavelengths: np.ndarray
     spectrum: np.ndarray  # (pass, wavelength), m
     initial: np.ndarray  # (wavelength,), m, before the first passage
+    rail_name: str = ""  # the rail's name (the file's root or second_rail attribute)
 
 
 def load_rails(path) -> list[GrowthCurves]:
@@ -79,7 +80,7 @@ def _load(run: Run) -> GrowthCurves:
         return GrowthCurves(
             label=label, path=run.path, traffic=ps["traffic"].values,
             scale=ps["traffic_scale"].values, rms=ps["rms_corrugation"].values, ratio=ratio,
-            wavelengths=ps["wavelength"].values, spectrum=spectrum, initial=initial,
+            wavelengths=ps["wavelength"].values, spectrum=spectrum, initial=initial, rail_name=run.rail_name or "",
         )
 
 

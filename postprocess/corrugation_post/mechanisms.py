@@ -29,20 +29,22 @@ SUMMARY_COLUMNS = ("mechanism", "label", "speed_m_s", "peak_wavelength_m", "peak
 GROWING = 0.1
 
 
-def _load(folder: Path) -> dict[str, dict[str, np.ndarray]]:
+def _load(folder: Path) -> dict[str, dict]:
     """The speeds.csv of one mechanism, by study label: speed, wavelength,
-    frequency and rate arrays."""
+    frequency and rate arrays, and the rail's name (empty for one rail;
+    older files have no ``rail`` column)."""
     path = folder / CSV_NAME
     if not path.is_file():
         raise RunFileError(f"{path}: no {CSV_NAME} (run `corrugation-post speeds` for this mechanism first)")
     studies: dict[str, dict[str, list[float]]] = {}
     for row in read_csv(path):
-        s = studies.setdefault(row["label"], {"speed": [], "wavelength": [], "frequency": [], "rate": []})
+        s = studies.setdefault(row["label"], {"speed": [], "wavelength": [], "frequency": [], "rate": [],
+                                              "rail": row.get("rail", "")})
         s["speed"].append(float(row["speed_m_s"]))
         s["wavelength"].append(float(row["wavelength_m"]))
         s["frequency"].append(float(row["frequency_hz"]))
         s["rate"].append(float(row["growth_rate_db_per_1e5"]))
-    return {k: {n: np.asarray(v) for n, v in s.items()} for k, s in studies.items()}
+    return {k: {n: v if n == "rail" else np.asarray(v) for n, v in s.items()} for k, s in studies.items()}
 
 
 def mechanism_figure(folders, out_dir):
@@ -60,7 +62,7 @@ def mechanism_figure(folders, out_dir):
         for label, s in sorted(studies.items(), key=lambda kv: kv[1]["speed"][0]):
             r = s["rate"]
             v = float(s["speed"][0])
-            tag = f"{v * 3.6:.0f} km/h"
+            tag = f"{v * 3.6:.0f} km/h" + (f", {s['rail']}" if s["rail"] else "")
             ax_f.plot(s["frequency"], r, "o-", ms=3, label=tag)
             ax_wl.plot(s["wavelength"] * 1e3, r, "o-", ms=3, label=tag)
             ok = np.isfinite(r)

@@ -23,14 +23,14 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from .figures import DPI
-from .growth import STRONG, GrowthCurves, load, mean_rates
+from .growth import STRONG, GrowthCurves, load_rails, mean_rates
 from .io import RunFileError, open_group, parse_config, root_attrs, write_csv
 
 CSV_NAME = "speeds.csv"
-CSV_COLUMNS = ("label", "speed_m_s", "wavelength_m", "frequency_hz", "growth_rate_db_per_1e5",
+CSV_COLUMNS = ("label", "rail", "speed_m_s", "wavelength_m", "frequency_hz", "growth_rate_db_per_1e5",
                "predicted_db_per_1e5")
 SUMMARY_NAME = "speeds_summary.csv"
-SUMMARY_COLUMNS = ("label", "classes", "speed_m_s", "passes", "final_traffic", "final_rms_m",
+SUMMARY_COLUMNS = ("label", "rail", "classes", "speed_m_s", "passes", "final_traffic", "final_rms_m",
                    "peak_wavelength_m", "peak_frequency_hz", "peak_rate_db_per_1e5", "rms_rate_diff_to_prediction")
 
 # Speeds within this (m/s) are the same class speed.
@@ -39,12 +39,14 @@ SPEED_TOL = 0.01
 
 @dataclass
 class Study:
-    """One growth study and its traffic classes."""
+    """One rail of a growth study and the study's traffic classes."""
 
     curves: GrowthCurves
     speeds: np.ndarray  # (class,), m/s
     shares: np.ndarray  # (class,), 1
     names: list[str]
+    rail: str = ""  # the rail's name in a two-rail file ("" for one rail)
+    first: bool = True  # the file's first rail
 
     @property
     def label(self) -> str:
@@ -63,8 +65,10 @@ class Study:
         return np.where(strong, mean_rates(self.curves), np.nan)
 
 
-def load_study(path) -> Study:
-    curves = load(path)
+def load_studies(path) -> list[Study]:
+    """Every rail of a growth study (one for a one-rail file), each with the
+    study's traffic classes."""
+    rails = load_rails(path)
     try:
         with open_group(path, "traffic") as t:
             speeds, shares = t["speed"].values, t["share"].values
@@ -73,15 +77,18 @@ def load_study(path) -> Study:
         # A file without classes: the config's speed.
         config = parse_config(root_attrs(path).get("config", ""), path)
         speeds, shares, names = np.array([float(config["rolling"]["speed"])]), np.array([1.0]), ["base"]
-    return Study(curves=curves, speeds=np.asarray(speeds, float), shares=np.asarray(shares, float), names=names)
+    named = len(rails) > 1
+    return [Study(curves=c, speeds=np.asarray(speeds, float), shares=np.asarray(shares, float), names=names,
+                  rail=c.rail_name if named else "", first=k == 0) for k, c in enumerate(rails)]
 
 
 def predicted(mix: Study, singles: list[Study]) -> np.ndarray | None:
     """The share-weighted mean of the single-speed rates of the mix's
-    classes (None when a class has no single-speed study)."""
+    classes (None when a class has no single-speed study; a mix has one
+    rail: the singles' first rails)."""
     total = np.zeros_like(mix.curves.wavelengths)
     for v, s in zip(mix.speeds, mix.shares):
-        match = [st for st in singles if abs(st.speeds[0] - v) <= SPEED_TOL
+        match = [st for st in singles if st.first and abs(st.speeds[0] - v) <= SPEED_TOL
                  and np.array_equal(st.curves.wavelengths, mix.curves.wavelengths)]
         if not match:
             return None
@@ -110,8 +117,9 @@ def growth_rate_axes(ax) -> None:
 
 def speed_study(paths, out_dir, track=None):
     """Writes ``speeds.png``, ``speeds.csv`` and ``speeds_summary.csv``;
-    returns ``(rows, paths)`` with one summary row per study."""
-    studies = [load_study(p) for p in paths]
+    returns ``(rows, paths)`` with one summary row per study and rail (both
+    rails of a two-rail study)."""
+    studies = [st for p in paths for st in load_studies(p)]
     singles = [s for s in studies if not s.mixed]
     out_dir = Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -136,7 +144,7 @@ def speed_study(paths, out_dir, track=None):
             ax_f.plot(st.speeds[0] / wl, r, "o-", ms=3, color=line.get_color(), label=label)
         for k in range(len(wl)):
             rows.append({
-                "label": st.label, "speed_m_s": v, "wavelength_m": float(wl[k]),
+                "label": st.label, "rail": st.rail, "speed_m_s": v, "wavelength_m": float(wl[k]),
                 "frequency_hz": float(v / wl[k]) if not st.mixed else float("nan"),
                 "growth_rate_db_per_1e5": float(r[k]),
                 "predicted_db_per_1e5": float(pred[k]) if pred is not None else float("nan"),
@@ -148,7 +156,7 @@ def speed_study(paths, out_dir, track=None):
             both = ok & np.isfinite(pred)
             diff = float(np.sqrt(np.mean((r[both] - pred[both]) ** 2))) if both.any() else float("nan")
         summary.append({
-            "label": st.label, "classes": " ".join(st.names), "speed_m_s": v, "passes": len(c.traffic),
+            "label": st.label, "rail": st.rail, "classes": " ".join(st.names), "speed_m_s": v, "passes": len(c.traffic),
             "final_traffic": float(c.traffic[-1]), "final_rms_m": float(c.rms[-1]),
             "peak_wavelength_m": float(wl[k]), "peak_frequency_hz": float(v / wl[k]) if not st.mixed else float("nan"),
             "peak_rate_db_per_1e5": float(r[k]) if ok.any() else float("nan"),

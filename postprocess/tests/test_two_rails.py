@@ -163,3 +163,25 @@ def test_the_binary_writes_both_rails(tmp_path, capsys):
     assert main(["figures", str(out), "--out", str(tmp_path / "figs")]) == 0
     written = {Path(line).name for line in capsys.readouterr().out.split()}
     assert {"wear_map.png", "wear_map_second_rail.png"} <= written
+
+
+def test_speeds_and_mechanisms_draw_both_rails(two_rails, tmp_path):
+    # `speeds` gives every rail of a two-rail study its own curve, rows and
+    # summary row, named; a one-rail study keeps an empty rail column.
+    from corrugation_post.mechanisms import mechanism_figure
+    from corrugation_post.speeds import speed_study
+
+    one_rail = write_run(tmp_path / "one.h5", n_pass=3, extras=True, growth=True)
+    for f in (two_rails, one_rail):  # the speed, as a growth study's config gives it
+        with h5py.File(f, "r+") as h:
+            h.attrs["config"] = io.as_str(h.attrs["config"]) + "\n[rolling]\nspeed = 30.0\n"
+    folder = tmp_path / "two_rails"
+    summary, _ = speed_study([two_rails], folder)
+    assert [r["rail"] for r in summary] == list(RAIL_NAMES)
+    assert all(name in r["label"] for r, name in zip(summary, RAIL_NAMES))
+    rows = io.read_csv(folder / "speeds.csv")
+    assert {r["rail"] for r in rows} == set(RAIL_NAMES)
+    one, _ = speed_study([one_rail], tmp_path / "one")
+    assert [r["rail"] for r in one] == [""]
+    mech, _ = mechanism_figure([folder], tmp_path / "mech")
+    assert sorted(r["label"] for r in mech) == sorted(r["label"] for r in summary)
