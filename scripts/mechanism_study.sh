@@ -27,7 +27,7 @@
 #           wheel free
 #   two_rails configs/curve_two_rails.toml: the low and the high rail, the
 #           two contacts coupled through the modal wheelset (the speeds
-#           figure is the low rail's; rails_summary.csv has each rail's
+#           figure draws both rails; rails_summary.csv has each rail's
 #           fastest-growing harmonics)
 # then `corrugation-post speeds` per mechanism (growth rate against
 # wavelength and frequency with the track's resonances; speeds_summary.csv:
