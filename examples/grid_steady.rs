@@ -49,6 +49,7 @@ fn main() {
         speed,
         dt: dx / speed,
         friction: 0.4,
+        characteristic: Default::default(),
         force_x: fx,
         creepage_x: None,
         creepage_y: 0.0,

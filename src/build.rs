@@ -101,6 +101,7 @@ pub fn derive(scene: &Scene) -> Derived {
     let passage = PassageSpec {
         speed: scene.speed,
         friction: scene.material.friction,
+        characteristic: scene.material.characteristic,
         creepage_x: scene.creepage_x,
         creepage_y: scene.creepage_y,
         spin: scene.spin,
@@ -324,6 +325,7 @@ pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<To
             speed: scene.speed,
             dt: 0.0,
             friction: scene.material.friction,
+            characteristic: scene.material.characteristic,
             force_x: 0.0,
             creepage_x: Some(xi),
             creepage_y: scene.creepage_y,
@@ -403,6 +405,7 @@ pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64, 
         speed: scene.speed,
         dt: 0.0,
         friction: scene.material.friction,
+        characteristic: scene.material.characteristic,
         force_x: fx0,
         creepage_x: scene.creepage_x,
         creepage_y: scene.creepage_y,
@@ -415,7 +418,8 @@ pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64, 
     };
     let forces_at = |n: f64, x: f64, y: f64, spin: f64| {
         let patch = shape.patch(n).expect("validated loads keep N > 0");
-        let s = fastsim.solve_creepage(&patch, Creepage { x, y, spin }, scene.material.friction, scene.speed);
+        let friction = (scene.material.friction, scene.material.characteristic);
+        let s = fastsim.solve_creepage_with(&patch, Creepage { x, y, spin }, friction, scene.speed);
         [s.force_x, s.force_y]
     };
     let forces = |n: f64, x: f64, y: f64| forces_at(n, x, y, scene.spin);

@@ -21,8 +21,10 @@ use ndarray::Array2;
 pub struct PassageSpec {
     /// Rolling speed V (m/s).
     pub speed: f64,
-    /// Coulomb friction coefficient (1).
+    /// Friction coefficient (1) at zero slip speed.
     pub friction: f64,
+    /// How the friction coefficient varies with the slip speed.
+    pub characteristic: crate::contact::friction::Characteristic,
     /// Prescribed longitudinal creepage (1) (`load.control = "creepage"`),
     /// or None: the longitudinal force of `loads` prescribed.
     pub creepage_x: Option<f64>,
@@ -373,6 +375,7 @@ pub fn run_passage(
             speed: spec.speed,
             dt,
             friction: spec.friction,
+            characteristic: spec.characteristic,
             force_x: spec
                 .dynamic_longitudinal_force
                 .as_ref()

@@ -31,7 +31,15 @@ fn print() -> bool {
 }
 
 fn mean(longitudinal: Longitudinal) -> MeanState {
-    MeanState { normal_force: 1e5, longitudinal, creepage_y: 0.0, spin: 0.0, speed: SPEED, friction: 0.4 }
+    MeanState {
+        normal_force: 1e5,
+        longitudinal,
+        creepage_y: 0.0,
+        spin: 0.0,
+        speed: SPEED,
+        friction: 0.4,
+        characteristic: Default::default(),
+    }
 }
 
 /// The default excitation's shape in patch lengths `2 a`: run-in 2, lead 4,

@@ -20,6 +20,7 @@ fn input(concave: bool, force_x: f64) -> StepInput {
         speed: V,
         dt: 0.0,
         friction: MU,
+        characteristic: Default::default(),
         force_x,
         creepage_x: None,
         creepage_y: 0.0,

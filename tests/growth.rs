@@ -14,6 +14,7 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
     let spec = PassageSpec {
         speed: 27.78,
         friction: 0.4,
+        characteristic: Default::default(),
         creepage_x: None,
         creepage_y: 0.0,
         spin: 0.0,

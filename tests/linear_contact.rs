@@ -46,6 +46,7 @@ fn rolling(dx: f64, position: f64) -> StepInput {
         speed: 27.78,
         dt: dx / 27.78,
         friction: 0.4,
+        characteristic: Default::default(),
         force_x: 2e4,
         creepage_x: None,
         creepage_y: 0.0,

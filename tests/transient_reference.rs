@@ -21,6 +21,7 @@ fn input(patch: HertzPatch, speed: f64, step: f64, mu: f64, force_x: f64) -> Ste
         speed,
         dt: step / speed,
         friction: mu,
+        characteristic: Default::default(),
         force_x,
         creepage_x: None,
         creepage_y: 0.0,

@@ -85,6 +85,7 @@ fn fastsim_rates(n: usize) -> (EllipseMesh, Vec<f64>, f64, f64) {
         speed: V,
         dt: 0.0,
         friction: 0.4,
+        characteristic: Default::default(),
         force_x: 2e4,
         creepage_x: None,
         creepage_y: 0.0,

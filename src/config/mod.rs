@@ -10,6 +10,7 @@
 
 mod auto;
 pub mod contact;
+mod friction;
 mod growth;
 mod levels;
 mod load;
@@ -287,6 +288,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     let young = s.f64("young_modulus", None, Range::Positive);
     let nu = s.f64("poisson_ratio", None, Range::ClosedOpen(0.0, 0.5));
     let mu = s.f64("friction_coefficient", None, Range::OpenClosed(0.0, 1.0));
+    let characteristic = friction::read(&mut s, mu);
     resolved.insert("material".into(), Value::Table(s.finish()));
 
     let mut s = section(&mut root, "geometry", errors);
@@ -365,12 +367,13 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     }
 
     // Everything below needs the keys it combines to be valid.
-    let (Some(young), Some(nu), Some(mu), Some(wheel_radius), Some(profile), Some(rail_head)) =
-        (young, nu, mu, wheel_radius, profile, rail_head)
+    let (Some(young), Some(nu), Some(mu), Some(characteristic), Some(wheel_radius), Some(profile), Some(rail_head)) =
+        (young, nu, mu, characteristic, wheel_radius, profile, rail_head)
     else {
         return (None, resolved);
     };
-    let material = Material { elastic: Elastic { young_modulus: young, poisson_ratio: nu }, friction: mu };
+    let material =
+        Material { elastic: Elastic { young_modulus: young, poisson_ratio: nu }, friction: mu, characteristic };
     let geometry = Geometry { wheel_radius, wheel_profile_radius: profile, rail_head_radius: rail_head };
     let shape = check_geometry(&material, &geometry, errors);
 

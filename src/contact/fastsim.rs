@@ -26,6 +26,7 @@
 //! Brent's method on a bracket grown from the linear-theory estimate
 //! `xi = -F_x / (G a b C11)`.
 
+use super::friction::{Characteristic, coulomb_local_with};
 use super::linear::{LinearContact, LinearPatch};
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
@@ -97,8 +98,20 @@ impl Fastsim {
     /// Solves the steady problem with all creepages prescribed (the
     /// model's pressure shape on the Hertz patch).
     pub fn solve_creepage(&self, patch: &HertzPatch, creepage: Creepage, friction: f64, speed: f64) -> PatchSolution {
+        self.solve_creepage_with(patch, creepage, (friction, Characteristic::Constant), speed)
+    }
+
+    /// [`solve_creepage`](Fastsim::solve_creepage) with the friction
+    /// coefficient at zero slip varying with the slip speed as `ch` does.
+    pub fn solve_creepage_with(
+        &self,
+        patch: &HertzPatch,
+        creepage: Creepage,
+        (friction, ch): (f64, Characteristic),
+        speed: f64,
+    ) -> PatchSolution {
         let pressure = pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b);
-        self.solve_with_pressure(patch, pressure, creepage, friction, speed)
+        self.solve_with_pressure(patch, pressure, creepage, (friction, ch), speed)
     }
 
     /// The patch and pressure of a step: the Hertz patch and the shape's
@@ -121,7 +134,7 @@ impl Fastsim {
         patch: &HertzPatch,
         pressure: Vec<f64>,
         creepage: Creepage,
-        friction: f64,
+        (friction, ch): (f64, Characteristic),
         speed: f64,
     ) -> PatchSolution {
         let m = &self.mesh;
@@ -160,7 +173,17 @@ impl Fastsim {
                 let ty = py - wy / l * step;
                 let bound = friction * sol.pressure[k];
                 let mag = tx.hypot(ty);
-                if mag > bound {
+                if !ch.is_constant() {
+                    // The cell's slip s = K (p - t), K = V L / dx: the
+                    // element problem under Coulomb friction (Giménez,
+                    // Alonso & Gómez, Veh. Syst. Dyn. 43 (2005) 233-244:
+                    // the coefficient of the cell's own slip speed).
+                    let kk = speed * l / step;
+                    let (s, p) = coulomb_local_with([-kk * tx, -kk * ty], [kk, 0.0, kk], bound, ch);
+                    (px, py) = (p[0], p[1]);
+                    (sol.slip_x[k], sol.slip_y[k]) = (s[0], s[1]);
+                    sol.stick[k] = s == [0.0; 2];
+                } else if mag > bound {
                     px = bound * tx / mag;
                     py = bound * ty / mag;
                     sol.slip_x[k] = speed * l * (px - tx) / step;
@@ -191,7 +214,13 @@ impl Fastsim {
         let force = input.force_x;
         let at = |xi: f64| {
             let cr = Creepage { x: xi, y: input.creepage_y, spin: input.spin };
-            let mut s = self.solve_with_pressure(patch, pressure.clone(), cr, input.friction, input.speed);
+            let mut s = self.solve_with_pressure(
+                patch,
+                pressure.clone(),
+                cr,
+                (input.friction, input.characteristic),
+                input.speed,
+            );
             if let Some(lp) = &moved_by {
                 s.clipped = lp.clipped;
                 s.offset = lp.offset;

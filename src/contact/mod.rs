@@ -78,8 +78,11 @@ pub struct StepInput {
     /// Time step dt (s): the patch has moved by `speed * dt` since the
     /// previous step of the history (if the solver has one).
     pub dt: f64,
-    /// Coulomb friction coefficient mu (1).
+    /// Friction coefficient mu (1): at zero slip speed.
     pub friction: f64,
+    /// How the friction coefficient varies with the local slip speed
+    /// (`mu(|s|) = mu r(|s|)`; constant: Coulomb's).
+    pub characteristic: friction::Characteristic,
     /// Prescribed longitudinal force on the wheel F_x (N), unless the
     /// creepage is prescribed.
     pub force_x: f64,
@@ -105,7 +108,7 @@ impl StepInput {
         if self.creepage_x.is_some() {
             return Ok(());
         }
-        let limit = self.friction * self.patch.normal_force;
+        let limit = self.friction * self.characteristic.largest() * self.patch.normal_force;
         if self.force_x.abs() >= limit {
             return Err(ContactError::ForceExceedsFriction { force: self.force_x, limit });
         }

@@ -2,7 +2,7 @@
 //! Built from a config by [`crate::config`]; SI units throughout.
 
 use crate::contact::PressureShape;
-use crate::contact::friction::FrictionLaw;
+use crate::contact::friction::{Characteristic, FrictionLaw};
 use crate::contact::grid::{GridScheme, GridSolver};
 use crate::contact::transient::StepSolver;
 use crate::hertz::{Curvatures, Elastic};
@@ -45,8 +45,11 @@ impl ContactModelKind {
 pub struct Material {
     /// Elastic constants of wheel and rail (identical).
     pub elastic: Elastic,
-    /// Coulomb friction coefficient mu (1).
+    /// Friction coefficient mu (1): at zero slip speed.
     pub friction: f64,
+    /// How the friction coefficient varies with the slip speed
+    /// (`contact.friction_characteristic`).
+    pub characteristic: Characteristic,
 }
 
 /// Wheel and rail geometry.

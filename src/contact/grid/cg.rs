@@ -58,8 +58,8 @@
 
 use super::tangential::{GridSolution, GridStep, Law, kinematic_residual};
 use crate::contact::friction::{
-    STICK_SLIP_FACTOR, local_solve, regularised as friction, regularised_slip, stick_traction_share,
-    symmetric_inverse as inverse2x2,
+    STICK_SLIP_FACTOR, local_solve_with, regularised_slip_with, regularised_with, stick_traction_share,
+    symmetric_inverse as inverse2x2, varying::frozen_jacobian,
 };
 
 /// A product on the elements in contact, `(input, output)`: `K p` or the
@@ -152,20 +152,21 @@ pub fn solve(
     // The warm start: a sliding element (|s| >= 10 eps) keeps its slip and
     // takes the law's traction; one in stick keeps its traction (within
     // the stick regime of the new bound) and takes the law's slip.
-    let theta = stick_traction_share();
+    let ch = st.characteristic;
+    let theta = stick_traction_share() * ch.ratio(STICK_SLIP_FACTOR * eps).0;
     let (mut s, mut p) = (s.to_vec(), vec![0.0; 2 * n]);
     for c in 0..n {
         let (i, j) = (2 * c, 2 * c + 1);
         let g = st.mu_p3[c];
         let q = s[i].hypot(s[j]);
         if q >= STICK_SLIP_FACTOR * eps {
-            let pc = friction([s[i], s[j]], g, eps).0;
+            let pc = regularised_with([s[i], s[j]], g, eps, ch).0;
             (p[i], p[j]) = (pc[0], pc[1]);
         } else {
             let pm = p0[i].hypot(p0[j]);
             let cut = if pm > theta * g { theta * g / pm } else { 1.0 };
             let pc = [cut * p0[i], cut * p0[j]];
-            let sc = regularised_slip(pc, g, eps);
+            let sc = regularised_slip_with(pc, g, eps, ch);
             (s[i], s[j], p[i], p[j]) = (sc[0], sc[1], pc[0], pc[1]);
         }
     }
@@ -182,9 +183,12 @@ pub fn solve(
             let State { p, s, xi, u, .. } = state;
             return Ok(GridSolution { p, s, xi, u, sweeps: products });
         }
-        // H = (-dp/ds)^-1, the law's compliance.
-        let h: Vec<[f64; 3]> =
-            (0..n).map(|c| inverse2x2(friction([state.s[2 * c], state.s[2 * c + 1]], st.mu_p3[c], eps).1)).collect();
+        // H = (-dp/ds)^-1, the law's compliance (the coefficient frozen at
+        // the iterate's slip speed: a falling law's own is indefinite along
+        // the slip; the update below keeps the law exact).
+        let h: Vec<[f64; 3]> = (0..n)
+            .map(|c| inverse2x2(frozen_jacobian([state.s[2 * c], state.s[2 * c + 1]], st.mu_p3[c], eps, ch)))
+            .collect();
         let target = (FORCING * state.r_max).max(0.3 * st.tol);
         let pre = Preconditioner::new(st, eps, &own, &h, &state.s);
         let (dp, adp, lambda) =
@@ -211,7 +215,8 @@ fn correct(
     products: &mut usize,
 ) -> State {
     let n = st.set.len();
-    let theta = stick_traction_share();
+    let ch = st.characteristic;
+    let theta = stick_traction_share() * ch.ratio(STICK_SLIP_FACTOR * eps).0;
     let mut s = vec![0.0; 2 * n];
     let mut p = vec![0.0; 2 * n];
     for (c, &k) in own.iter().enumerate() {
@@ -222,10 +227,10 @@ fn correct(
         let pm = pn[0].hypot(pn[1]);
         // Within the stick regime the traction is the linear variable.
         let (sc, pc) = if pm < theta * g {
-            (regularised_slip(pn, g, eps), pn)
+            (regularised_slip_with(pn, g, eps, ch), pn)
         } else {
             let s0 = [kin[0] - (k[0] * pn[0] + k[1] * pn[1]), kin[1] - (k[1] * pn[0] + k[2] * pn[1])];
-            local_solve(s0, k, g, eps, [x.s[i], x.s[j]])
+            local_solve_with(s0, k, g, eps, [x.s[i], x.s[j]], ch)
         };
         (s[i], s[j], p[i], p[j]) = (sc[0], sc[1], pc[0], pc[1]);
     }

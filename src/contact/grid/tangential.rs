@@ -30,7 +30,7 @@
 //! ([`Law::element_solve`]).
 
 use super::coupling::Coupling;
-pub use crate::contact::friction::Law;
+pub use crate::contact::friction::{Characteristic, Law};
 use crate::contact::gs_loop::{self, Settings, Sweeper};
 use multiversion::multiversion;
 
@@ -110,6 +110,8 @@ pub struct GridStep<'a> {
     pub beta: f64,
     /// The friction law.
     pub law: Law,
+    /// How its coefficient varies with the slip speed.
+    pub characteristic: Characteristic,
     /// mu p3 per element (Pa).
     pub mu_p3: &'a [f64],
     /// Element area (m^2).
@@ -161,7 +163,8 @@ pub fn solve(
     fresh: &mut dyn FnMut(&[f64], &mut [f64]),
 ) -> Result<GridSolution, Vec<f64>> {
     let n = st.set.len();
-    let p: Vec<f64> = (0..n).flat_map(|c| st.law.traction([s[2 * c], s[2 * c + 1]], st.mu_p3[c])).collect();
+    let p: Vec<f64> =
+        (0..n).flat_map(|c| st.law.traction([s[2 * c], s[2 * c + 1]], st.mu_p3[c], st.characteristic)).collect();
     let p_scale = st.mu_p3.iter().fold(0.0f64, |m, v| m.max(*v)).max(f64::MIN_POSITIVE);
     let settings = Settings {
         depth: GRID_DEPTH,
@@ -247,7 +250,7 @@ fn sweep_block(st: &GridStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mu
             st.speed * (st.w0[i] + xi) + (st.beta * u[c] - st.u_prev[i]) / st.dt - own[0],
             st.speed * st.w0[j] + (st.beta * u[n + c] - st.u_prev[j]) / st.dt - own[1],
         ];
-        let (sk, pk) = st.law.element_solve(s0, kk, st.mu_p3[c], [s[li], s[lj]]);
+        let (sk, pk) = st.law.element_solve(s0, kk, st.mu_p3[c], [s[li], s[lj]], st.characteristic);
         s[li] = sk[0];
         s[lj] = sk[1];
         let (dx, dy) = (pk[0] - p[li], pk[1] - p[lj]);

@@ -36,7 +36,9 @@
 
 use super::FORCE_TOLERANCE;
 use super::elastic::ExactElastic;
-use crate::contact::friction::{STICK_SLIP_FACTOR, local_solve, regularised as friction};
+use crate::contact::friction::{
+    Characteristic, STICK_SLIP_FACTOR, local_solve_with, regularised_with, varying::frozen_jacobian,
+};
 use crate::contact::gs_loop::{self, Settings, Sweeper};
 use multiversion::multiversion;
 
@@ -58,6 +60,8 @@ pub(super) struct GsStep<'a> {
     pub speed: f64,
     /// Regularisation (m/s).
     pub eps: f64,
+    /// How the friction coefficient varies with the slip speed.
+    pub characteristic: Characteristic,
     /// mu p3 per element (Pa).
     pub mu_p3: &'a [f64],
     /// Element areas (m^2).
@@ -97,7 +101,9 @@ pub(super) struct GsSolution {
 /// the history of the largest kinematic residual (m/s) per sweep.
 pub(super) fn solve(st: &GsStep, s: &[f64], xi: f64) -> Result<GsSolution, Vec<f64>> {
     let n = st.mu_p3.len();
-    let p: Vec<f64> = (0..n).flat_map(|k| friction([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps).0).collect();
+    let p: Vec<f64> = (0..n)
+        .flat_map(|k| regularised_with([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps, st.characteristic).0)
+        .collect();
     let kappa = creepage_stiffness(st, s);
     // Scales: tractions by mu p0, the creepage by the traction it moves.
     let p_scale = st.mu_p3.iter().fold(0.0f64, |m, v| m.max(*v)).max(f64::MIN_POSITIVE);
@@ -163,7 +169,7 @@ fn sweep_block(st: &GsStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut 
             st.speed * (st.w0[i] + xi) + (u[i] - st.u_o[i]) / st.dt - own[0],
             st.speed * st.w0[j] + (u[j] - st.u_o[j]) / st.dt - own[1],
         ];
-        let (sk, pk) = local_solve(s0, kk, st.mu_p3[k], st.eps, [s[li], s[lj]]);
+        let (sk, pk) = local_solve_with(s0, kk, st.mu_p3[k], st.eps, [s[li], s[lj]], st.characteristic);
         s[li] = sk[0];
         s[lj] = sk[1];
         let (dx, dy) = (pk[0] - p[li], pk[1] - p[lj]);
@@ -215,7 +221,7 @@ fn creepage_stiffness(st: &GsStep, s: &[f64]) -> f64 {
     }
     for k in 0..n {
         if stick.binary_search(&k).is_err() {
-            let (_, d) = friction([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps);
+            let d = frozen_jacobian([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps, st.characteristic);
             kappa += st.area[k] * d[0] / (1.0 + scale * c1[(2 * k, 2 * k)] * d[0]);
         }
     }

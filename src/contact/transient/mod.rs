@@ -40,7 +40,7 @@
 pub mod elastic;
 pub mod gauss_seidel;
 
-use super::friction::{STICK_SLIP_FACTOR, regularised as friction};
+use super::friction::{STICK_SLIP_FACTOR, regularised_with};
 use super::linear::LinearContact;
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
@@ -286,7 +286,7 @@ impl Transient {
         let mut p = vec![0.0; 2 * n];
         let mut d = vec![[0.0; 3]; n];
         for k in 0..n {
-            let (pk, dk) = friction([s[2 * k], s[2 * k + 1]], mu * p3[k], eps);
+            let (pk, dk) = regularised_with([s[2 * k], s[2 * k + 1]], mu * p3[k], eps, input.characteristic);
             p[2 * k] = pk[0];
             p[2 * k + 1] = pk[1];
             d[k] = dk;
@@ -508,6 +508,7 @@ impl Transient {
                 dt: input.dt,
                 speed: input.speed,
                 eps: self.eps,
+                characteristic: input.characteristic,
                 mu_p3: &mu_p3,
                 area: &area,
                 w0: &w0,

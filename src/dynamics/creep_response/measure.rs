@@ -135,6 +135,7 @@ impl Plan<'_> {
                 speed: m.speed,
                 dt,
                 friction: m.friction,
+                characteristic: m.characteristic,
                 force_x,
                 creepage_x: creepage,
                 creepage_y: m.creepage_y + delta(Input::CreepageY),

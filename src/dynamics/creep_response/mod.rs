@@ -116,8 +116,10 @@ pub struct MeanState {
     pub spin: f64,
     /// Rolling speed V (m/s, > 0).
     pub speed: f64,
-    /// Coulomb friction coefficient mu (1).
+    /// Friction coefficient mu (1) at zero slip speed.
     pub friction: f64,
+    /// How the friction coefficient varies with the slip speed.
+    pub characteristic: crate::contact::friction::Characteristic,
 }
 
 /// One frequency's response, `h[i][j] = dF_i / dq_j` (eq. 1): rows

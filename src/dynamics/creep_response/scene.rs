@@ -63,6 +63,7 @@ pub fn mean_state(scene: &Scene, normal_force: f64, longitudinal_force: f64) -> 
         spin: scene.spin,
         speed: scene.speed,
         friction: scene.material.friction,
+        characteristic: scene.material.characteristic,
     }
 }
 

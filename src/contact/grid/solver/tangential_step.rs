@@ -9,7 +9,7 @@ use super::super::spec::{GRID_FORCE_TOLERANCE, GridScheme, GridSolver};
 use super::super::tangential::{self, ContactSet, GridStep, Law};
 use super::FixedGrid;
 use super::on_set::{Layout, OnSet};
-use crate::contact::friction::{STICK_SLIP_FACTOR, regularised as friction};
+use crate::contact::friction::{STICK_SLIP_FACTOR, varying::frozen_jacobian};
 use crate::contact::transient::GS_MAX_SWEEPS;
 use crate::contact::{ContactError, Creepage, PatchSolution, StepInput};
 
@@ -85,6 +85,7 @@ impl FixedGrid {
             speed: input.speed,
             beta,
             law,
+            characteristic: input.characteristic,
             mu_p3: &mu_p3,
             area,
             w0: &w0,
@@ -315,7 +316,7 @@ impl FixedGrid {
         let k0 = scale * self.kernel.at(0, 0, 0);
         for c in 0..nc {
             if !stick[c] {
-                let (_, d) = friction([s[2 * c], s[2 * c + 1]], mu_p3[c], eps);
+                let d = frozen_jacobian([s[2 * c], s[2 * c + 1]], mu_p3[c], eps, input.characteristic);
                 kappa += weight[c] * area * d[0] / (1.0 + k0 * d[0]);
             }
         }

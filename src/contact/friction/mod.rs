@@ -14,6 +14,20 @@
 //! flexibility `K`, the others' tractions held) minimises a strictly convex
 //! energy under either law and is solved to rounding ([`local_solve`],
 //! [`coulomb_local`]).
+//!
+//! Either law may take a friction coefficient that varies with the slip
+//! speed ([`Characteristic`]: `mu p3` is then the bound at zero slip and
+//! `mu(|s|) p3 = mu p3 r(|s|)` the slip's): the regularised law `p = -(2/pi)
+//! atan(|s|/eps) mu p3 r(|s|) s/|s|`, Coulomb's `|p| <= mu p3` in stick and
+//! `p = -mu p3 r(|s|) s/|s|` in slip. A falling characteristic can make the
+//! element problem non-convex ([`varying`]): the element then takes the
+//! state of least energy.
+
+pub mod characteristic;
+pub mod varying;
+
+pub use characteristic::Characteristic;
+pub use varying::{coulomb_local_with, local_solve_with, regularised_slip_with, regularised_with};
 
 use crate::numerics::{Tolerance, brent};
 use std::f64::consts::PI;
@@ -36,13 +50,15 @@ pub enum Law {
 
 impl Law {
     /// The traction of slip `s` (Coulomb: the slip direction's bound, zero
-    /// for zero slip).
-    pub fn traction(self, s: [f64; 2], mu_p3: f64) -> [f64; 2] {
+    /// for zero slip) with the bound `mu p3` at zero slip and the
+    /// characteristic `ch`.
+    pub fn traction(self, s: [f64; 2], mu_p3: f64, ch: Characteristic) -> [f64; 2] {
         match self {
-            Law::Regularised { eps } => regularised(s, mu_p3, eps).0,
+            Law::Regularised { eps } => regularised_with(s, mu_p3, eps, ch).0,
             Law::Coulomb => {
                 let q = s[0].hypot(s[1]);
-                if q == 0.0 { [0.0; 2] } else { [-mu_p3 * s[0] / q, -mu_p3 * s[1] / q] }
+                let g = mu_p3 * ch.ratio(q).0;
+                if q == 0.0 { [0.0; 2] } else { [-g * s[0] / q, -g * s[1] / q] }
             }
         }
     }
@@ -50,10 +66,17 @@ impl Law {
     /// Solves the element problem `s = s0 + K p(s)` (`k` = `K`'s `(xx, xy,
     /// yy)`), from `start` (the regularised law's Newton start); returns the
     /// slip and its traction.
-    pub fn element_solve(self, s0: [f64; 2], k: [f64; 3], mu_p3: f64, start: [f64; 2]) -> ([f64; 2], [f64; 2]) {
+    pub fn element_solve(
+        self,
+        s0: [f64; 2],
+        k: [f64; 3],
+        mu_p3: f64,
+        start: [f64; 2],
+        ch: Characteristic,
+    ) -> ([f64; 2], [f64; 2]) {
         match self {
-            Law::Regularised { eps } => local_solve(s0, k, mu_p3, eps, start),
-            Law::Coulomb => coulomb_local(s0, k, mu_p3),
+            Law::Regularised { eps } => local_solve_with(s0, k, mu_p3, eps, start, ch),
+            Law::Coulomb => coulomb_local_with(s0, k, mu_p3, ch),
         }
     }
 

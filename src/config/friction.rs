@@ -1,0 +1,48 @@
+//! `material.friction_characteristic` and its keys: how the friction
+//! coefficient varies with the local slip speed
+//! ([`crate::contact::friction::Characteristic`]).
+
+use super::reader::{Range, Section};
+use crate::contact::friction::Characteristic;
+
+/// The names of `material.friction_characteristic`.
+pub const NAMES: [&str; 4] = ["constant", "exponential", "rational", "modifier"];
+
+/// Polach's dry-rail fit (Wear 258 (2005) 992-1000, Table 2): `mu_inf =
+/// 0.4 mu_0`, `B = 0.6 s/m`; the default of the falling laws.
+pub const POLACH_DRY_RATIO: f64 = 0.4;
+/// `1/B` of Polach's dry fit (m/s).
+pub const POLACH_DRY_SPEED: f64 = 1.0 / 0.6;
+
+/// Reads the characteristic with `mu` the coefficient at zero slip
+/// (`material.friction_coefficient`; None when invalid).
+pub(super) fn read(s: &mut Section, mu: Option<f64>) -> Option<Characteristic> {
+    let name = s.choice("friction_characteristic", Some("constant"), &NAMES)?;
+    let speed_range = Range::OpenClosed(0.0, 100.0);
+    if name == "constant" {
+        // Checked, kept in the resolved config, unused (so that `--set
+        // material.friction_characteristic=constant` switches a config over).
+        if s.has("kinetic_friction") {
+            s.f64("kinetic_friction", None, Range::OpenClosed(0.0, 1.0));
+        }
+        if s.has("friction_speed") {
+            s.f64("friction_speed", None, speed_range);
+        }
+        return Some(Characteristic::Constant);
+    }
+    let mu = mu?;
+    let (kinetic, speed) = if name == "modifier" {
+        // A modifier's level and rise have no default: they are the
+        // product's.
+        let kinetic = s.f64("kinetic_friction", None, Range::OpenClosed(mu, 1.0));
+        (kinetic, s.f64("friction_speed", None, speed_range))
+    } else {
+        let kinetic = s.f64("kinetic_friction", Some(POLACH_DRY_RATIO * mu), Range::OpenClosed(0.0, mu));
+        (kinetic, s.f64("friction_speed", Some(POLACH_DRY_SPEED), speed_range))
+    };
+    let (ratio, speed) = (kinetic? / mu, speed?);
+    Some(match name.as_str() {
+        "rational" => Characteristic::Rational { ratio, speed },
+        _ => Characteristic::Exponential { ratio, speed },
+    })
+}
