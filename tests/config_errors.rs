@@ -384,3 +384,30 @@ proptest! {
         }
     }
 }
+
+/// The friction characteristic's keys: defaults (Polach's dry rail), the
+/// modifier's required keys, and the levels' order against the
+/// coefficient at zero slip.
+#[test]
+fn friction_characteristic_keys() {
+    use corrugation::contact::friction::Characteristic;
+    let set = |s: &[&str]| s.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    let scene = load_str(BASE, "t", &set(&["material.friction_characteristic=exponential"])).unwrap().scene;
+    let mu = scene.material.friction;
+    assert_eq!(scene.material.characteristic, Characteristic::Exponential { ratio: 0.4 * mu / mu, speed: 1.0 / 0.6 });
+    let e = errors(BASE, &["material.friction_characteristic=modifier"]);
+    assert!(e.iter().any(|m| m.contains("material.kinetic_friction") && m.contains("missing")), "{e:?}");
+    assert!(e.iter().any(|m| m.contains("material.friction_speed") && m.contains("missing")), "{e:?}");
+    let e = errors(BASE, &["material.friction_characteristic=rational", "material.kinetic_friction=0.9"]);
+    assert!(e.iter().any(|m| m.contains("material.kinetic_friction") && m.contains("must not exceed")), "{e:?}");
+    let e = errors(
+        BASE,
+        &["material.friction_characteristic=modifier", "material.kinetic_friction=0.1", "material.friction_speed=0.5"],
+    );
+    assert!(e.iter().any(|m| m.contains("material.kinetic_friction") && m.contains("must exceed")), "{e:?}");
+    let e = errors(BASE, &["material.friction_characteristic=exponential", "material.friction_speed=0"]);
+    assert!(e.iter().any(|m| m.contains("material.friction_speed") && m.contains("(0, 100]")), "{e:?}");
+    // Constant: the other keys checked, kept, unused.
+    let scene = load_str(BASE, "t", &set(&["material.kinetic_friction=0.2"])).unwrap().scene;
+    assert_eq!(scene.material.characteristic, Characteristic::Constant);
+}

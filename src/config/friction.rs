@@ -31,16 +31,32 @@ pub(super) fn read(s: &mut Section, mu: Option<f64>) -> Option<Characteristic> {
         return Some(Characteristic::Constant);
     }
     let mu = mu?;
-    let (kinetic, speed) = if name == "modifier" {
+    let modifier = name == "modifier";
+    let kinetic_range = Range::OpenClosed(0.0, 1.0);
+    let (kinetic, speed) = if modifier {
         // A modifier's level and rise have no default: they are the
         // product's.
-        let kinetic = s.f64("kinetic_friction", None, Range::OpenClosed(mu, 1.0));
-        (kinetic, s.f64("friction_speed", None, speed_range))
+        (s.f64("kinetic_friction", None, kinetic_range), s.f64("friction_speed", None, speed_range))
     } else {
-        let kinetic = s.f64("kinetic_friction", Some(POLACH_DRY_RATIO * mu), Range::OpenClosed(0.0, mu));
+        let kinetic = s.f64("kinetic_friction", Some(POLACH_DRY_RATIO * mu), kinetic_range);
         (kinetic, s.f64("friction_speed", Some(POLACH_DRY_SPEED), speed_range))
     };
-    let (ratio, speed) = (kinetic? / mu, speed?);
+    let (kinetic, speed) = (kinetic?, speed?);
+    if modifier && kinetic <= mu {
+        let message = format!(
+            "= {kinetic} must exceed material.friction_coefficient = {mu}: a friction modifier's characteristic rises with the slip speed"
+        );
+        s.error("kinetic_friction", message);
+        return None;
+    }
+    if !modifier && kinetic > mu {
+        let message = format!(
+            "= {kinetic} must not exceed material.friction_coefficient = {mu} for a falling law (\"{name}\"); a rising one is \"modifier\""
+        );
+        s.error("kinetic_friction", message);
+        return None;
+    }
+    let ratio = kinetic / mu;
     Some(match name.as_str() {
         "rational" => Characteristic::Rational { ratio, speed },
         _ => Characteristic::Exponential { ratio, speed },
