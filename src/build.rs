@@ -113,7 +113,7 @@ pub fn derive(scene: &Scene) -> Derived {
         start,
         end,
         step_length: scene.step_length,
-        k_over_h: scene.k_over_h,
+        wear_law: scene.wear,
         substeps: scene.wear_substeps,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,

@@ -13,7 +13,7 @@ use crate::dynamics::torsion::TorsionFeedback;
 use crate::hertz::{HertzError, HertzPatch, HertzShape};
 use crate::loads::ImposedLoads;
 use crate::rail_grid::RailGrid;
-use crate::wear::{PatchWear, WearKernel, archard_rates};
+use crate::wear::{PatchWear, WearKernel, WearLaw};
 use ndarray::Array2;
 
 /// Kinematics, loads and discretisation of one passage (SI units).
@@ -43,8 +43,8 @@ pub struct PassageSpec {
     pub end: f64,
     /// Nominal rolled distance per step, V dt (m); adjusted so that `end` is a step.
     pub step_length: f64,
-    /// Archard coefficient k/H (m^2/N).
-    pub k_over_h: f64,
+    /// The wear law.
+    pub wear_law: WearLaw,
     /// Linearly interpolated wear sub-steps per step (>= 1).
     pub substeps: usize,
     /// Patch-centre positions (m) between which wear is deposited; the steps
@@ -176,6 +176,9 @@ pub struct PatchFields {
     pub wear_rate: Array2<f64>,
     /// 1 = stick, 0 = slip.
     pub stick: Array2<i8>,
+    /// The wear law's regime (0: no wear; else [`WearLaw::regimes`]'s
+    /// index + 1).
+    pub wear_regime: Array2<i8>,
 }
 
 impl PatchHistory {
@@ -216,10 +219,11 @@ impl PatchFields {
             slip_y: z(),
             wear_rate: z(),
             stick: Array2::zeros((steps, elements)),
+            wear_regime: Array2::zeros((steps, elements)),
         }
     }
 
-    fn set(&mut self, n: usize, sol: &PatchSolution, rates: &[f64]) {
+    fn set(&mut self, n: usize, sol: &PatchSolution, rates: &[f64], regimes: &[i8]) {
         let rows: [(&mut Array2<f64>, &[f64]); 6] = [
             (&mut self.pressure, &sol.pressure),
             (&mut self.traction_x, &sol.traction_x),
@@ -232,6 +236,7 @@ impl PatchFields {
             field.row_mut(n).iter_mut().zip(values).for_each(|(d, s)| *d = *s);
         }
         self.stick.row_mut(n).iter_mut().zip(&sol.stick).for_each(|(d, s)| *d = i8::from(*s));
+        self.wear_regime.row_mut(n).iter_mut().zip(regimes).for_each(|(d, s)| *d = *s);
     }
 }
 
@@ -499,7 +504,7 @@ impl Recorder<'_> {
         if reach > edge * (1.0 + 1e-9) {
             return Err(PassageError::OffRail { step: n, x, y: reach, half_width: edge });
         }
-        let rates = archard_rates(spec.k_over_h, &sol);
+        let (rates, regimes) = spec.wear_law.rates(&sol, spec.speed);
         let (w0, w1) = spec.wear_window;
         // The interval from the previous step belongs to the window when its
         // midpoint does: [w0, w1) then holds exactly (w1 - w0) / step of them
@@ -543,7 +548,7 @@ impl Recorder<'_> {
         h.newton_iterations.push(sol.iterations as f64);
         h.wear_volume_rate.push(self.deposit.integral(&rates, patch_a, patch_b));
         if let Some(f) = h.fields.as_mut() {
-            f.set(n, &sol, &rates);
+            f.set(n, &sol, &rates, &regimes);
         }
         self.previous = Some(PreviousPatch { wheel: x, x_c: x + sol.offset, a: patch_a, b: patch_b, rates });
         Ok(())

@@ -23,7 +23,7 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
         start: -0.015,
         end: length,
         step_length: 2e-4,
-        k_over_h: 3.4e-14,
+        wear_law: corrugation::wear::WearLaw::Archard { k_over_h: 3.4e-14 },
         substeps: 4,
         wear_window: (f64::NEG_INFINITY, f64::INFINITY),
         dynamic_normal_force: None,

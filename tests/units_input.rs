@@ -136,7 +136,7 @@ fn an_unknown_key_gets_the_nearest_known_one() {
     assert!(e.contains("did you mean `pad_stiffness`?"), "{e}");
     // Nothing near: the known keys are listed.
     let e = load_str(STEADY, "s", &["wear.colour=1".into()]).unwrap_err().to_string();
-    assert!(e.contains("wear.colour: unknown key; known here: k_over_h, substeps"), "{e}");
+    assert!(e.contains("wear.colour: unknown key; known here: density, hardness, k_over_h, law, map_coefficients, map_speeds, substeps, work_coefficients"), "{e}");
 }
 
 #[test]

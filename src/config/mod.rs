@@ -25,6 +25,7 @@ mod track;
 pub mod traffic;
 pub mod units;
 pub mod vehicle;
+mod wear;
 pub mod wheelset;
 
 use crate::contact::friction::FrictionLaw;
@@ -312,7 +313,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     let contact = contact::read(&mut root, &mut resolved, errors);
 
     let mut s = section(&mut root, "wear", errors);
-    let k_over_h = s.f64("k_over_h", None, Range::NonNegative);
+    let wear_law = wear::read(&mut s);
     let substeps = s.usize("substeps", Some(4), 1, 64);
     resolved.insert("wear".into(), Value::Table(s.finish()));
 
@@ -411,8 +412,8 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         f.solver = contact::grid_solver(&solver);
         f.linear_solver = f.solver;
     }
-    let (Some(k_over_h), Some(substeps), Some(start), Some(end), Some(mut step_length)) =
-        (k_over_h, substeps, start, end, step_length)
+    let (Some(wear), Some(substeps), Some(start), Some(end), Some(mut step_length)) =
+        (wear_law, substeps, start, end, step_length)
     else {
         return (None, resolved);
     };
@@ -555,7 +556,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         spin,
         loads,
         contact: ContactParams { model: contact_model, regularisation: eps, auto, normal: normal_contact },
-        k_over_h,
+        wear,
         wear_substeps: substeps,
         start,
         end,

@@ -243,6 +243,13 @@ fn read_history(path: &Path, group: &str, layout: &StateLayout) -> Result<PatchH
         return Err(invalid("stick", format!("has shape {:?}, not {:?}", stick.dim(), f.stick.dim())));
     }
     f.stick = stick;
+    // Files written before the wear laws have no regimes: zeros.
+    if let Ok(r) = read_i8(path, group, "wear_regime")
+        .and_then(|r| r.into_dimensionality::<Ix2>().map_err(|e| invalid("wear_regime", e.to_string())))
+        && r.dim() == f.wear_regime.dim()
+    {
+        f.wear_regime = r;
+    }
     h.fields = Some(f);
     Ok(h)
 }

@@ -66,6 +66,9 @@ pub struct RunRecord<'a> {
     /// The two rails' names, the first's first, where the run has the
     /// wheelset's second rail (its state is `state.second_rail`).
     pub rail_names: Option<&'a [String; 2]>,
+    /// The wear law's regimes ([`crate::wear::WearLaw::regimes`]): the
+    /// meanings of `wear_regime`'s values 1, 2, ...
+    pub wear_regimes: &'a [&'a str],
 }
 
 /// Writes `record` to `path` atomically.
@@ -393,7 +396,7 @@ pub(super) const FIELD_VARS: [(&str, &str, &str); 6] = [
     ("traction_y", "Pa", "lateral traction on the wheel"),
     ("slip_x", "m/s", "longitudinal slip velocity of the wheel relative to the rail"),
     ("slip_y", "m/s", "lateral slip velocity of the wheel relative to the rail"),
-    ("wear_rate", "m/s", "Archard wear rate"),
+    ("wear_rate", "m/s", "wear rate (the depth rate of the wear law)"),
 ];
 
 /// The columns of [`FIELD_VARS`].
@@ -453,6 +456,11 @@ fn write_history(g: &NcGroup, h: &PatchHistory, record: &RunRecord) -> Result<()
         g.var_i8("stick", &dims, f.stick.view().into_dyn(), "1", "adhesion flag")?;
         g.var_attr_str("stick", "flag_values", "0 1")?;
         g.var_attr_str("stick", "flag_meanings", "slip stick")?;
+        g.var_i8("wear_regime", &dims, f.wear_regime.view().into_dyn(), "1", "the wear law's regime")?;
+        let values: Vec<String> = (0..=record.wear_regimes.len()).map(|v| v.to_string()).collect();
+        g.var_attr_str("wear_regime", "flag_values", &values.join(" "))?;
+        let meanings = std::iter::once("none").chain(record.wear_regimes.iter().copied()).collect::<Vec<_>>();
+        g.var_attr_str("wear_regime", "flag_meanings", &meanings.join(" "))?;
     }
     Ok(())
 }

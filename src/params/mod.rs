@@ -451,8 +451,8 @@ pub struct Scene {
     pub loads: ImposedLoads,
     /// Contact model.
     pub contact: ContactParams,
-    /// Archard coefficient k/H (m^2/N).
-    pub k_over_h: f64,
+    /// The wear law (`wear.law` and its keys).
+    pub wear: crate::wear::WearLaw,
     /// Wear sub-steps per contact step.
     pub wear_substeps: usize,
     /// First patch-centre position (m).

@@ -283,6 +283,7 @@ fn continue_run(
             limit_name: &scene.levels.limit.name,
             operation: scene.growth.as_ref().map(|g| &g.operation),
             rail_names: scene.second_rail.as_ref().map(|r| &r.names),
+            wear_regimes: scene.wear.regimes(),
         };
         write_run_file(out, &record)
     };
