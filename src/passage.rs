@@ -253,6 +253,10 @@ pub struct PassageResult {
     /// Steps the fast tangential solver did not converge and the reference
     /// solver solved ([`crate::contact::PatchSolution::fallback`]).
     pub fallback_steps: usize,
+    /// Volume the passage wore in each of the wear law's regimes within the
+    /// wear window (m^3; [`WearLaw::regimes`]' order): each step's rates
+    /// integrated over the patch, times the step.
+    pub regime_volume: Vec<f64>,
 }
 
 /// Why a passage stopped.
@@ -368,6 +372,7 @@ pub fn run_passage(
         previous: None,
         clipped_steps: 0,
         fallback_steps: 0,
+        regime_volume: vec![0.0; spec.wear_law.regimes().len()],
     };
     solver.reset();
     solver.set_surface(spec.surface.clone()).map_err(PassageError::Surface)?;
@@ -438,8 +443,8 @@ pub fn run_passage(
     if rec.flush(&mut pending)? {
         progress(steps, steps);
     }
-    let Recorder { wear, h, clipped_steps, fallback_steps, .. } = rec;
-    Ok(PassageResult { wear, history: h, clipped_steps, fallback_steps })
+    let Recorder { wear, h, clipped_steps, fallback_steps, regime_volume, .. } = rec;
+    Ok(PassageResult { wear, history: h, clipped_steps, fallback_steps, regime_volume })
 }
 
 /// A step's contact solution, with what its recording needs.
@@ -468,6 +473,7 @@ struct Recorder<'a> {
     previous: Option<PreviousPatch>,
     clipped_steps: usize,
     fallback_steps: usize,
+    regime_volume: Vec<f64>,
 }
 
 impl Recorder<'_> {
@@ -514,6 +520,12 @@ impl Recorder<'_> {
             let from = PatchWear { x_c: p.x_c, a: p.a, b: p.b, rates: &p.rates };
             let to = PatchWear { x_c: x + sol.offset, a: patch_a, b: patch_b, rates: &rates };
             self.deposit.accumulate(grid, &mut self.wear, &from, &to, dt, spec.substeps);
+            for (r, volume) in self.regime_volume.iter_mut().enumerate() {
+                let regime = (r + 1) as i8;
+                let masked: Vec<f64> =
+                    rates.iter().zip(&regimes).map(|(v, g)| if *g == regime { *v } else { 0.0 }).collect();
+                *volume += self.deposit.integral(&masked, patch_a, patch_b) * dt;
+            }
         }
         h.in_contact.push(1.0);
         h.time.push(n as f64 * dt);

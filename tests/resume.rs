@@ -165,6 +165,23 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     let part = run(dir.path(), "ppart.h5", &[&profile[..], &["growth.passes=2"]].concat());
     resume(&part, Some(1), None, &mut |_| {}).unwrap();
     assert_same(&full, &part);
+    // The friction and wear laws: falling friction on the fixed grid (its
+    // Gauss-Seidel solver) with the frictional-work law's regimes, their
+    // fields and shares stored and read back.
+    let laws = [
+        &fixed[..],
+        &["material.friction_characteristic=exponential", "wear.law=frictional-work", "growth.contact_history=[1, 2]"],
+    ]
+    .concat();
+    let full = run(dir.path(), "lfull.h5", &[&laws[..], &["growth.passes=3"]].concat());
+    let part = run(dir.path(), "lpart.h5", &[&laws[..], &["growth.passes=2"]].concat());
+    resume(&part, Some(1), None, &mut |_| {}).unwrap();
+    assert_same(&full, &part);
+    let share = read_f64(&full, "passes", "wear_regime_share").unwrap();
+    assert_eq!(share.shape(), &[3, 3]);
+    for row in share.outer_iter() {
+        assert!((row.sum() - 1.0).abs() < 1e-12, "{row:?}");
+    }
     let hertz = run(
         dir.path(),
         "phertz.h5",

@@ -34,14 +34,14 @@ pub(super) struct RowKeep<'s> {
 
 impl RowKeep<'_> {
     /// Updates a rail's `state` with its `wear` of one passage (`r -= m
-    /// W`), appends its row, its stored state and its wheels' histories
+    /// W`; its leading wheel's share of it per wear regime), appends its row, its stored state and its wheels' histories
     /// (the leading wheel's, the others') where kept; `(loss, clipped)`
     /// its steps without contact and with the linear contact's patch
     /// opened. Returns the row.
     pub(super) fn apply(
         &self,
         state: &mut RunState,
-        wear: Array2<f64>,
+        (wear, wear_regime_share): (Array2<f64>, Vec<f64>),
         (history, others): (PatchHistory, Vec<PatchHistory>),
         (loss, clipped): (usize, usize),
     ) -> PassRow {
@@ -70,6 +70,7 @@ impl RowKeep<'_> {
             contact_loss_steps: loss as f64,
             profile_contact: self.profile_contact,
             clipped_steps: clipped as f64,
+            wear_regime_share,
             // Below 1e-12 m (1 pm) an amplitude is numerical noise.
             growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
             spectrum: amplitudes(&line(&state.profile)),

@@ -35,6 +35,10 @@ pub struct PassRow {
     pub clipped_steps: f64,
     /// Index of the passage's traffic class (0 without a mix).
     pub traffic_class: usize,
+    /// The leading wheel's wear volume per regime of the wear law, as a
+    /// share of its total (1; [`crate::wear::WearLaw::regimes`]' order;
+    /// empty in files written before the wear laws).
+    pub wear_regime_share: Vec<f64>,
     /// Amplitude spectrum of the centre-line profile after the passage (m),
     /// on the record's `wavelengths`.
     pub spectrum: Vec<f64>,

@@ -492,7 +492,13 @@ impl<'a> Study<'a> {
         let max_wear = rails[0].wear.iter().cloned().fold(0.0, f64::max);
         let mut rails = rails.into_iter();
         let kept = |state: &mut RunState, r: RailPass| {
-            keep.apply(state, r.wear, (r.leading.history, r.wheel_histories), (r.contact_loss_steps, r.clipped_steps))
+            let share = regime_share(&r.leading.regime_volume);
+            keep.apply(
+                state,
+                (r.wear, share),
+                (r.leading.history, r.wheel_histories),
+                (r.contact_loss_steps, r.clipped_steps),
+            )
         };
         let row = kept(&mut self.state, rails.next().expect("the first rail"));
         let second_row = match (self.state.second_rail.as_deref_mut(), rails.next()) {
@@ -648,4 +654,11 @@ const PROFILE_LINEAR: f64 = 2.0;
 fn sliding_stops(growth: Option<&GrowthParams>, e: &PassageError) -> bool {
     matches!(growth.map(|g| g.stop), Some(StopRule::Saturation { .. }))
         && matches!(e, PassageError::Tangential { source: ContactError::ForceExceedsFriction { .. }, .. })
+}
+
+/// Each wear regime's share of the volume a passage wore (1; all zero where
+/// it wore nothing).
+fn regime_share(volume: &[f64]) -> Vec<f64> {
+    let total: f64 = volume.iter().sum();
+    volume.iter().map(|v| if total > 0.0 { v / total } else { 0.0 }).collect()
 }

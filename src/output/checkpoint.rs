@@ -108,6 +108,18 @@ fn read_rail_state(path: &Path, layout: &StateLayout, prefix: &str) -> Result<Ru
         Ok(Some(t))
     };
     let (levels, rates) = (band_table("roughness_level")?, band_table("level_rate")?);
+    // The wear regimes' shares (files written before the wear laws have
+    // none: empty rows).
+    let shares = match read_f64(path, &passes_group, "wear_regime_share") {
+        Ok(t) => {
+            let t = t.into_dimensionality::<Ix2>().map_err(|e| invalid("wear_regime_share", e.to_string()))?;
+            if t.nrows() != done {
+                return Err(invalid("wear_regime_share", format!("has {} rows, not {done}", t.nrows())));
+            }
+            Some(t)
+        }
+        Err(_) => None,
+    };
     let initial_level = match (&levels, read_f64(path, &passes_group, "initial_level")) {
         (Some(_), Ok(v)) => {
             let v = dim(v, "passes/initial_level")?;
@@ -150,6 +162,7 @@ fn read_rail_state(path: &Path, layout: &StateLayout, prefix: &str) -> Result<Ru
             profile_contact: profile[k],
             clipped_steps: clipped[k],
             traffic_class: class[k],
+            wear_regime_share: shares.as_ref().map_or_else(Vec::new, |t| t.row(k).to_vec()),
             spectrum: spectrum.row(k).to_vec(),
             filtered_spectrum: filtered.row(k).to_vec(),
             growth_rate: rate.row(k).to_vec(),

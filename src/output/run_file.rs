@@ -110,6 +110,7 @@ fn write_rail_groups(root: &NcGroup, record: &RunRecord) -> Result<(), NcError> 
     super::field_units::write_rail(&rail, record)?;
     let passes = root.group("passes")?;
     write_passes(&passes, &record.state.rows, record.wavelengths, record.classes)?;
+    write_regime_shares(&passes, &record.state.rows, record.wear_regimes)?;
     super::field_units::write_passes(&passes, record)?;
     let contact = root.group("contact")?;
     for (index, history) in &record.state.histories {
@@ -220,6 +221,29 @@ fn write_classes(g: &NcGroup, classes: &[TrafficClass]) -> Result<(), NcError> {
 /// The classes' names, space-separated.
 fn class_names(classes: &[TrafficClass]) -> String {
     classes.iter().map(|c| c.name.as_str()).collect::<Vec<_>>().join(" ")
+}
+
+/// The wear regimes' shares on (`pass`, `wear_regime`), where the rows
+/// have them (NaN in a row written before the wear laws).
+fn write_regime_shares(g: &NcGroup, rows: &[PassRow], regimes: &[&str]) -> Result<(), NcError> {
+    if regimes.is_empty() || rows.iter().all(|r| r.wear_regime_share.is_empty()) {
+        return Ok(());
+    }
+    let index: Vec<i64> = (1..=regimes.len() as i64).collect();
+    g.coord_i64("wear_regime", &index, "1", "the wear law's regime (flag_meanings)", false)?;
+    g.var_attr_str("wear_regime", "flag_values", &index.iter().map(i64::to_string).collect::<Vec<_>>().join(" "))?;
+    g.var_attr_str("wear_regime", "flag_meanings", &regimes.join(" "))?;
+    let mut a = ndarray::Array2::from_elem((rows.len(), regimes.len()), f64::NAN);
+    for (k, r) in rows.iter().enumerate() {
+        a.row_mut(k).iter_mut().zip(&r.wear_regime_share).for_each(|(d, v)| *d = *v);
+    }
+    g.var_f64(
+        "wear_regime_share",
+        &["pass", "wear_regime"],
+        a.view().into_dyn(),
+        "1",
+        "share of the leading wheel's wear volume in each regime of the wear law",
+    )
 }
 
 fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64], classes: &[TrafficClass]) -> Result<(), NcError> {

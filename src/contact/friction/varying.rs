@@ -57,15 +57,17 @@ pub fn regularised_with(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic) -
     law_and_jacobian(s, mu_p3, eps, ch, true)
 }
 
-/// `D` with the coefficient frozen at the slip's (`r'` left out): `r(q)`
-/// times the constant law's, positive definite. The Newton-Krylov solver's
-/// compliance under a varying characteristic (a falling law's own `D` can
-/// be indefinite along the slip).
+/// A positive definite `D` for the Newton-Krylov solver's compliance: the
+/// law's own where the characteristic rises at the slip (`r' >= 0`), else
+/// with the coefficient frozen at the slip's (`r'` left out: `r(q)` times
+/// the constant law's; a falling law's own `D` can be indefinite along the
+/// slip).
 pub fn frozen_jacobian(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic) -> [f64; 3] {
     if ch.is_constant() {
         return regularised(s, mu_p3, eps).1;
     }
-    law_and_jacobian(s, mu_p3, eps, ch, false).1
+    let rising = ch.ratio((s[0] * s[0] + s[1] * s[1]).sqrt()).1 >= 0.0;
+    law_and_jacobian(s, mu_p3, eps, ch, rising).1
 }
 
 fn law_and_jacobian(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic, slope: bool) -> ([f64; 2], [f64; 3]) {

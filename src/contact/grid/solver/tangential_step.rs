@@ -111,7 +111,7 @@ impl FixedGrid {
         // preconditioner, the FFT inverse on the unpadded grid.
         // On the contact block where it is much smaller than the grid (the
         // CG solver's products only).
-        let newton_krylov = self.spec.solver.resolve() == GridSolver::Cg;
+        let newton_krylov = self.spec.solver.resolve_for(input.characteristic) == GridSolver::Cg;
         let block = sym.filter(|_| newton_krylov).and_then(|_| self.blocks.for_set(&self.kernel, &set, shape));
         let single = OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks);
         let pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
