@@ -85,6 +85,8 @@ pub fn print_check(r: &Resolved) {
         }
     }
     println!("Hertz a/b          {:.4}", d.shape.aspect());
+    println!("friction           {}", friction_line(s.material.friction, s.material.characteristic));
+    println!("wear law           {}", wear_line(&s.wear));
     if (s.creepage_y != 0.0 || s.spin != 0.0) && s.contact.model.fixed_grid().is_some() {
         println!(
             "curving            lateral creepage {:e}, spin {:e} 1/m: not symmetric about the centre line, the fixed \
@@ -621,5 +623,45 @@ fn print_field_units(s: &corrugation::params::Scene, g: &corrugation::params::Gr
     }
     if !parts.is_empty() {
         println!("operator traffic   {}", parts.join(", "));
+    }
+}
+
+/// `check`'s line on the friction law: the coefficient and how it varies
+/// with the slip speed.
+fn friction_line(mu: f64, ch: corrugation::contact::friction::Characteristic) -> String {
+    use corrugation::contact::friction::Characteristic;
+    match ch {
+        Characteristic::Constant => format!("mu = {mu}, constant"),
+        Characteristic::Exponential { ratio, speed } => {
+            let kind = if ratio > 1.0 { "rising (a friction modifier's)" } else { "falling" };
+            format!("mu = {mu} at zero slip, {kind} exponentially to {:.4} (v_c = {speed:.4} m/s)", mu * ratio)
+        }
+        Characteristic::Rational { ratio, speed } => {
+            format!("mu = {mu} at zero slip, falling rationally to {:.4} (half way at {speed:.4} m/s)", mu * ratio)
+        }
+    }
+}
+
+/// `check`'s line on the wear law.
+fn wear_line(law: &corrugation::wear::WearLaw) -> String {
+    use corrugation::wear::WearLaw;
+    match law {
+        WearLaw::Archard { k_over_h } => format!("Archard, k/H = {k_over_h:e} m^2/N"),
+        WearLaw::FrictionalWork(f) => format!(
+            "frictional work (T-gamma/A): mild {} I below {} N/mm^2, severe {} to {} N/mm^2, catastrophic {} I - {} \
+             ug/(m mm^2); rho = {} kg/m^3",
+            f.mild_slope,
+            f.mild_limit,
+            f.severe_rate,
+            f.severe_limit,
+            f.catastrophic_slope,
+            f.catastrophic_offset,
+            f.density
+        ),
+        WearLaw::Map(m) => format!(
+            "Archard with Jendel's map: k = {:e} in seizure (p3 > {} H), {:e} / {:e} / {:e} below {} / to {} / above \
+             {} m/s; H = {:.4e} Pa",
+            m.seizure, m.seizure_share, m.mild, m.severe, m.fast, m.slow_limit, m.fast_limit, m.fast_limit, m.hardness
+        ),
     }
 }
