@@ -1,4 +1,5 @@
-# Sourced by the cost scripts (dynamics_cost.sh, two_rails_cost.sh):
+# Sourced by the cost scripts (dynamics_cost.sh, two_rails_cost.sh,
+# laws_cost.sh):
 # median reads numbers, one per line, and prints their median;
 # time_run CONFIG PASSES [--set ...] runs "$bin" on CONFIG (a path) for
 # PASSES passages without contact histories, "$runs" times, writing
