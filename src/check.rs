@@ -173,7 +173,7 @@ pub fn print_check(r: &Resolved) {
             in_contact(d.patch_max.a, d.patch_max.b),
             f.friction_law.name(),
             f.scheme.name(),
-            f.solver.resolve_for(s.material.characteristic).name()
+            f.solver.resolve().name()
         );
     } else if let Some(mesh) = s.contact.model.mesh() {
         let el = 2.0 * d.patch_mean.a / mesh.nx as f64;

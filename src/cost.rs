@@ -133,8 +133,8 @@ pub fn auto_grid_solver(s: &Scene) -> GridSolver {
     let Some(f) = s.contact.model.fixed_grid() else {
         return GridSolver::GaussSeidel;
     };
-    if f.solver != GridSolver::Auto || s.material.characteristic.steepest_fall() > 0.0 {
-        return f.solver.resolve_for(s.material.characteristic);
+    if f.solver != GridSolver::Auto {
+        return f.solver.resolve();
     }
     let d = derive(s);
     if fixed_grid_step(s, &d, f, GridSolver::Cg) <= fixed_grid_step(s, &d, f, GridSolver::GaussSeidel) {
@@ -160,9 +160,7 @@ impl ContactModel {
     pub fn step_cost(&self, s: &Scene, d: &crate::build::Derived) -> f64 {
         let n_el = self.mesh().map_or(0, |m| m.len()) as f64;
         match *self {
-            ContactModel::ExactTransient(ContactGrid::Fixed(f)) => {
-                fixed_grid_step(s, d, f, f.solver.resolve_for(s.material.characteristic))
-            }
+            ContactModel::ExactTransient(ContactGrid::Fixed(f)) => fixed_grid_step(s, d, f, f.solver.resolve()),
             ContactModel::Fastsim { .. } => 25.0 * 18e-9 * n_el,
             ContactModel::SimplifiedTransient { .. } => 3e-6 * n_el,
             ContactModel::ExactTransient(ContactGrid::Adapted { solver: StepSolver::GaussSeidel, .. }) => {

@@ -3,7 +3,7 @@
 //! tolerances; the model itself is [`super::solver::FixedGrid`].
 
 use super::{Alignment, PotentialGrid};
-use crate::contact::friction::{Characteristic, FrictionLaw};
+use crate::contact::friction::FrictionLaw;
 use crate::hertz::{Curvatures, Elastic};
 
 /// Default tolerance on the kinematic residual of a step, in units of eps:
@@ -57,21 +57,8 @@ impl GridSolver {
     /// The solver that runs: `auto` (unresolved by the config) is `cg`,
     /// for both friction laws.
     pub fn resolve(self) -> GridSolver {
-        self.resolve_for(Characteristic::Constant)
-    }
-
-    /// The solver that runs under the friction characteristic `ch`: `auto`
-    /// is `cg`, except under a falling characteristic, where it is
-    /// `gauss-seidel`: CG's Newton matrix needs the law's compliance
-    /// positive, and with the coefficient frozen at the slip speed (what it
-    /// then takes) its iterations stall where much of the patch slides (60
-    /// steps of the paper's patch on the 0.4 mm grid at 140 km/h, F_x = 20
-    /// kN, Polach's law: 48 handed to Gauss-Seidel, 13 times the constant
-    /// law's time; Gauss-Seidel alone 7.6 times).
-    pub fn resolve_for(self, ch: Characteristic) -> GridSolver {
         match self {
             GridSolver::GaussSeidel => GridSolver::GaussSeidel,
-            GridSolver::Auto if ch.steepest_fall() > 0.0 => GridSolver::GaussSeidel,
             _ => GridSolver::Cg,
         }
     }

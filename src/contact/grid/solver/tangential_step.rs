@@ -23,6 +23,8 @@ pub(super) struct Solved {
     pub u: (Vec<f64>, Vec<f64>),
     /// Whether the CG solver handed the step to Gauss-Seidel.
     pub fell_back: bool,
+    /// Whether the CG solver tried the step.
+    pub tried_cg: bool,
 }
 
 /// The earlier-displacement term of a step and its warm start.
@@ -111,7 +113,9 @@ impl FixedGrid {
         // preconditioner, the FFT inverse on the unpadded grid.
         // On the contact block where it is much smaller than the grid (the
         // CG solver's products only).
-        let newton_krylov = self.spec.solver.resolve_for(input.characteristic) == GridSolver::Cg;
+        // Under a falling friction characteristic CG may be paused after it
+        // stalled ([`super::CgPause`]).
+        let newton_krylov = self.spec.solver.resolve() == GridSolver::Cg && self.cg_pause.skip == 0;
         let block = sym.filter(|_| newton_krylov).and_then(|_| self.blocks.for_set(&self.kernel, &set, shape));
         let single = OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks);
         let pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
@@ -184,7 +188,7 @@ impl FixedGrid {
         };
         let (mut out, s_grid) = self.expand((input, solved_law), &set, &weight, p3, &sol);
         out.fallback = fell_back;
-        Ok(Solved { out, s_grid, u: exact.whole(), fell_back })
+        Ok(Solved { out, s_grid, u: exact.whole(), fell_back, tried_cg: newton_krylov })
     }
 
     /// The earlier-displacement term `u~` and weight `beta` of the
