@@ -3,7 +3,8 @@ variant, case (and rail) and speed, the fastest-growing harmonic, its
 frequency and rate, and the rate's change from the base variant's at the
 same harmonic where the base ran.
 
-Usage: laws_summary.py OUT VARIANT [VARIANT ...]  (CSV on stdout)
+Usage: laws_summary.py OUT VARIANT [VARIANT ...]  (CSV on stdout; a
+variant VARIANT=DIR reads its study from DIR instead of OUT/VARIANT)
 """
 
 import csv
@@ -19,6 +20,17 @@ def rows(folder: Path):
             for r in csv.DictReader(f):
                 yield (r["mechanism"], r["label"], float(r["speed_m_s"]), float(r["peak_wavelength_m"]),
                        float(r["peak_frequency_hz"]), float(r["peak_rate_db_per_1e5"]), r["growing"])
+    else:
+        # A study stopped before its summary: each case's own speeds summary.
+        for speeds in sorted(folder.glob("*/speeds_summary.csv")):
+            case = speeds.parent.name
+            if case.startswith("growth_"):
+                continue
+            with speeds.open() as f:
+                for r in csv.DictReader(f):
+                    label = r["label"] + (f" ({r['rail']})" if r.get("rail") else "")
+                    yield (case, label, float(r["speed_m_s"]), float(r["peak_wavelength_m"]),
+                           float(r["peak_frequency_hz"]), float(r["peak_rate_db_per_1e5"]), "")
     for config in ("growth_fastsim", "growth_exact"):
         speeds = folder / config / "speeds_summary.csv"
         if speeds.exists():
@@ -30,7 +42,9 @@ def rows(folder: Path):
 
 def main() -> None:
     out, variants = Path(sys.argv[1]), sys.argv[2:]
-    table = {v: list(rows(out / v)) for v in variants}
+    folders = {v.split("=")[0]: Path(v.split("=")[1]) if "=" in v else out / v for v in variants}
+    variants = list(folders)
+    table = {v: list(rows(folders[v])) for v in variants}
     base = {(r[0], r[1]): r for r in table.get("base", [])}
     w = csv.writer(sys.stdout, lineterminator="\n")
     w.writerow(["variant", "case", "label", "speed_km_h", "peak_wavelength_mm", "peak_frequency_hz",
