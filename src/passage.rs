@@ -520,11 +520,18 @@ impl Recorder<'_> {
             let from = PatchWear { x_c: p.x_c, a: p.a, b: p.b, rates: &p.rates };
             let to = PatchWear { x_c: x + sol.offset, a: patch_a, b: patch_b, rates: &rates };
             self.deposit.accumulate(grid, &mut self.wear, &from, &to, dt, spec.substeps);
-            for (r, volume) in self.regime_volume.iter_mut().enumerate() {
-                let regime = (r + 1) as i8;
-                let masked: Vec<f64> =
-                    rates.iter().zip(&regimes).map(|(v, g)| if *g == regime { *v } else { 0.0 }).collect();
-                *volume += self.deposit.integral(&masked, patch_a, patch_b) * dt;
+            if let [volume] = self.regime_volume.as_mut_slice() {
+                // One regime (Archard's): every wearing element is in it.
+                *volume += self.deposit.integral(&rates, patch_a, patch_b) * dt;
+            } else {
+                let mut masked = vec![0.0; rates.len()];
+                for (r, volume) in self.regime_volume.iter_mut().enumerate() {
+                    let regime = (r + 1) as i8;
+                    masked.iter_mut().zip(rates.iter().zip(&regimes)).for_each(|(m, (v, g))| {
+                        *m = if *g == regime { *v } else { 0.0 };
+                    });
+                    *volume += self.deposit.integral(&masked, patch_a, patch_b) * dt;
+                }
             }
         }
         h.in_contact.push(1.0);

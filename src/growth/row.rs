@@ -34,7 +34,8 @@ pub(super) struct RowKeep<'s> {
 
 impl RowKeep<'_> {
     /// Updates a rail's `state` with its `wear` of one passage (`r -= m
-    /// W`; its leading wheel's share of it per wear regime), appends its row, its stored state and its wheels' histories
+    /// W`; with its leading wheel's share of it per wear regime), appends
+    /// its row, its stored state and its wheels' histories
     /// (the leading wheel's, the others') where kept; `(loss, clipped)`
     /// its steps without contact and with the linear contact's patch
     /// opened. Returns the row.

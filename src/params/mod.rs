@@ -48,7 +48,7 @@ pub struct Material {
     /// Friction coefficient mu (1): at zero slip speed.
     pub friction: f64,
     /// How the friction coefficient varies with the slip speed
-    /// (`contact.friction_characteristic`).
+    /// (`material.friction_characteristic`).
     pub characteristic: Characteristic,
 }
 

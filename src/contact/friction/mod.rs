@@ -164,6 +164,54 @@ pub fn regularised_slip(p: [f64; 2], mu_p3: f64, eps: f64) -> [f64; 2] {
     [-q * p[0] / pm, -q * p[1] / pm]
 }
 
+/// An element's slip (m/s) and traction (Pa).
+pub(crate) type SlipTraction = ([f64; 2], [f64; 2]);
+
+/// Newton on the element problem `s = s0 + K p(s)` (`law(s)` = the
+/// traction and `D = -dp/ds`; the Hessian `K^-1 + D` positive definite)
+/// from `start`, while each full step halves |grad E| (`grad E = K^-1 (s -
+/// s0) - p`), which is what happens near the solution. Ok: the converged
+/// slip and traction; Err: the last accepted iterate's, where a step did
+/// not halve it (the caller's 1-D form takes over).
+pub(crate) fn element_newton(
+    s0: [f64; 2],
+    k: [f64; 3],
+    start: [f64; 2],
+    law: impl Fn([f64; 2]) -> ([f64; 2], [f64; 3]),
+) -> Result<SlipTraction, SlipTraction> {
+    let norm = |v: [f64; 2]| (v[0] * v[0] + v[1] * v[1]).sqrt();
+    let kinv = symmetric_inverse(k);
+    let grad = |s: [f64; 2]| {
+        let (p, d) = law(s);
+        let (dx, dy) = (s[0] - s0[0], s[1] - s0[1]);
+        ([kinv[0] * dx + kinv[1] * dy - p[0], kinv[1] * dx + kinv[2] * dy - p[1]], p, d)
+    };
+    let mut s = start;
+    let (mut g, mut p, mut d) = grad(s);
+    for _ in 0..8 {
+        let h = [kinv[0] + d[0], kinv[1] + d[1], kinv[2] + d[2]];
+        let hdet = h[0] * h[2] - h[1] * h[1];
+        let step = [-(h[2] * g[0] - h[1] * g[1]) / hdet, -(h[0] * g[1] - h[1] * g[0]) / hdet];
+        let size = norm(step);
+        // Relative to |s| itself: in deep stick |s| << eps and p ~ s.
+        let scale = norm(s).max(f64::MIN_POSITIVE);
+        if size <= 1e-14 * scale {
+            return Ok((s, p));
+        }
+        let trial = [s[0] + step[0], s[1] + step[1]];
+        let (gt, pt, dt) = grad(trial);
+        if norm(gt) > 0.5 * norm(g) {
+            break;
+        }
+        (s, g, p, d) = (trial, gt, pt, dt);
+        // A full step this small leaves an error ~ its square: done.
+        if size <= 1e-8 * scale {
+            return Ok((s, p));
+        }
+    }
+    Err((s, p))
+}
+
 /// Solves the element problem `s = s0 + K p(s)` for the 2 x 2 symmetric
 /// positive definite `K = [k0 k1; k1 k2]`. Returns the slip and its traction.
 ///
@@ -180,35 +228,10 @@ pub fn local_solve(s0: [f64; 2], k: [f64; 3], mu_p3: f64, eps: f64, start: [f64;
     if mu_p3 <= 0.0 || q0 == 0.0 {
         return (s0, [0.0; 2]);
     }
-    let kinv = symmetric_inverse(k);
-    let grad = |s: [f64; 2]| {
-        let (p, d) = regularised(s, mu_p3, eps);
-        let (dx, dy) = (s[0] - s0[0], s[1] - s0[1]);
-        ([kinv[0] * dx + kinv[1] * dy - p[0], kinv[1] * dx + kinv[2] * dy - p[1]], p, d)
+    let (s, p) = match element_newton(s0, k, start, |s| regularised(s, mu_p3, eps)) {
+        Ok(done) => return done,
+        Err(last) => last,
     };
-    let mut s = start;
-    let (mut g, mut p, mut d) = grad(s);
-    for _ in 0..8 {
-        let h = [kinv[0] + d[0], kinv[1] + d[1], kinv[2] + d[2]];
-        let hdet = h[0] * h[2] - h[1] * h[1];
-        let step = [-(h[2] * g[0] - h[1] * g[1]) / hdet, -(h[0] * g[1] - h[1] * g[0]) / hdet];
-        let size = norm(step);
-        // Relative to |s| itself: in deep stick |s| << eps and p ~ s.
-        let scale = norm(s).max(f64::MIN_POSITIVE);
-        if size <= 1e-14 * scale {
-            return (s, p);
-        }
-        let trial = [s[0] + step[0], s[1] + step[1]];
-        let (gt, pt, dt) = grad(trial);
-        if norm(gt) > 0.5 * norm(g) {
-            break;
-        }
-        (s, g, p, d) = (trial, gt, pt, dt);
-        // A full step this small leaves an error ~ its square: done.
-        if size <= 1e-8 * scale {
-            return (s, p);
-        }
-    }
     // The bracketed 1-D form.
     let shrink = |c: f64| {
         let m = [1.0 + c * k[0], c * k[1], 1.0 + c * k[2]];

@@ -22,7 +22,9 @@
 //! own ([`super::regularised`], [`super::local_solve`],
 //! [`super::coulomb_local`], [`super::regularised_slip`]), bit for bit.
 
-use super::{Characteristic, coulomb_local, local_solve, regularised, regularised_slip, symmetric_inverse};
+use super::{
+    Characteristic, coulomb_local, element_newton, local_solve, regularised, regularised_slip, symmetric_inverse,
+};
 use crate::numerics::{Tolerance, brent};
 use crate::quadrature::integrate;
 use nalgebra::SMatrix;
@@ -181,35 +183,9 @@ pub fn local_solve_with(
     }
     let law = |s: [f64; 2]| law_and_jacobian(s, mu_p3, eps, ch, true);
     let convex = convex(k, mu_p3, ch);
-    if convex {
-        // Newton on the convex energy while each full step halves |grad E|.
-        let kinv = symmetric_inverse(k);
-        let grad = |s: [f64; 2]| {
-            let (p, d) = law(s);
-            let (dx, dy) = (s[0] - s0[0], s[1] - s0[1]);
-            ([kinv[0] * dx + kinv[1] * dy - p[0], kinv[1] * dx + kinv[2] * dy - p[1]], p, d)
-        };
-        let mut s = start;
-        let (mut g, mut p, mut d) = grad(s);
-        for _ in 0..8 {
-            let h = [kinv[0] + d[0], kinv[1] + d[1], kinv[2] + d[2]];
-            let hdet = h[0] * h[2] - h[1] * h[1];
-            let step = [-(h[2] * g[0] - h[1] * g[1]) / hdet, -(h[0] * g[1] - h[1] * g[0]) / hdet];
-            let size = norm(step);
-            let scale = norm(s).max(f64::MIN_POSITIVE);
-            if size <= 1e-14 * scale {
-                return (s, p);
-            }
-            let trial = [s[0] + step[0], s[1] + step[1]];
-            let (gt, pt, dt) = grad(trial);
-            if norm(gt) > 0.5 * norm(g) {
-                break;
-            }
-            (s, g, p, d) = (trial, gt, pt, dt);
-            if size <= 1e-8 * scale {
-                return (s, p);
-            }
-        }
+    // Newton on the convex energy.
+    if convex && let Ok(done) = element_newton(s0, k, start, law) {
+        return done;
     }
     // The 1-D form: c(q) = mu p3 r(q) h(q)/q <= mu p3 r_max 2/(pi eps).
     let f = |q: f64| ch.ratio(q).0 * atan_share(q, eps).0;

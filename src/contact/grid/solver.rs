@@ -84,12 +84,13 @@ struct SymmetricProducts {
 /// iterations and then Gauss-Seidel's. After a stall CG sits out the next
 /// `next` steps (8, doubling with each stall in a row up to 64; back to 8
 /// when it converges), which Gauss-Seidel solves directly. On
-/// configs/growth_exact.toml (100 km/h) with Polach's law a passage took
-/// 2.5 s CPU with CG first, 7.4 s with Gauss-Seidel alone (1.3 s under
-/// constant friction); the paper's patch on the 0.4 mm grid at 140 km/h
-/// (F_x = 20 kN, 60 steps): CG first 1.07 s (48 steps handed over),
-/// Gauss-Seidel alone 0.62 s. Constant and rising characteristics never
-/// pause (their results stay those of CG first, bit for bit).
+/// configs/growth_exact.toml (100 km/h) with Polach's law a passage takes
+/// 2.30 s CPU this way, 7.22 s with Gauss-Seidel alone, 1.23 s under
+/// constant friction (scripts/laws_cost.sh, medians); at 140 km/h 6.5-7.7
+/// s, Gauss-Seidel alone 6.4-7.2 s (without the pause CG's stalls cost
+/// about twice Gauss-Seidel's time there). Constant and rising
+/// characteristics never pause (their results stay those of CG first, bit
+/// for bit).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 struct CgPause {
     /// Steps left to sit out.
