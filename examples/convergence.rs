@@ -21,6 +21,7 @@ fn steady(nx: usize, ny: usize, eps: f64) -> (f64, f64) {
         dt: 2e-4 / 27.778,
         friction: 0.4,
         characteristic: Default::default(),
+        memory: None,
         force_x: 2e4,
         creepage_x: None,
         creepage_y: 0.0,

@@ -38,7 +38,7 @@ fn main() {
     let fastsim = Fastsim::new(40, 40, PressureShape::Hertz, coefficients, el.shear_modulus());
     for (name, ch) in laws {
         for &xi in &xis {
-            let s = fastsim.solve_creepage_with(&patch, Creepage { x: -xi, ..Default::default() }, (MU, ch), V);
+            let s = fastsim.solve_creepage_with(&patch, Creepage { x: -xi, ..Default::default() }, (MU, ch, None), V);
             let f = s.force_x / patch.normal_force;
             println!("fastsim,{name},{xi:e},{f},{f},{f}");
         }
@@ -60,6 +60,7 @@ fn main() {
                 dt: cell.0 / V,
                 friction: MU,
                 characteristic: ch,
+                memory: None,
                 force_x: 0.0,
                 creepage_x: Some(-xi),
                 creepage_y: 0.0,

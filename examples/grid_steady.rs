@@ -50,6 +50,7 @@ fn main() {
         dt: dx / speed,
         friction: 0.4,
         characteristic: Default::default(),
+        memory: None,
         force_x: fx,
         creepage_x: None,
         creepage_y: 0.0,

@@ -7,7 +7,12 @@
 # others, e.g. rutting) with each law against the defaults:
 #   base         constant friction, Archard's wear (the shipped configs)
 #   falling      friction falling with the slip speed: Polach's dry-rail
-#                law (exponential, mu_k = 0.4 mu, v_c = 1/0.6 m/s)
+#                law (exponential, mu_k = 0.4 mu, v_c = 1/0.6 m/s), with
+#                CONTACT's friction memory (d_c = 1 um, s_0 = 10 mm/s)
+#   falling-none the same without memory
+#   falling-long the same with a memory of d_c = 0.1 mm (the distance at
+#                which the fixed grid's roll-slip settles and converges
+#                under refinement; examples/roll_slip_memory.rs)
 #   modifier     a top-of-rail friction modifier: mu = 0.3 at zero slip
 #                rising to 0.35 (v_c = 0.1 m/s; an illustration: the
 #                products' characteristics are not published as numbers)
@@ -37,10 +42,12 @@ for v in $variants; do
   case $v in
     base) set_kv="" ;;
     falling) set_kv="material.friction_characteristic=exponential" ;;
+    falling-none) set_kv="material.friction_characteristic=exponential material.friction_memory=0" ;;
+    falling-long) set_kv="material.friction_characteristic=exponential material.friction_memory=1e-4" ;;
     modifier) set_kv="material.friction_characteristic=modifier material.friction_coefficient=0.3 material.kinetic_friction=0.35 material.friction_speed=0.1" ;;
     work) set_kv="wear.law=frictional-work" ;;
     map) set_kv="wear.law=map" ;;
-    *) echo "unknown variant $v (base, falling, modifier, work, map)" >&2; exit 2 ;;
+    *) echo "unknown variant $v (base, falling, falling-none, falling-long, modifier, work, map)" >&2; exit 2 ;;
   esac
   echo "== $v: ${set_kv:-defaults}"
   CORRUGATION_BIN=$bin PASSES=$passes CASES="$cases" SET="$set_kv" OUT="$out/$v" bash scripts/mechanism_study.sh

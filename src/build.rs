@@ -102,6 +102,7 @@ pub fn derive(scene: &Scene) -> Derived {
         speed: scene.speed,
         friction: scene.material.friction,
         characteristic: scene.material.characteristic,
+        memory: scene.material.memory,
         creepage_x: scene.creepage_x,
         creepage_y: scene.creepage_y,
         spin: scene.spin,
@@ -326,6 +327,7 @@ pub fn torsion_feedback(scene: &Scene, shape: &HertzShape, n0: f64) -> Option<To
             dt: 0.0,
             friction: scene.material.friction,
             characteristic: scene.material.characteristic,
+            memory: scene.material.memory,
             force_x: 0.0,
             creepage_x: Some(xi),
             creepage_y: scene.creepage_y,
@@ -406,6 +408,7 @@ pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64, 
         dt: 0.0,
         friction: scene.material.friction,
         characteristic: scene.material.characteristic,
+        memory: scene.material.memory,
         force_x: fx0,
         creepage_x: scene.creepage_x,
         creepage_y: scene.creepage_y,
@@ -418,7 +421,7 @@ pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64, 
     };
     let forces_at = |n: f64, x: f64, y: f64, spin: f64| {
         let patch = shape.patch(n).expect("validated loads keep N > 0");
-        let friction = (scene.material.friction, scene.material.characteristic);
+        let friction = (scene.material.friction, scene.material.characteristic, scene.material.memory);
         let s = fastsim.solve_creepage_with(&patch, Creepage { x, y, spin }, friction, scene.speed);
         [s.force_x, s.force_y]
     };

@@ -86,6 +86,16 @@ pub fn print_check(r: &Resolved) {
     }
     println!("Hertz a/b          {:.4}", d.shape.aspect());
     println!("friction           {}", friction_line(s.material.friction, s.material.characteristic));
+    if !s.material.characteristic.is_constant() {
+        match s.material.memory {
+            Some(m) => println!(
+                "friction memory    relaxing over d_c = {:.3e} m of slip, at least at s_0 = {:.3e} m/s (CONTACT's); \
+                 forgets half its coefficient in a step where it slips d_c",
+                m.distance, m.floor
+            ),
+            None => println!("friction memory    none: the coefficient follows the slip speed at once"),
+        }
+    }
     println!("wear law           {}", wear_line(&s.wear));
     if (s.creepage_y != 0.0 || s.spin != 0.0) && s.contact.model.fixed_grid().is_some() {
         println!(

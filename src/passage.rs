@@ -25,6 +25,8 @@ pub struct PassageSpec {
     pub friction: f64,
     /// How the friction coefficient varies with the slip speed.
     pub characteristic: crate::contact::friction::Characteristic,
+    /// Friction memory.
+    pub memory: Option<crate::contact::friction::FrictionMemory>,
     /// Prescribed longitudinal creepage (1) (`load.control = "creepage"`),
     /// or None: the longitudinal force of `loads` prescribed.
     pub creepage_x: Option<f64>,
@@ -386,6 +388,7 @@ pub fn run_passage(
             dt,
             friction: spec.friction,
             characteristic: spec.characteristic,
+            memory: spec.memory,
             force_x: spec
                 .dynamic_longitudinal_force
                 .as_ref()

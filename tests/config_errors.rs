@@ -411,3 +411,28 @@ fn friction_characteristic_keys() {
     let scene = load_str(BASE, "t", &set(&["material.kinetic_friction=0.2"])).unwrap().scene;
     assert_eq!(scene.material.characteristic, Characteristic::Constant);
 }
+
+/// Friction memory: CONTACT's defaults where the coefficient varies, none
+/// under the constant law (its keys checked and unused) or at distance 0;
+/// the keys' ranges.
+#[test]
+fn friction_memory_keys() {
+    use corrugation::contact::friction::FrictionMemory;
+    let set = |s: &[&str]| s.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    let memory = |s: &[&str]| load_str(BASE, "t", &set(s)).unwrap().scene.material.memory;
+    assert_eq!(memory(&["material.friction_characteristic=exponential"]), Some(FrictionMemory::CONTACT));
+    assert_eq!(
+        memory(&[
+            "material.friction_characteristic=rational",
+            "material.friction_memory=1e-4",
+            "material.memory_speed=0.05"
+        ]),
+        Some(FrictionMemory { distance: 1e-4, floor: 0.05 })
+    );
+    assert_eq!(memory(&["material.friction_characteristic=exponential", "material.friction_memory=0"]), None);
+    assert_eq!(memory(&["material.friction_memory=1e-4"]), None);
+    let e = errors(BASE, &["material.friction_characteristic=exponential", "material.friction_memory=0.01"]);
+    assert!(e.iter().any(|m| m.contains("material.friction_memory") && m.contains("[0, 0.001]")), "{e:?}");
+    let e = errors(BASE, &["material.memory_speed=0"]);
+    assert!(e.iter().any(|m| m.contains("material.memory_speed") && m.contains("(0, 10]")), "{e:?}");
+}

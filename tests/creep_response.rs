@@ -39,6 +39,7 @@ fn mean(longitudinal: Longitudinal) -> MeanState {
         speed: SPEED,
         friction: 0.4,
         characteristic: Default::default(),
+        memory: None,
     }
 }
 

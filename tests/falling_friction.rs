@@ -48,7 +48,7 @@ fn fastsim_creep_curve_falls_to_the_sliding_limit() {
     let f = Fastsim::new(40, 40, PressureShape::Hertz, paper_coefficients(false), STEEL.shear_modulus());
     let patch = paper_shape(false).patch(1e5).unwrap();
     let n = patch.normal_force;
-    let at = |xi: f64, ch| f.solve_creepage_with(&patch, Creepage { x: xi, ..Default::default() }, (MU, ch), V);
+    let at = |xi: f64, ch| f.solve_creepage_with(&patch, Creepage { x: xi, ..Default::default() }, (MU, ch, None), V);
     // Vanishing creepage: no element slides.
     let (small, constant) = (at(-1e-7, FALLING), at(-1e-7, Characteristic::Constant));
     assert!(rel(small.force_x, constant.force_x) < 1e-12);
@@ -86,7 +86,7 @@ fn fastsim_rising_characteristic_rises_to_its_level() {
             let s = f.solve_creepage_with(
                 &patch,
                 Creepage { x: -1e-4 * 1.15f64.powi(i), ..Default::default() },
-                (MU, rising),
+                (MU, rising, None),
                 V,
             );
             assert_law(&s, rising, None, 1e-12);
@@ -117,6 +117,7 @@ fn steady_at(
         dt,
         friction: mu,
         characteristic: ch,
+        memory: None,
         force_x: 0.0,
         creepage_x: Some(xi),
         creepage_y: 0.0,
@@ -188,6 +189,7 @@ fn exact_grid_creep_curve_falls_beyond_saturation() {
         dt,
         friction: MU,
         characteristic: FALLING,
+        memory: None,
         force_x: 0.0,
         creepage_x: Some(-0.01),
         creepage_y: 0.0,

@@ -21,6 +21,7 @@ fn input(concave: bool, force_x: f64) -> StepInput {
         dt: 0.0,
         friction: MU,
         characteristic: Default::default(),
+        memory: None,
         force_x,
         creepage_x: None,
         creepage_y: 0.0,

@@ -15,6 +15,7 @@ fn setup(length: f64) -> (PassageSpec, RailGrid, Fastsim) {
         speed: 27.78,
         friction: 0.4,
         characteristic: Default::default(),
+        memory: None,
         creepage_x: None,
         creepage_y: 0.0,
         spin: 0.0,

@@ -47,6 +47,7 @@ fn rolling(dx: f64, position: f64) -> StepInput {
         dt: dx / 27.78,
         friction: 0.4,
         characteristic: Default::default(),
+        memory: None,
         force_x: 2e4,
         creepage_x: None,
         creepage_y: 0.0,

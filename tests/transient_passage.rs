@@ -85,6 +85,7 @@ fn non_convergence_is_reported_with_step_and_residuals() {
         dt: 7.2e-6,
         friction: 0.4,
         characteristic: Default::default(),
+        memory: None,
         force_x: 2e4,
         creepage_x: None,
         creepage_y: 0.0,

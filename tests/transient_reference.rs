@@ -22,6 +22,7 @@ fn input(patch: HertzPatch, speed: f64, step: f64, mu: f64, force_x: f64) -> Ste
         dt: step / speed,
         friction: mu,
         characteristic: Default::default(),
+        memory: None,
         force_x,
         creepage_x: None,
         creepage_y: 0.0,

@@ -86,6 +86,7 @@ fn fastsim_rates(n: usize) -> (EllipseMesh, Vec<f64>, f64, f64) {
         dt: 0.0,
         friction: 0.4,
         characteristic: Default::default(),
+        memory: None,
         force_x: 2e4,
         creepage_x: None,
         creepage_y: 0.0,

@@ -1,9 +1,11 @@
 //! `material.friction_characteristic` and its keys: how the friction
 //! coefficient varies with the local slip speed
-//! ([`crate::contact::friction::Characteristic`]).
+//! ([`crate::contact::friction::Characteristic`]), and its memory
+//! (`material.friction_memory`, `material.memory_speed`:
+//! [`crate::contact::friction::FrictionMemory`]).
 
 use super::reader::{Range, Section};
-use crate::contact::friction::Characteristic;
+use crate::contact::friction::{Characteristic, FrictionMemory};
 
 /// The names of `material.friction_characteristic`.
 pub const NAMES: [&str; 4] = ["constant", "exponential", "rational", "modifier"];
@@ -14,9 +16,34 @@ pub const POLACH_DRY_RATIO: f64 = 0.4;
 /// `1/B` of Polach's dry fit (m/s).
 pub const POLACH_DRY_SPEED: f64 = 1.0 / 0.6;
 
-/// Reads the characteristic with `mu` the coefficient at zero slip
-/// (`material.friction_coefficient`; None when invalid).
-pub(super) fn read(s: &mut Section, mu: Option<f64>) -> Option<Characteristic> {
+/// The range of `material.friction_memory` (m): 0 (no memory) to 1 mm.
+const MEMORY_RANGE: Range = Range::Closed(0.0, 1e-3);
+/// The range of `material.memory_speed` (m/s).
+const MEMORY_SPEED_RANGE: Range = Range::OpenClosed(0.0, 10.0);
+
+/// Reads the characteristic and its memory with `mu` the coefficient at
+/// zero slip (`material.friction_coefficient`; None when invalid).
+pub(super) fn read(s: &mut Section, mu: Option<f64>) -> Option<(Characteristic, Option<FrictionMemory>)> {
+    let characteristic = read_characteristic(s, mu);
+    // CONTACT's defaults where the coefficient varies; checked, kept and
+    // unused under the constant law.
+    let varies = characteristic.is_some_and(|c| !c.is_constant());
+    let distance = if varies || s.has("friction_memory") {
+        s.f64("friction_memory", Some(FrictionMemory::CONTACT.distance), MEMORY_RANGE)
+    } else {
+        Some(0.0)
+    };
+    let floor = if varies || s.has("memory_speed") {
+        s.f64("memory_speed", Some(FrictionMemory::CONTACT.floor), MEMORY_SPEED_RANGE)
+    } else {
+        Some(FrictionMemory::CONTACT.floor)
+    };
+    let (characteristic, distance, floor) = (characteristic?, distance?, floor?);
+    let memory = (varies && distance > 0.0).then_some(FrictionMemory { distance, floor });
+    Some((characteristic, memory))
+}
+
+fn read_characteristic(s: &mut Section, mu: Option<f64>) -> Option<Characteristic> {
     let name = s.choice("friction_characteristic", Some("constant"), &NAMES)?;
     let speed_range = Range::OpenClosed(0.0, 100.0);
     if name == "constant" {

@@ -373,8 +373,9 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     else {
         return (None, resolved);
     };
+    let (characteristic, memory) = characteristic;
     let material =
-        Material { elastic: Elastic { young_modulus: young, poisson_ratio: nu }, friction: mu, characteristic };
+        Material { elastic: Elastic { young_modulus: young, poisson_ratio: nu }, friction: mu, characteristic, memory };
     let geometry = Geometry { wheel_radius, wheel_profile_radius: profile, rail_head_radius: rail_head };
     let shape = check_geometry(&material, &geometry, errors);
 

@@ -13,6 +13,8 @@ const UNITS: &[(&str, &str)] = &[
     ("material.friction_coefficient", "1"),
     ("material.kinetic_friction", "1"),
     ("material.friction_speed", "m/s"),
+    ("material.friction_memory", "m"),
+    ("material.memory_speed", "m/s"),
     ("geometry.wheel_radius", "m"),
     ("geometry.wheel_profile_radius", "m"),
     ("geometry.rail_head_radius", "m"),

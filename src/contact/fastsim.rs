@@ -26,7 +26,7 @@
 //! Brent's method on a bracket grown from the linear-theory estimate
 //! `xi = -F_x / (G a b C11)`.
 
-use super::friction::{Characteristic, coulomb_local_with};
+use super::friction::{Characteristic, FrictionMemory, Local, coulomb_local_with};
 use super::linear::{LinearContact, LinearPatch};
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
@@ -98,20 +98,22 @@ impl Fastsim {
     /// Solves the steady problem with all creepages prescribed (the
     /// model's pressure shape on the Hertz patch).
     pub fn solve_creepage(&self, patch: &HertzPatch, creepage: Creepage, friction: f64, speed: f64) -> PatchSolution {
-        self.solve_creepage_with(patch, creepage, (friction, Characteristic::Constant), speed)
+        self.solve_creepage_with(patch, creepage, (friction, Characteristic::Constant, None), speed)
     }
 
     /// [`solve_creepage`](Fastsim::solve_creepage) with the friction
-    /// coefficient at zero slip varying with the slip speed as `ch` does.
+    /// coefficient at zero slip varying with the slip speed as `ch` does,
+    /// with or without memory (each cell remembers its upstream
+    /// neighbour's coefficient, `dt` = the cell's length / V).
     pub fn solve_creepage_with(
         &self,
         patch: &HertzPatch,
         creepage: Creepage,
-        (friction, ch): (f64, Characteristic),
+        (friction, ch, memory): (f64, Characteristic, Option<FrictionMemory>),
         speed: f64,
     ) -> PatchSolution {
         let pressure = pressure_on_mesh(&self.mesh, self.shape, patch.normal_force, patch.a, patch.b);
-        self.solve_with_pressure(patch, pressure, creepage, (friction, ch), speed)
+        self.solve_with_pressure(patch, pressure, creepage, (friction, ch, memory), speed)
     }
 
     /// The patch and pressure of a step: the Hertz patch and the shape's
@@ -134,7 +136,7 @@ impl Fastsim {
         patch: &HertzPatch,
         pressure: Vec<f64>,
         creepage: Creepage,
-        (friction, ch): (f64, Characteristic),
+        (friction, ch, memory): (f64, Characteristic, Option<FrictionMemory>),
         speed: f64,
     ) -> PatchSolution {
         let m = &self.mesh;
@@ -162,6 +164,9 @@ impl Fastsim {
             let y = m.eta[j * m.nx] * b;
             let mut x_prev = m.half_chord[j] * a;
             let (mut px, mut py) = (0.0, 0.0);
+            // Fresh material enters at the leading edge with the static
+            // coefficient.
+            let mut kept = 1.0;
             for i in 0..m.nx {
                 let k = j * m.nx + i;
                 let x = m.xi[k] * a;
@@ -179,7 +184,9 @@ impl Fastsim {
                     // Alonso & Gómez, Veh. Syst. Dyn. 43 (2005) 233-244:
                     // the coefficient of the cell's own slip speed).
                     let kk = speed * l / step;
-                    let (s, p) = coulomb_local_with([-kk * tx, -kk * ty], [kk, 0.0, kk], bound, ch);
+                    let local = Local { steady: ch, memory: memory.map(|m| m.at(kept, step / speed)) };
+                    let (s, p) = coulomb_local_with([-kk * tx, -kk * ty], [kk, 0.0, kk], bound, local);
+                    kept = local.ratio(s[0].hypot(s[1])).0;
                     (px, py) = (p[0], p[1]);
                     (sol.slip_x[k], sol.slip_y[k]) = (s[0], s[1]);
                     sol.stick[k] = s == [0.0; 2];
@@ -218,7 +225,7 @@ impl Fastsim {
                 patch,
                 pressure.clone(),
                 cr,
-                (input.friction, input.characteristic),
+                (input.friction, input.characteristic, input.memory),
                 input.speed,
             );
             if let Some(lp) = &moved_by {

@@ -83,6 +83,9 @@ pub struct StepInput {
     /// How the friction coefficient varies with the local slip speed
     /// (`mu(|s|) = mu r(|s|)`; constant: Coulomb's).
     pub characteristic: friction::Characteristic,
+    /// Friction memory (`None`: the coefficient follows the slip speed at
+    /// once).
+    pub memory: Option<friction::FrictionMemory>,
     /// Prescribed longitudinal force on the wheel F_x (N), unless the
     /// creepage is prescribed.
     pub force_x: f64,

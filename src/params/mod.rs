@@ -50,6 +50,10 @@ pub struct Material {
     /// How the friction coefficient varies with the slip speed
     /// (`material.friction_characteristic`).
     pub characteristic: Characteristic,
+    /// Friction memory (`material.friction_memory`,
+    /// `material.memory_speed`): None where the coefficient follows the
+    /// slip speed at once.
+    pub memory: Option<crate::contact::friction::FrictionMemory>,
 }
 
 /// Wheel and rail geometry.

@@ -81,6 +81,14 @@ impl Characteristic {
         }
     }
 
+    /// The smallest ratio, `inf_q r(q)`: `min(1, A)`.
+    pub fn smallest(self) -> f64 {
+        match self {
+            Characteristic::Constant => 1.0,
+            Characteristic::Exponential { ratio, .. } | Characteristic::Rational { ratio, .. } => ratio.min(1.0),
+        }
+    }
+
     /// The largest ratio, `sup_q r(q)`: the bound of full sliding's
     /// traction, `max(1, A)`.
     pub fn largest(self) -> f64 {

@@ -24,9 +24,11 @@
 //! state of least energy.
 
 pub mod characteristic;
+pub mod memory;
 pub mod varying;
 
 pub use characteristic::Characteristic;
+pub use memory::{FrictionMemory, Local, Memory};
 pub use varying::{coulomb_local_with, local_solve_with, regularised_slip_with, regularised_with};
 
 use crate::numerics::{Tolerance, brent};
@@ -52,7 +54,8 @@ impl Law {
     /// The traction of slip `s` (Coulomb: the slip direction's bound, zero
     /// for zero slip) with the bound `mu p3` at zero slip and the
     /// characteristic `ch`.
-    pub fn traction(self, s: [f64; 2], mu_p3: f64, ch: Characteristic) -> [f64; 2] {
+    pub fn traction(self, s: [f64; 2], mu_p3: f64, ch: impl Into<Local>) -> [f64; 2] {
+        let ch = ch.into();
         match self {
             Law::Regularised { eps } => regularised_with(s, mu_p3, eps, ch).0,
             Law::Coulomb => {
@@ -72,7 +75,7 @@ impl Law {
         k: [f64; 3],
         mu_p3: f64,
         start: [f64; 2],
-        ch: Characteristic,
+        ch: impl Into<Local>,
     ) -> ([f64; 2], [f64; 2]) {
         match self {
             Law::Regularised { eps } => local_solve_with(s0, k, mu_p3, eps, start, ch),

@@ -1,5 +1,6 @@
 //! The friction laws with a friction coefficient that varies with the slip
-//! speed ([`Characteristic`]), and their element problems.
+//! speed ([`super::Characteristic`], with or without memory: [`super::Local`]),
+//! and their element problems.
 //!
 //! The regularised law `p = -mu p3 r(q) h(q) s/q`, `h = (2/pi) atan(q/eps)`,
 //! `q = |s|`, has the Jacobian `D = -dp/ds = mu p3 (f I + f' q u u^T)`, `f =
@@ -22,9 +23,7 @@
 //! own ([`super::regularised`], [`super::local_solve`],
 //! [`super::coulomb_local`], [`super::regularised_slip`]), bit for bit.
 
-use super::{
-    Characteristic, coulomb_local, element_newton, local_solve, regularised, regularised_slip, symmetric_inverse,
-};
+use super::{Local, coulomb_local, element_newton, local_solve, regularised, regularised_slip, symmetric_inverse};
 use crate::numerics::{Tolerance, brent};
 use crate::quadrature::integrate;
 use nalgebra::SMatrix;
@@ -52,7 +51,8 @@ fn atan_share(q: f64, eps: f64) -> (f64, f64) {
 
 /// The regularised law with the characteristic `ch`: the traction and
 /// `D = -dp/ds` (`(xx, xy, yy)`).
-pub fn regularised_with(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic) -> ([f64; 2], [f64; 3]) {
+pub fn regularised_with(s: [f64; 2], mu_p3: f64, eps: f64, ch: impl Into<Local>) -> ([f64; 2], [f64; 3]) {
+    let ch = ch.into();
     if ch.is_constant() {
         return regularised(s, mu_p3, eps);
     }
@@ -64,7 +64,8 @@ pub fn regularised_with(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic) -
 /// with the coefficient frozen at the slip's (`r'` left out: `r(q)` times
 /// the constant law's; a falling law's own `D` can be indefinite along the
 /// slip).
-pub fn frozen_jacobian(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic) -> [f64; 3] {
+pub fn frozen_jacobian(s: [f64; 2], mu_p3: f64, eps: f64, ch: impl Into<Local>) -> [f64; 3] {
+    let ch = ch.into();
     if ch.is_constant() {
         return regularised(s, mu_p3, eps).1;
     }
@@ -72,7 +73,7 @@ pub fn frozen_jacobian(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic) ->
     law_and_jacobian(s, mu_p3, eps, ch, rising).1
 }
 
-fn law_and_jacobian(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic, slope: bool) -> ([f64; 2], [f64; 3]) {
+fn law_and_jacobian(s: [f64; 2], mu_p3: f64, eps: f64, ch: Local, slope: bool) -> ([f64; 2], [f64; 3]) {
     let q = (s[0] * s[0] + s[1] * s[1]).sqrt();
     let (hq, hq_slope) = atan_share(q, eps);
     let (r, rp) = ch.ratio(q);
@@ -91,7 +92,8 @@ fn law_and_jacobian(s: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic, slope
 /// traction `p` within the stick regime (`|p| < mu p3 r h` at `q = 10
 /// eps`), by the fixed point `q = eps tan(pi |p| / (2 mu p3 r(q)))`, which
 /// contracts there (`r` changes by `sup|r'| 10 eps` at most).
-pub fn regularised_slip_with(p: [f64; 2], mu_p3: f64, eps: f64, ch: Characteristic) -> [f64; 2] {
+pub fn regularised_slip_with(p: [f64; 2], mu_p3: f64, eps: f64, ch: impl Into<Local>) -> [f64; 2] {
+    let ch = ch.into();
     let start = regularised_slip(p, mu_p3, eps);
     if ch.is_constant() {
         return start;
@@ -119,7 +121,7 @@ fn largest_eigenvalue(k: [f64; 3]) -> f64 {
 }
 
 /// Whether the element problem's energy is convex (see the module's doc).
-fn convex(k: [f64; 3], mu_p3: f64, ch: Characteristic) -> bool {
+fn convex(k: [f64; 3], mu_p3: f64, ch: Local) -> bool {
     mu_p3 * largest_eigenvalue(k) * ch.steepest_fall() < 1.0
 }
 
@@ -172,8 +174,9 @@ pub fn local_solve_with(
     mu_p3: f64,
     eps: f64,
     start: [f64; 2],
-    ch: Characteristic,
+    ch: impl Into<Local>,
 ) -> ([f64; 2], [f64; 2]) {
+    let ch = ch.into();
     if ch.is_constant() {
         return local_solve(s0, k, mu_p3, eps, start);
     }
@@ -258,13 +261,15 @@ fn least(candidates: &[([f64; 2], [f64; 2])], energy: impl Fn(&([f64; 2], [f64; 
 /// `|K^-1 s0| <= mu p3` and the energy is convex; otherwise the slip roots
 /// of `q = |(I + (mu p3 r(q)/q) K)^-1 s0|`, and where the energy is not
 /// convex the least energy among them and the stick.
-pub fn coulomb_local_with(s0: [f64; 2], k: [f64; 3], mu_p3: f64, ch: Characteristic) -> ([f64; 2], [f64; 2]) {
+pub fn coulomb_local_with(s0: [f64; 2], k: [f64; 3], mu_p3: f64, ch: impl Into<Local>) -> ([f64; 2], [f64; 2]) {
+    let ch = ch.into();
     if ch.is_constant() {
         return coulomb_local(s0, k, mu_p3);
     }
     let kinv = symmetric_inverse(k);
     let p_stick = [-(kinv[0] * s0[0] + kinv[1] * s0[1]), -(kinv[1] * s0[0] + kinv[2] * s0[1])];
-    let stick_ok = norm(p_stick) <= mu_p3;
+    // The bound in stick, `mu p3 r(0)` (1 without memory).
+    let stick_ok = norm(p_stick) <= mu_p3 * ch.ratio(0.0).0;
     let q0 = norm(s0);
     let convex = convex(k, mu_p3, ch);
     if q0 == 0.0 || (stick_ok && convex) {

@@ -152,10 +152,10 @@ pub fn solve(
     // The warm start: a sliding element (|s| >= 10 eps) keeps its slip and
     // takes the law's traction; one in stick keeps its traction (within
     // the stick regime of the new bound) and takes the law's slip.
-    let ch = st.characteristic;
-    let theta = stick_traction_share() * ch.ratio(STICK_SLIP_FACTOR * eps).0;
     let (mut s, mut p) = (s.to_vec(), vec![0.0; 2 * n]);
     for c in 0..n {
+        let ch = st.local(c);
+        let theta = stick_traction_share() * ch.ratio(STICK_SLIP_FACTOR * eps).0;
         let (i, j) = (2 * c, 2 * c + 1);
         let g = st.mu_p3[c];
         let q = s[i].hypot(s[j]);
@@ -187,7 +187,7 @@ pub fn solve(
         // the iterate's slip speed: a falling law's own is indefinite along
         // the slip; the update below keeps the law exact).
         let h: Vec<[f64; 3]> = (0..n)
-            .map(|c| inverse2x2(frozen_jacobian([state.s[2 * c], state.s[2 * c + 1]], st.mu_p3[c], eps, ch)))
+            .map(|c| inverse2x2(frozen_jacobian([state.s[2 * c], state.s[2 * c + 1]], st.mu_p3[c], eps, st.local(c))))
             .collect();
         let target = (FORCING * state.r_max).max(0.3 * st.tol);
         let pre = Preconditioner::new(st, eps, &own, &h, &state.s);
@@ -215,11 +215,11 @@ fn correct(
     products: &mut usize,
 ) -> State {
     let n = st.set.len();
-    let ch = st.characteristic;
-    let theta = stick_traction_share() * ch.ratio(STICK_SLIP_FACTOR * eps).0;
     let mut s = vec![0.0; 2 * n];
     let mut p = vec![0.0; 2 * n];
     for (c, &k) in own.iter().enumerate() {
+        let ch = st.local(c);
+        let theta = stick_traction_share() * ch.ratio(STICK_SLIP_FACTOR * eps).0;
         let (i, j) = (2 * c, 2 * c + 1);
         let kin = [x.s[i] - x.g[i] + adp[i] + lambda, x.s[j] - x.g[j] + adp[j]];
         let pn = [x.p[i] + dp[i], x.p[j] + dp[j]];

@@ -64,6 +64,9 @@ struct History {
 
     /// Creepage.
     xi: f64,
+    /// With friction memory: the ratio `mu / mu_0` each element's
+    /// material had at the end of the last step (1).
+    kept: Option<Vec<f64>>,
 }
 
 /// The approaches of a chain of positions (m) and its last pressure (Pa).
@@ -413,7 +416,7 @@ impl FixedGrid {
             },
         );
         self.ahead_scratch = ahead_scratch;
-        let Solved { mut out, s_grid, u, fell_back, tried_cg } = solved?;
+        let Solved { mut out, s_grid, u, fell_back, tried_cg, kept } = solved?;
         self.ahead = ahead;
         self.fallbacks += usize::from(fell_back);
         if input.characteristic.steepest_fall() > 0.0 {
@@ -425,7 +428,7 @@ impl FixedGrid {
             None => (None, None),
         };
         let p_grid = out.traction_x.iter().zip(&out.traction_y).flat_map(|(x, y)| [*x, *y]).collect();
-        self.history = Some(History { u, older, oldest, p3, s: s_grid, p: p_grid, xi: out.creepage.x });
+        self.history = Some(History { u, older, oldest, p3, s: s_grid, p: p_grid, xi: out.creepage.x, kept });
         Ok(out)
     }
 }

@@ -31,6 +31,7 @@
 
 use super::coupling::Coupling;
 pub use crate::contact::friction::{Characteristic, Law};
+use crate::contact::friction::{FrictionMemory, Local};
 use crate::contact::gs_loop::{self, Settings, Sweeper};
 use multiversion::multiversion;
 
@@ -112,6 +113,9 @@ pub struct GridStep<'a> {
     pub law: Law,
     /// How its coefficient varies with the slip speed.
     pub characteristic: Characteristic,
+    /// Friction memory: the ratio `mu / mu_0` each element's material had
+    /// one step earlier (1), and the memory's parameters.
+    pub memory: Option<(&'a [f64], FrictionMemory)>,
     /// mu p3 per element (Pa).
     pub mu_p3: &'a [f64],
     /// Element area (m^2).
@@ -135,6 +139,14 @@ pub struct GridStep<'a> {
     pub force_tol: f64,
     /// Most sweeps before giving up.
     pub max_sweeps: usize,
+}
+
+impl GridStep<'_> {
+    /// The friction characteristic of element `c` (contact order) in this
+    /// step: the steady one, with the element's memory.
+    pub fn local(&self, c: usize) -> Local {
+        Local { steady: self.characteristic, memory: self.memory.map(|(kept, m)| m.at(kept[c], self.dt)) }
+    }
 }
 
 /// Converged state of one step, on the elements in contact.
@@ -164,7 +176,7 @@ pub fn solve(
 ) -> Result<GridSolution, Vec<f64>> {
     let n = st.set.len();
     let p: Vec<f64> =
-        (0..n).flat_map(|c| st.law.traction([s[2 * c], s[2 * c + 1]], st.mu_p3[c], st.characteristic)).collect();
+        (0..n).flat_map(|c| st.law.traction([s[2 * c], s[2 * c + 1]], st.mu_p3[c], st.local(c))).collect();
     let p_scale = st.mu_p3.iter().fold(0.0f64, |m, v| m.max(*v)).max(f64::MIN_POSITIVE);
     let settings = Settings {
         depth: GRID_DEPTH,
@@ -250,7 +262,7 @@ fn sweep_block(st: &GridStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mu
             st.speed * (st.w0[i] + xi) + (st.beta * u[c] - st.u_prev[i]) / st.dt - own[0],
             st.speed * st.w0[j] + (st.beta * u[n + c] - st.u_prev[j]) / st.dt - own[1],
         ];
-        let (sk, pk) = st.law.element_solve(s0, kk, st.mu_p3[c], [s[li], s[lj]], st.characteristic);
+        let (sk, pk) = st.law.element_solve(s0, kk, st.mu_p3[c], [s[li], s[lj]], st.local(c));
         s[li] = sk[0];
         s[lj] = sk[1];
         let (dx, dy) = (pk[0] - p[li], pk[1] - p[lj]);

@@ -283,7 +283,7 @@ impl WinklerElastic {
 
 /// Traction field of `p` (interleaved) at normalised point (xi, eta),
 /// interpolated as described in [`WinklerElastic::previous`].
-fn interpolate(mesh: &EllipseMesh, p: &[f64], xi: f64, eta: f64) -> (f64, f64) {
+pub(super) fn interpolate(mesh: &EllipseMesh, p: &[f64], xi: f64, eta: f64) -> (f64, f64) {
     if eta.abs() >= 1.0 {
         return (0.0, 0.0);
     }

@@ -40,7 +40,7 @@
 pub mod elastic;
 pub mod gauss_seidel;
 
-use super::friction::{STICK_SLIP_FACTOR, regularised_with};
+use super::friction::{Local, STICK_SLIP_FACTOR, regularised_with};
 use super::linear::LinearContact;
 use super::mesh::{EllipseMesh, PressureShape, pressure_on_mesh};
 use super::{ContactError, Creepage, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
@@ -118,6 +118,9 @@ struct History {
     s: Vec<f64>,
     /// Creepage xi_x.
     xi: f64,
+    /// With friction memory: the ratio `mu / mu_0` each element's material
+    /// had at the end of the step (1).
+    kept: Option<Vec<f64>>,
 }
 
 /// How the nonlinear system of a step is solved. [`Transient::new`] starts
@@ -200,6 +203,8 @@ struct Problem<'a> {
     area: &'a [f64],
     /// Earlier displacements of the material at the centres (m).
     u_o: &'a [f64],
+    /// The friction characteristic at each element.
+    local: &'a [Local],
 }
 
 /// Residuals of one Newton evaluation.
@@ -286,7 +291,7 @@ impl Transient {
         let mut p = vec![0.0; 2 * n];
         let mut d = vec![[0.0; 3]; n];
         for k in 0..n {
-            let (pk, dk) = regularised_with([s[2 * k], s[2 * k + 1]], mu * p3[k], eps, input.characteristic);
+            let (pk, dk) = regularised_with([s[2 * k], s[2 * k + 1]], mu * p3[k], eps, pb.local[k]);
             p[2 * k] = pk[0];
             p[2 * k + 1] = pk[1];
             d[k] = dk;
@@ -485,16 +490,25 @@ impl Transient {
         let offset = self.moved.unwrap_or(0.0);
         let area: Vec<f64> = (0..n).map(|k| self.mesh.area(k) * frame.a * frame.b).collect();
         let mut u_o = vec![0.0; 2 * n];
+        let memory = input.memory.filter(|_| !input.characteristic.is_constant());
+        let mut kept = vec![1.0; n];
         let (mut s, mut xi) = match &self.history {
             Some(h) => {
                 // The material now at x was at x + V dt + (offset now -
                 // offset then) in the previous patch's frame.
                 let shift = input.speed * input.dt + offset - h.offset;
                 self.model.previous(&self.mesh, frame, h.frame, shift, &h.p, &mut u_o);
+                if let (Some(_), Some(old)) = (memory, &h.kept) {
+                    kept_upstream(&self.mesh, (frame, h.frame), shift, old, &mut kept);
+                }
                 (h.s.clone(), h.xi)
             }
             None => (vec![0.0; 2 * n], 0.0),
         };
+        let local: Vec<Local> = kept
+            .iter()
+            .map(|&r| Local { steady: input.characteristic, memory: memory.map(|m| m.at(r, input.dt)) })
+            .collect();
         if let Some(prescribed) = input.creepage_x {
             xi = prescribed;
         }
@@ -509,6 +523,7 @@ impl Transient {
                 speed: input.speed,
                 eps: self.eps,
                 characteristic: input.characteristic,
+                memory: memory.map(|m| (kept.as_slice(), m)),
                 mu_p3: &mu_p3,
                 area: &area,
                 w0: &w0,
@@ -521,11 +536,11 @@ impl Transient {
                 split: (self.mesh.ny / 2) * self.mesh.nx,
             };
             match gauss_seidel::solve(&step, &s, xi) {
-                Ok(gs) => return Ok(self.finish(input, frame, p3, gs.p, gs.s, gs.xi, gs.sweeps)),
+                Ok(gs) => return Ok(self.finish(input, (frame, &local), p3, gs.p, gs.s, gs.xi, gs.sweeps)),
                 Err(_) => self.fallbacks += 1,
             }
         }
-        let pb = Problem { input, frame, p3: &p3, area: &area, u_o: &u_o };
+        let pb = Problem { input, frame, p3: &p3, area: &area, u_o: &u_o, local: &local };
         let mut log = Vec::new();
         let (s_start, xi_start) = (s.clone(), xi);
         let mut iterations = 0;
@@ -573,7 +588,7 @@ impl Transient {
                 reason: format!("Newton-Raphson on the local slips failed: {}", log.join("; ")),
             });
         };
-        Ok(self.finish(input, frame, p3, ev.p, s, xi, iterations))
+        Ok(self.finish(input, (frame, &local), p3, ev.p, s, xi, iterations))
     }
 
     /// The solution of a converged step; keeps it as the next step's history.
@@ -581,7 +596,7 @@ impl Transient {
     fn finish(
         &mut self,
         input: &StepInput,
-        frame: PatchFrame,
+        (frame, local): (PatchFrame, &[Local]),
         p3: Vec<f64>,
         p: Vec<f64>,
         s: Vec<f64>,
@@ -605,7 +620,12 @@ impl Transient {
         };
         sol.force_x = self.mesh.integrate(&sol.traction_x, frame.a, frame.b);
         sol.force_y = self.mesh.integrate(&sol.traction_y, frame.a, frame.b);
-        self.history = Some(History { frame, offset: self.moved.unwrap_or(0.0), p, s, xi });
+        // The coefficient each element's material leaves the step with.
+        let kept = local
+            .first()
+            .is_some_and(|l| l.memory.is_some())
+            .then(|| (0..n).map(|k| local[k].ratio(s[2 * k].hypot(s[2 * k + 1])).0).collect());
+        self.history = Some(History { frame, offset: self.moved.unwrap_or(0.0), p, s, xi, kept });
         sol
     }
 }
@@ -636,5 +656,19 @@ impl TangentialSolver for Transient {
 
     fn set_surface(&mut self, surface: Option<RailContact>) -> Result<(), ContactError> {
         self.linear.set_surface(surface)
+    }
+}
+
+/// The ratio `mu / mu_0` the material at each element centre had one step
+/// earlier: the field `old` of the previous patch (`frames` = (now, then))
+/// at `(x + shift, y)`, linear between the centres along each strip and
+/// between strips, 1 at the leading edge (fresh material) and outside.
+fn kept_upstream(mesh: &EllipseMesh, (now, old): (PatchFrame, PatchFrame), shift: f64, kept: &[f64], out: &mut [f64]) {
+    // The deviation from 1, interpolated as a traction field (zero at the
+    // leading edge and outside).
+    let deviation: Vec<f64> = kept.iter().flat_map(|r| [r - 1.0, 0.0]).collect();
+    for (j, o) in out.iter_mut().enumerate() {
+        let (x, y) = (mesh.xi[j] * now.a + shift, mesh.eta[j] * now.b);
+        *o = 1.0 + elastic::interpolate(mesh, &deviation, x / old.a, y / old.b).0;
     }
 }

@@ -136,6 +136,7 @@ impl Plan<'_> {
                 dt,
                 friction: m.friction,
                 characteristic: m.characteristic,
+                memory: m.memory,
                 force_x,
                 creepage_x: creepage,
                 creepage_y: m.creepage_y + delta(Input::CreepageY),

@@ -120,6 +120,8 @@ pub struct MeanState {
     pub friction: f64,
     /// How the friction coefficient varies with the slip speed.
     pub characteristic: crate::contact::friction::Characteristic,
+    /// Friction memory.
+    pub memory: Option<crate::contact::friction::FrictionMemory>,
 }
 
 /// One frequency's response, `h[i][j] = dF_i / dq_j` (eq. 1): rows

@@ -64,6 +64,7 @@ pub fn mean_state(scene: &Scene, normal_force: f64, longitudinal_force: f64) -> 
         speed: scene.speed,
         friction: scene.material.friction,
         characteristic: scene.material.characteristic,
+        memory: scene.material.memory,
     }
 }
 

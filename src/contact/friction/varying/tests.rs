@@ -1,4 +1,5 @@
 use super::*;
+use crate::contact::friction::Characteristic;
 use crate::contact::friction::STICK_SLIP_FACTOR;
 
 /// Polach's dry law (A = 0.4, B = 0.6 s/m) and steeper laws, falling and

@@ -25,6 +25,9 @@ pub(super) struct Solved {
     pub fell_back: bool,
     /// Whether the CG solver tried the step.
     pub tried_cg: bool,
+    /// With friction memory: the ratio `mu / mu_0` of every grid element
+    /// at the end of the step (1 outside contact).
+    pub kept: Option<Vec<f64>>,
 }
 
 /// The earlier-displacement term of a step and its warm start.
@@ -39,6 +42,9 @@ struct Earlier {
     p0: Vec<f64>,
     /// Warm-start creepage.
     xi0: f64,
+    /// The ratio `mu / mu_0` each element's material kept from the last
+    /// step (1 at a virgin start and where it was out of contact).
+    kept: Vec<f64>,
 }
 
 impl FixedGrid {
@@ -72,7 +78,7 @@ impl FixedGrid {
                 [-input.spin * y, input.creepage_y + input.spin * x]
             })
             .collect();
-        let Earlier { u_prev, beta, s0, p0, xi0 } = self.earlier(&set);
+        let Earlier { u_prev, beta, s0, p0, xi0, kept } = self.earlier(&set);
         let xi0 = input.creepage_x.unwrap_or(xi0);
         let law = self.law();
         let coupling = match folded {
@@ -88,6 +94,7 @@ impl FixedGrid {
             beta,
             law,
             characteristic: input.characteristic,
+            memory: input.memory.filter(|_| !input.characteristic.is_constant()).map(|m| (kept.as_slice(), m)),
             mu_p3: &mu_p3,
             area,
             w0: &w0,
@@ -147,7 +154,7 @@ impl FixedGrid {
                 None => None,
             };
         if solved.is_none() {
-            step.kappa = self.creepage_stiffness(&mut fresh, &set, &weight, &mu_p3, &s0, beta, input);
+            step.kappa = self.creepage_stiffness(&mut fresh, &step, &s0, input);
             let before = cg_failed.as_ref().map_or(0, |f| f.1);
             solved = Some(tangential::solve(&step, &s0, xi0, &mut fresh).map(|mut sol| {
                 sol.sweeps += before;
@@ -186,9 +193,21 @@ impl FixedGrid {
             (Law::Coulomb, true) => Law::Regularised { eps: step.tol / STICK_SLIP_FACTOR },
             _ => law,
         };
+        // The coefficient each element's material leaves the step with.
+        let kept = step.memory.map(|_| {
+            let mut grid = vec![1.0; n];
+            for (c, &k) in set.element.iter().enumerate() {
+                let r = step.local(c).ratio(sol.s[2 * c].hypot(sol.s[2 * c + 1])).0;
+                grid[k] = r;
+                if folded.is_some() {
+                    grid[mirror(k)] = r;
+                }
+            }
+            grid
+        });
         let (mut out, s_grid) = self.expand((input, solved_law), &set, &weight, p3, &sol);
         out.fallback = fell_back;
-        Ok(Solved { out, s_grid, u: exact.whole(), fell_back, tried_cg: newton_krylov })
+        Ok(Solved { out, s_grid, u: exact.whole(), fell_back, tried_cg: newton_krylov, kept })
     }
 
     /// The earlier-displacement term `u~` and weight `beta` of the
@@ -197,8 +216,14 @@ impl FixedGrid {
     /// the same elements, its creepage). A virgin start: zeros, beta = 1.
     fn earlier(&self, set: &ContactSet) -> Earlier {
         let (nx, nc) = (self.grid.nx, set.len());
-        let mut e =
-            Earlier { u_prev: vec![0.0; 2 * nc], beta: 1.0, s0: vec![0.0; 2 * nc], p0: vec![0.0; 2 * nc], xi0: 0.0 };
+        let mut e = Earlier {
+            u_prev: vec![0.0; 2 * nc],
+            beta: 1.0,
+            s0: vec![0.0; 2 * nc],
+            p0: vec![0.0; 2 * nc],
+            xi0: 0.0,
+            kept: vec![1.0; nc],
+        };
         let Some(h) = &self.history else {
             return e;
         };
@@ -234,6 +259,10 @@ impl FixedGrid {
             e.s0[2 * c + 1] = h.s[2 * k + 1];
             e.p0[2 * c] = h.p[2 * k];
             e.p0[2 * c + 1] = h.p[2 * k + 1];
+            // Carried with the material: one column upstream.
+            if let Some(kept) = &h.kept {
+                e.kept[c] = kept[k - 1];
+            }
         }
         e.beta = [1.0, 1.5, 11.0 / 6.0][level - 1];
         e.xi0 = h.xi;
@@ -292,17 +321,14 @@ impl FixedGrid {
     /// of `(beta/dt) K_xx` (one product, `product(p, u)` as the step's:
     /// interleaved tractions on `set`, displacements x block then y block);
     /// slip elements answer through their own law's derivative.
-    #[allow(clippy::too_many_arguments)]
     fn creepage_stiffness(
         &self,
         product: &mut dyn FnMut(&[f64], &mut [f64]),
-        set: &ContactSet,
-        weight: &[f64],
-        mu_p3: &[f64],
+        step: &GridStep,
         s: &[f64],
-        beta: f64,
         input: &StepInput,
     ) -> f64 {
+        let (set, weight, mu_p3, beta) = (step.set, step.weight, step.mu_p3, step.beta);
         let nc = set.len();
         let eps = self.spec.eps;
         let scale = beta / input.dt;
@@ -320,7 +346,7 @@ impl FixedGrid {
         let k0 = scale * self.kernel.at(0, 0, 0);
         for c in 0..nc {
             if !stick[c] {
-                let d = frozen_jacobian([s[2 * c], s[2 * c + 1]], mu_p3[c], eps, input.characteristic);
+                let d = frozen_jacobian([s[2 * c], s[2 * c + 1]], mu_p3[c], eps, step.local(c));
                 kappa += weight[c] * area * d[0] / (1.0 + k0 * d[0]);
             }
         }
