@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up (scripts/setup.sh) and runs every test: formatting, the Rust tests
-# (unit, integration, doc), a compile check of benchmarks and examples, then
-# the Python post-processing tests on a run file produced by the binary, and
+# (unit, integration, doc; with cargo-nextest where installed), a compile
+# check of benchmarks and examples, then the Python post-processing tests
+# on a run file produced by the binary, and
 # the sweep commands against a real single-node Slurm cluster
 # (scripts/slurm_test.sh, about 20 s; it installs slurm-wlm and munge from
 # Debian as root), and builds the book (docs/) and checks its links.
@@ -11,7 +12,14 @@ SETUP_BOOK=1 bash scripts/setup.sh
 # A one-off build needs no incremental cache (it doubles the disk it takes).
 export CARGO_INCREMENTAL=0
 cargo fmt --check
-cargo test --lib --bins --tests
+# cargo-nextest, where the machine has it, runs the tests of every binary
+# side by side (`cargo test` runs the binaries one after another, and a
+# binary's longest test leaves the other core idle); the same tests.
+if cargo nextest --version >/dev/null 2>&1; then
+  cargo nextest run --lib --bins --tests
+else
+  cargo test --lib --bins --tests
+fi
 cargo test --doc
 # Benchmarks and examples must compile; they run with `cargo bench` /
 # `cargo run --release --example ...`, not here.

@@ -90,8 +90,11 @@ pub fn print_check(r: &Resolved) {
         match s.material.memory {
             Some(m) => println!(
                 "friction memory    relaxing over d_c = {:.3e} m of slip, at least at s_0 = {:.3e} m/s (CONTACT's); \
-                 forgets half its coefficient in a step where it slips d_c",
-                m.distance, m.floor
+                 a step slides {:.3e} m at 1 m/s slip speed: the memory holds where a step slides less than d_c \
+                 (the book: friction memory)",
+                m.distance,
+                m.floor,
+                s.step_length / s.speed
             ),
             None => println!("friction memory    none: the coefficient follows the slip speed at once"),
         }

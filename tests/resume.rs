@@ -114,7 +114,12 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     assert_eq!(read_i64(&resumed, "rail", "pass").unwrap().as_slice().unwrap(), &[2, 3]);
     // The source file is left as it was.
     assert_eq!(read_f64(&part, "passes", "traffic").unwrap().len(), 2);
-    // In place, and an adaptive study (its m depends on the stored rows).
+}
+
+/// In place, and an adaptive study (its m depends on the stored rows).
+#[test]
+fn adaptive_study_resumes_in_place_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
     let adaptive = ["growth.adaptive=true", "growth.traffic_scale=1e3", "growth.contact_history=[]"];
     let full = run(dir.path(), "afull.h5", &[&adaptive[..], &["growth.passes=5"]].concat());
     let part = run(dir.path(), "apart.h5", &[&adaptive[..], &["growth.passes=3"]].concat());
@@ -122,9 +127,14 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     assert_same(&full, &part);
     let m = read_f64(&full, "passes", "traffic_scale").unwrap();
     assert!(m[1] > m[0], "adaptive m grows: {m:?}");
-    // The exact model under a constant load (imposed dynamics, flat rail):
-    // its cached earlier-displacement matrix must not carry from one
-    // passage to the next, or a resumed run would differ.
+}
+
+/// The exact model under a constant load (imposed dynamics, flat rail):
+/// its cached earlier-displacement matrix must not carry from one passage
+/// to the next, or a resumed run would differ.
+#[test]
+fn exact_model_resumes_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
     let exact = [
         "contact.model=exact-transient",
         "contact.elements_x=4",
@@ -138,17 +148,24 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     let part = run(dir.path(), "epart.h5", &[&exact[..], &["growth.passes=2"]].concat());
     resume(&part, Some(1), None, &mut |_| {}).unwrap();
     assert_same(&full, &part);
-    // The fixed grid (0.5 x 1 mm, the step): receptance dynamics on random
-    // roughness, the patch fields on the grid stored and read back; `auto`
-    // takes the linear contact on a window of its grid here.
-    let fixed = [
-        "contact.model=exact-transient",
-        "contact.grid=fixed",
-        "contact.dy=1e-3",
-        "growth.adaptive=false",
-        "growth.contact_history=[0, 2]",
-        "output.store_fields=true",
-    ];
+}
+
+/// The fixed grid (0.5 x 1 mm, the step): receptance dynamics on random
+/// roughness, the patch fields on the grid stored and read back; `auto`
+/// takes the linear contact on a window of its grid here.
+const FIXED: [&str; 6] = [
+    "contact.model=exact-transient",
+    "contact.grid=fixed",
+    "contact.dy=1e-3",
+    "growth.adaptive=false",
+    "growth.contact_history=[0, 2]",
+    "output.store_fields=true",
+];
+
+#[test]
+fn fixed_grid_resumes_bit_for_bit_and_repeats_itself() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixed = FIXED;
     let full = run(dir.path(), "ffull.h5", &[&fixed[..], &["growth.passes=3"]].concat());
     let contact = read_f64(&full, "passes", "profile_contact").unwrap();
     assert!(contact.iter().all(|c| *c == 2.0), "{contact:?}");
@@ -158,16 +175,37 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     // Deterministic: the same config twice gives the same bits.
     let again = run(dir.path(), "fagain.h5", &[&fixed[..], &["growth.passes=3"]].concat());
     assert_same(&full, &again);
-    // The profile in the normal contact: the surface and the equivalent
-    // roughness are rebuilt from the stored profile at every passage.
+}
+
+/// The profile in the normal contact: the surface and the equivalent
+/// roughness are rebuilt from the stored profile at every passage; the
+/// growth differs from the Hertz contact's.
+#[test]
+fn profile_contact_resumes_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixed = FIXED;
     let profile = [&fixed[..], &["contact.normal=profile", "roughness.rms=5e-6"]].concat();
     let full = run(dir.path(), "pfull.h5", &[&profile[..], &["growth.passes=3"]].concat());
     let part = run(dir.path(), "ppart.h5", &[&profile[..], &["growth.passes=2"]].concat());
     resume(&part, Some(1), None, &mut |_| {}).unwrap();
     assert_same(&full, &part);
-    // The friction and wear laws: falling friction on the fixed grid (its
-    // Gauss-Seidel solver) with the frictional-work law's regimes, their
-    // fields and shares stored and read back.
+    let hertz = run(
+        dir.path(),
+        "phertz.h5",
+        &[&fixed[..], &["roughness.rms=5e-6", "growth.passes=3", "contact.normal=hertz"]].concat(),
+    );
+    let (w_profile, w_hertz) =
+        (read_f64(&full, "passes", "rms_corrugation").unwrap(), read_f64(&hertz, "passes", "rms_corrugation").unwrap());
+    assert!(w_profile != w_hertz, "the profile in the contact changes the growth");
+}
+
+/// The friction and wear laws: falling friction with its memory (CONTACT's
+/// default) on the fixed grid with the frictional-work law's regimes, their
+/// fields and shares stored and read back.
+#[test]
+fn friction_and_wear_laws_resume_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let fixed = FIXED;
     let laws = [
         &fixed[..],
         &["material.friction_characteristic=exponential", "wear.law=frictional-work", "growth.contact_history=[1, 2]"],
@@ -182,14 +220,6 @@ fn resumed_run_equals_the_uninterrupted_run_bit_for_bit() {
     for row in share.outer_iter() {
         assert!((row.sum() - 1.0).abs() < 1e-12, "{row:?}");
     }
-    let hertz = run(
-        dir.path(),
-        "phertz.h5",
-        &[&fixed[..], &["roughness.rms=5e-6", "growth.passes=3", "contact.normal=hertz"]].concat(),
-    );
-    let (w_profile, w_hertz) =
-        (read_f64(&full, "passes", "rms_corrugation").unwrap(), read_f64(&hertz, "passes", "rms_corrugation").unwrap());
-    assert!(w_profile != w_hertz, "the profile in the contact changes the growth");
 }
 
 #[test]
