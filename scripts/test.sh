@@ -30,8 +30,10 @@ mkdir -p "$run_dir"
 # without the dev-dependencies and rebuild faer).
 ./target/debug/corrugation run --overwrite configs/paper_normal_15mm.toml -o "$run_dir/paper_normal_15mm.h5" \
   --set contact.elements_x=12 --set contact.elements_y=12
+# Two workers (pytest-xdist), each test file on one of them (its
+# module-scoped runs made once).
 CORRUGATION_RUN_FILE="$PWD/$run_dir/paper_normal_15mm.h5" CORRUGATION_BIN="$PWD/target/debug/corrugation" \
-  .venv/bin/python -m pytest -q postprocess/tests
+  .venv/bin/python -m pytest -q -n 2 --dist loadfile postprocess/tests
 # Sweeps on a real Slurm (installs slurm-wlm and munge where missing).
 CORRUGATION_BIN="$PWD/target/debug/corrugation" bash scripts/slurm_test.sh
 # The book: built with mdbook (scripts/setup.sh installs it), its internal
