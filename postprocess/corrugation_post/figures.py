@@ -339,6 +339,40 @@ def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
     return _save(fig, out_dir, "rms_corrugation.png")
 
 
+def _regime_series(run: Run) -> dict | None:
+    """The rail's traffic, its wear law's regime names and each passage's
+    share of the wear volume per regime (``passes/wear_regime_share``);
+    None where the file has no shares or the law has one regime."""
+    with run.pass_table() as ps:
+        if "wear_regime_share" not in ps or ps.sizes.get("wear_regime", 0) < 2:
+            return None
+        meanings = str(ps["wear_regime"].attrs.get("flag_meanings", "")).split()
+        count = ps.sizes["wear_regime"]
+        names = meanings if len(meanings) == count else [f"regime {k + 1}" for k in range(count)]
+        return {"traffic": ps["traffic"].values if "traffic" in ps else ps["pass"].values,
+                "share": ps["wear_regime_share"].transpose("pass", "wear_regime").values, "names": names}
+
+
+def wear_regimes(run: Run, pass_index: int, out_dir: Path) -> Path | None:
+    """Each passage's wear volume by regime of the wear law (the
+    frictional-work law's mild, severe and catastrophic; the wear map's
+    regions), stacked to 1, against traffic; a panel per rail. None where
+    the run's wear law has a single regime (Archard's)."""
+    found = [(r, sr) for r in run.rails() if (sr := _regime_series(r)) is not None]
+    if not found:
+        return None
+    fig = Figure(figsize=(8, 3.2 * len(found)), layout="constrained")
+    axes = fig.subplots(len(found), 1, squeeze=False, sharex=True)[:, 0]
+    for ax, (r, sr) in zip(axes, found):
+        ax.stackplot(sr["traffic"], np.nan_to_num(sr["share"]).T, labels=sr["names"], alpha=0.85)
+        ax.set(ylim=(0, 1), ylabel="share of the wear volume",
+               title=f"Wear by regime{(' - ' + r.rail_name) if run.two_rails else ''}")
+        ax.legend(fontsize=8, loc="upper right")
+        ax.grid(alpha=0.3)
+    axes[-1].set_xlabel("traffic (passages)")
+    return _save(fig, out_dir, "wear_regimes.png")
+
+
 def _scaling_panel(ax, found) -> None:
     """The traffic scale m (shared by the rails) and each rail's update ratio q."""
     first = found[0][1]
@@ -481,10 +515,10 @@ class FigureSkipped(Exception):
 FigureFn = Callable[[Run, int, Path], "Path | None"]
 RAIL_FIGURES: tuple[FigureFn, ...] = (wear_map, wear_centreline)
 CONTACT_FIGURES: tuple[FigureFn, ...] = (loads, traction_snapshots)
-OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram, profile_snapshots)
+OPTIONAL_FIGURES: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram, profile_snapshots, wear_regimes)
 # The figures that draw every rail of a file in one figure; the others are
 # drawn once per rail.
-BOTH_RAILS: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram)
+BOTH_RAILS: tuple[FigureFn, ...] = (spectrum, rms_growth, spectrogram, wear_regimes)
 
 
 def contact_pass_for(run: Run, pass_index: int) -> int | None:

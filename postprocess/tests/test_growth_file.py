@@ -67,7 +67,25 @@ def test_growth_study_opens_in_xarray_and_has_growth_figures(tmp_path):
     for name in ("rms_corrugation.png", "spectrogram.png", "profile_snapshots.png", "spectrum.png",
                  "loads.png", "levels.png", "level_growth.png"):
         assert (figs / name).stat().st_size > 1000, name
+    assert not (figs / "wear_regimes.png").exists(), "Archard's law has one regime"
     assert main(["check", str(out)]) == 0
+
+
+def test_wear_regimes_figure_of_a_law_with_regimes(tmp_path):
+    # The wear map (four regimes): passes/wear_regime_share reads in xarray
+    # with its regime names, each passage's shares sum to 1, and `figures`
+    # draws wear_regimes.png; Archard's single regime draws none (above).
+    out = tmp_path / "map.h5"
+    subprocess.run(_command(out, "growth.passes=2", "growth.contact_history=[]", "wear.law=map"),
+                   check=True, capture_output=True)
+    with xr.open_dataset(out, engine="h5netcdf", group="passes") as ps:
+        share = ps["wear_regime_share"]
+        assert share.dims == ("pass", "wear_regime")
+        assert ps["wear_regime"].attrs["flag_meanings"].split() == ["seizure", "mild", "severe", "fast_mild"]
+        np.testing.assert_allclose(share.sum("wear_regime").values, 1.0, rtol=1e-12)
+    figs = tmp_path / "figs"
+    assert main(["figures", str(out), "--out", str(figs)]) == 0
+    assert (figs / "wear_regimes.png").stat().st_size > 1000
 
 
 def test_a_checkpoint_of_a_killed_run_opens_in_xarray(tmp_path):
