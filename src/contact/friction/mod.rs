@@ -21,7 +21,10 @@
 //! atan(|s|/eps) mu p3 r(|s|) s/|s|`, Coulomb's `|p| <= mu p3` in stick and
 //! `p = -mu p3 r(|s|) s/|s|` in slip. A falling characteristic can make the
 //! element problem non-convex ([`varying`]): the element then takes the
-//! state of least energy.
+//! state of least energy. With friction memory ([`memory`], CONTACT's) an
+//! element's coefficient within a step also depends on what its material
+//! kept from the step before ([`Local`]); the element problems take it as
+//! they take any characteristic.
 
 pub mod characteristic;
 pub mod memory;
