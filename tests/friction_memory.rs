@@ -147,6 +147,39 @@ fn exact_grid_memory_settles_roll_slip() {
     assert_eq!(with, without);
 }
 
+/// The memory travels with the material: in full sliding (uniform slip,
+/// 20 % creepage) with a long memory (1 mm) fresh material enters at the
+/// leading edge (grid column 0) with the static coefficient and relaxes
+/// towards Polach's value as it moves back through the patch, so along the
+/// centre row `|p| / (mu p3)` falls from column to column, from near 1 to
+/// near `r(V |xi|)`.
+#[test]
+fn memory_relaxes_from_the_leading_edge_backwards() {
+    let shape = paper_shape(false);
+    let curv = Curvatures::wheel_on_rail(0.5, 0.409, 0.3);
+    let cell = (0.5e-3, 0.5e-3);
+    let mut grid = common::fixed_grid(
+        &shape,
+        (curv, STEEL),
+        1e5,
+        cell,
+        (FrictionLaw::Regularised, GridScheme::SecondOrder, 1e-5),
+        GridSolver::GaussSeidel,
+    );
+    let (_, sol) = roll(&mut grid, &input(cell.0 / V, -0.2, FALLING, memory(1e-3)), 40);
+    let nx = grid.grid().nx;
+    let centre = (0..sol.pressure.len()).max_by(|&a, &b| sol.pressure[a].total_cmp(&sol.pressure[b])).unwrap() / nx;
+    let ratios: Vec<f64> = (0..nx)
+        .map(|ix| centre * nx + ix)
+        .filter(|&k| sol.pressure[k] > 0.0)
+        .map(|k| sol.traction_x[k].hypot(sol.traction_y[k]) / (MU * sol.pressure[k]))
+        .collect();
+    assert!(ratios.len() > 10, "{ratios:?}");
+    assert!(ratios.windows(2).all(|w| w[1] < w[0]), "falls from the leading edge: {ratios:?}");
+    let sliding = FALLING.ratio(V * 0.2).0;
+    assert!(ratios[0] > 0.9 && ratios[ratios.len() - 1] < sliding + 0.1, "{ratios:?} (sliding {sliding})");
+}
+
 /// The adapted mesh (the kept coefficient interpolated from the previous
 /// patch as the earlier displacement is): Newton and Gauss-Seidel agree
 /// with memory; a very long memory gives the constant law (exact and

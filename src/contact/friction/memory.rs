@@ -107,8 +107,10 @@ impl Local {
         (t * m.kept + (1.0 - t) * r, (1.0 - t) * rp + tp * (m.kept - r))
     }
 
-    /// `int_0^q r_m(t) dt` (m/s). With memory, the part beyond `s_0` by
-    /// adaptive quadrature in `ln(d_c/dt + t)`.
+    /// `int_0^q r_m(t) dt` (m/s). With memory, beyond `s_0`:
+    /// `theta (kept - r) dt = R (kept - r(t)) d ln(R + t)` (`R = d_c/dt`),
+    /// the kept part in closed form, `R kept ln((R + q)/(R + s_0))`, and
+    /// `R int r d ln(R + t)` (positive) by adaptive quadrature.
     pub fn integral(self, q: f64) -> f64 {
         let Some(m) = self.plain() else {
             return self.steady.integral(q);
@@ -117,14 +119,13 @@ impl Local {
         let (t0, _) = m.theta(0.0);
         let mut total = self.steady.integral(q) + t0 * (m.kept * a - self.steady.integral(a));
         if q > m.floor {
-            // theta (kept - r) dt = reach (kept - r(t)) d ln(reach + t).
-            let density = |v: f64| {
-                let t = v.exp() - m.reach;
-                let w = m.reach * (m.kept - self.steady.ratio(t.max(0.0)).0);
-                vec![SMatrix::<Complex64, 1, 1>::from_element(Complex64::new(w, 0.0))]
-            };
             let (lo, hi) = ((m.reach + m.floor).ln(), (m.reach + q).ln());
-            total += integrate(density, lo, hi, 8, 1e-13, 100_000).map(|v| v[0][(0, 0)].re).unwrap_or(f64::NAN);
+            let density = |v: f64| {
+                let t = (v.exp() - m.reach).max(0.0);
+                vec![SMatrix::<Complex64, 1, 1>::from_element(Complex64::new(self.steady.ratio(t).0, 0.0))]
+            };
+            let steady = integrate(density, lo, hi, 8, 1e-13, 100_000).map(|v| v[0][(0, 0)].re).unwrap_or(f64::NAN);
+            total += m.reach * (m.kept * (hi - lo) - steady);
         }
         total
     }

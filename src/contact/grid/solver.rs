@@ -419,7 +419,12 @@ impl FixedGrid {
         let Solved { mut out, s_grid, u, fell_back, tried_cg, kept } = solved?;
         self.ahead = ahead;
         self.fallbacks += usize::from(fell_back);
-        if input.characteristic.steepest_fall() > 0.0 {
+        // A falling law, or any varying law with memory (a kept coefficient
+        // above the characteristic's falls with the slip speed within the
+        // step).
+        let may_fall = input.characteristic.steepest_fall() > 0.0
+            || (input.memory.is_some() && !input.characteristic.is_constant());
+        if may_fall {
             self.cg_pause.update(tried_cg, fell_back);
         }
         out.clipped = clipped;
