@@ -1,11 +1,11 @@
 //! Creep curves with the friction characteristics (issue 36; the book's
 //! friction chapter): F_x / N against the longitudinal creepage for the
 //! paper's convex patch at 100 km/h, N = 100 kN, mu = 0.4 at zero slip,
-//! with FASTSIM (40 x 40) and the exact model on the 0.5 mm fixed grid
-//! (60 steps of steady rolling under the prescribed creepage; the last
-//! step's force, and the smallest and largest of the last 20 where the
-//! rolling does not settle; nan where a step does not converge, said on
-//! stderr). CSV on stdout:
+//! with FASTSIM (40 x 40) and the exact model on the 0.5 mm fixed grid, no
+//! friction memory (60 steps of steady rolling under the prescribed
+//! creepage; the last step's force, and the smallest and largest of the
+//! last 20 where the rolling does not settle; nan where a step does not
+//! converge, said on stderr). CSV on stdout:
 //! `model,law,creepage,force_ratio,force_ratio_min,force_ratio_max`.
 //!
 //! `cargo run --release --example creep_curves > out/creep_curves.csv`
