@@ -7,12 +7,11 @@
 mod common;
 use common::{STEEL, paper_coefficients, paper_shape, rel};
 use corrugation::contact::fastsim::Fastsim;
-use corrugation::contact::friction::{Characteristic, FrictionLaw};
-use corrugation::contact::grid::{GridScheme, GridSolver};
+use corrugation::contact::friction::Characteristic;
+use corrugation::contact::grid::GridSolver;
 use corrugation::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{Creepage, EllipseMesh, PatchSolution, PressureShape, StepInput, TangentialSolver};
-use corrugation::hertz::Curvatures;
 use std::f64::consts::PI;
 
 const MU: f64 = 0.4;
@@ -145,19 +144,8 @@ fn steady_at(
 #[test]
 fn exact_grid_creep_curve_falls_beyond_saturation() {
     let shape = paper_shape(false);
-    let curv = Curvatures::wheel_on_rail(0.5, 0.409, 0.3);
-    let eps = 1e-5;
-    let cell = (0.5e-3, 0.5e-3);
-    let grid = |solver| {
-        common::fixed_grid(
-            &shape,
-            (curv, STEEL),
-            1e5,
-            cell,
-            (FrictionLaw::Regularised, GridScheme::SecondOrder, eps),
-            solver,
-        )
-    };
+    let (eps, cell) = (1e-5, (0.5e-3, 0.5e-3));
+    let grid = common::paper_convex_grid;
     let n = shape.patch(1e5).unwrap().normal_force;
     let dt = cell.0 / V;
     let mut cg = grid(GridSolver::Cg);

@@ -7,12 +7,11 @@
 mod common;
 use common::{STEEL, paper_coefficients, paper_shape, rel};
 use corrugation::contact::fastsim::Fastsim;
-use corrugation::contact::friction::{Characteristic, FrictionLaw, FrictionMemory};
-use corrugation::contact::grid::{GridScheme, GridSolver};
+use corrugation::contact::friction::{Characteristic, FrictionMemory};
+use corrugation::contact::grid::GridSolver;
 use corrugation::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{Creepage, EllipseMesh, PatchSolution, PressureShape, StepInput, TangentialSolver};
-use corrugation::hertz::Curvatures;
 use std::f64::consts::PI;
 
 const MU: f64 = 0.4;
@@ -107,19 +106,8 @@ fn fastsim_memory_limits_and_monotone_effect() {
 #[test]
 fn exact_grid_memory_settles_roll_slip() {
     let shape = paper_shape(false);
-    let curv = Curvatures::wheel_on_rail(0.5, 0.409, 0.3);
-    let eps = 1e-5;
-    let cell = (0.5e-3, 0.5e-3);
-    let grid = |solver| {
-        common::fixed_grid(
-            &shape,
-            (curv, STEEL),
-            1e5,
-            cell,
-            (FrictionLaw::Regularised, GridScheme::SecondOrder, eps),
-            solver,
-        )
-    };
+    let (eps, cell) = (1e-5, (0.5e-3, 0.5e-3));
+    let grid = common::paper_convex_grid;
     let n = shape.patch(1e5).unwrap().normal_force;
     let dt = cell.0 / V;
     let (mut cg, mut gs) = (grid(GridSolver::Cg), grid(GridSolver::GaussSeidel));
@@ -155,17 +143,8 @@ fn exact_grid_memory_settles_roll_slip() {
 /// near `r(V |xi|)`.
 #[test]
 fn memory_relaxes_from_the_leading_edge_backwards() {
-    let shape = paper_shape(false);
-    let curv = Curvatures::wheel_on_rail(0.5, 0.409, 0.3);
     let cell = (0.5e-3, 0.5e-3);
-    let mut grid = common::fixed_grid(
-        &shape,
-        (curv, STEEL),
-        1e5,
-        cell,
-        (FrictionLaw::Regularised, GridScheme::SecondOrder, 1e-5),
-        GridSolver::GaussSeidel,
-    );
+    let mut grid = common::paper_convex_grid(GridSolver::GaussSeidel);
     let (_, sol) = roll(&mut grid, &input(cell.0 / V, -0.2, FALLING, memory(1e-3)), 40);
     let nx = grid.grid().nx;
     let centre = (0..sol.pressure.len()).max_by(|&a, &b| sol.pressure[a].total_cmp(&sol.pressure[b])).unwrap() / nx;

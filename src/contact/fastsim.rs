@@ -184,7 +184,7 @@ impl Fastsim {
                     // Alonso & Gómez, Veh. Syst. Dyn. 43 (2005) 233-244:
                     // the coefficient of the cell's own slip speed).
                     let kk = speed * l / step;
-                    let local = Local { steady: ch, memory: memory.map(|m| m.at(kept, step / speed)) };
+                    let local = Local::new(ch, memory, kept, step / speed);
                     let (s, p) = coulomb_local_with([-kk * tx, -kk * ty], [kk, 0.0, kk], bound, local);
                     kept = local.ratio(s[0].hypot(s[1])).0;
                     (px, py) = (p[0], p[1]);

@@ -93,6 +93,20 @@ pub fn fixed_grid(
     ))
 }
 
+/// The paper's convex contact (N up to 100 kN) on the 0.5 mm fixed grid,
+/// regularised friction (eps = 1e-5 m/s), second-order difference, with
+/// `solver`: the falling-friction and friction-memory tests' grid.
+pub fn paper_convex_grid(solver: GridSolver) -> FixedGrid {
+    fixed_grid(
+        &paper_shape(false),
+        (Curvatures::wheel_on_rail(0.5, 0.409, 0.3), STEEL),
+        1e5,
+        (0.5e-3, 0.5e-3),
+        (FrictionLaw::Regularised, GridScheme::SecondOrder, 1e-5),
+        solver,
+    )
+}
+
 /// A profile of three harmonics (5th, 17th, 40th) of a periodic stretch of
 /// `nodes` samples every `dx` (m), shifted in phase by `phase` (rad): 1,
 /// 0.5 and 0.2 um.

@@ -99,6 +99,18 @@ impl Characteristic {
     }
 }
 
+/// `int_0^q f` by the trapezoid rule on `n` intervals (the tests'
+/// reference for the characteristics' integrals).
+#[cfg(test)]
+pub(crate) fn trapezoid(f: impl Fn(f64) -> f64, q: f64, n: usize) -> f64 {
+    (0..n)
+        .map(|i| {
+            let (a, b) = (q * i as f64 / n as f64, q * (i + 1) as f64 / n as f64);
+            0.5 * (b - a) * (f(a) + f(b))
+        })
+        .sum()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -126,13 +138,7 @@ mod tests {
                 let h = 1e-6 * q.max(1e-3);
                 let fd = (law.ratio(q + h).0 - law.ratio(q - h).0) / (2.0 * h);
                 assert!((law.ratio(q).1 - fd).abs() <= 1e-6 * fd.abs().max(1e-6), "{law:?} at {q}");
-                let n = 20000;
-                let trap: f64 = (0..n)
-                    .map(|i| {
-                        let (a, b) = (q * i as f64 / n as f64, q * (i + 1) as f64 / n as f64);
-                        0.5 * (b - a) * (law.ratio(a).0 + law.ratio(b).0)
-                    })
-                    .sum();
+                let trap = trapezoid(|t| law.ratio(t).0, q, 20_000);
                 assert!((law.integral(q) - trap).abs() <= 1e-8 * q, "{law:?} integral at {q}");
                 assert!(-law.ratio(q).1 <= law.steepest_fall() * (1.0 + 1e-12));
             }

@@ -79,6 +79,15 @@ pub struct Local {
     pub memory: Option<Memory>,
 }
 
+impl Local {
+    /// The characteristic `steady` at an element whose material kept the
+    /// ratio `kept` one step `dt` (s) earlier, with `memory` where there is
+    /// one.
+    pub fn new(steady: Characteristic, memory: Option<FrictionMemory>, kept: f64, dt: f64) -> Self {
+        Local { steady, memory: memory.map(|m| m.at(kept, dt)) }
+    }
+}
+
 impl From<Characteristic> for Local {
     fn from(steady: Characteristic) -> Self {
         Local { steady, memory: None }
@@ -197,13 +206,7 @@ mod tests {
                     let fd = (law.ratio(q + h).0 - law.ratio(q - h).0) / (2.0 * h);
                     assert!((law.ratio(q).1 - fd).abs() <= 1e-6 * fd.abs().max(1.0), "{law:?} slope at {q}");
                 }
-                let n = 200_000;
-                let trap: f64 = (0..n)
-                    .map(|i| {
-                        let (a, b) = (q * i as f64 / n as f64, q * (i + 1) as f64 / n as f64);
-                        0.5 * (b - a) * (law.ratio(a).0 + law.ratio(b).0)
-                    })
-                    .sum();
+                let trap = super::super::characteristic::trapezoid(|t| law.ratio(t).0, q, 200_000);
                 assert!((law.integral(q) - trap).abs() <= 1e-8 * q.max(1e-12), "{law:?} integral at {q}");
             }
         }

@@ -145,7 +145,10 @@ impl GridStep<'_> {
     /// The friction characteristic of element `c` (contact order) in this
     /// step: the steady one, with the element's memory.
     pub fn local(&self, c: usize) -> Local {
-        Local { steady: self.characteristic, memory: self.memory.map(|(kept, m)| m.at(kept[c], self.dt)) }
+        match self.memory {
+            Some((kept, m)) => Local::new(self.characteristic, Some(m), kept[c], self.dt),
+            None => self.characteristic.into(),
+        }
     }
 }
 

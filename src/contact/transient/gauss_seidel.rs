@@ -37,8 +37,7 @@
 use super::FORCE_TOLERANCE;
 use super::elastic::ExactElastic;
 use crate::contact::friction::{
-    Characteristic, FrictionMemory, Local, STICK_SLIP_FACTOR, local_solve_with, regularised_with,
-    varying::frozen_jacobian,
+    Local, STICK_SLIP_FACTOR, local_solve_with, regularised_with, varying::frozen_jacobian,
 };
 use crate::contact::gs_loop::{self, Settings, Sweeper};
 use multiversion::multiversion;
@@ -62,10 +61,8 @@ pub(super) struct GsStep<'a> {
     /// Regularisation (m/s).
     pub eps: f64,
     /// How the friction coefficient varies with the slip speed.
-    pub characteristic: Characteristic,
-    /// Friction memory: the ratio `mu / mu_0` each element's material had
-    /// one step earlier (1), and the memory's parameters.
-    pub memory: Option<(&'a [f64], FrictionMemory)>,
+    /// The friction characteristic at each element (with its memory).
+    pub local: &'a [Local],
     /// mu p3 per element (Pa).
     pub mu_p3: &'a [f64],
     /// Element areas (m^2).
@@ -106,7 +103,7 @@ pub(super) struct GsSolution {
 pub(super) fn solve(st: &GsStep, s: &[f64], xi: f64) -> Result<GsSolution, Vec<f64>> {
     let n = st.mu_p3.len();
     let p: Vec<f64> =
-        (0..n).flat_map(|k| regularised_with([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps, st.local(k)).0).collect();
+        (0..n).flat_map(|k| regularised_with([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps, st.local[k]).0).collect();
     let kappa = creepage_stiffness(st, s);
     // Scales: tractions by mu p0, the creepage by the traction it moves.
     let p_scale = st.mu_p3.iter().fold(0.0f64, |m, v| m.max(*v)).max(f64::MIN_POSITIVE);
@@ -126,14 +123,6 @@ pub(super) fn solve(st: &GsStep, s: &[f64], xi: f64) -> Result<GsSolution, Vec<f
     let mut fresh = |p: &[f64], u: &mut [f64]| st.elastic.displacement(st.a, p, u);
     let solved = gs_loop::solve(st, &settings, p, s.to_vec(), xi, &mut fresh)?;
     Ok(GsSolution { p: solved.p, s: solved.s, xi: solved.xi, sweeps: solved.sweeps })
-}
-
-impl GsStep<'_> {
-    /// The friction characteristic of element `k` in this step: the steady
-    /// one, with the element's memory.
-    pub fn local(&self, k: usize) -> Local {
-        Local { steady: self.characteristic, memory: self.memory.map(|(kept, m)| m.at(kept[k], self.dt)) }
-    }
 }
 
 impl Sweeper for GsStep<'_> {
@@ -180,7 +169,7 @@ fn sweep_block(st: &GsStep, first: usize, p: &mut [f64], s: &mut [f64], u: &mut 
             st.speed * (st.w0[i] + xi) + (u[i] - st.u_o[i]) / st.dt - own[0],
             st.speed * st.w0[j] + (u[j] - st.u_o[j]) / st.dt - own[1],
         ];
-        let (sk, pk) = local_solve_with(s0, kk, st.mu_p3[k], st.eps, [s[li], s[lj]], st.local(k));
+        let (sk, pk) = local_solve_with(s0, kk, st.mu_p3[k], st.eps, [s[li], s[lj]], st.local[k]);
         s[li] = sk[0];
         s[lj] = sk[1];
         let (dx, dy) = (pk[0] - p[li], pk[1] - p[lj]);
@@ -232,7 +221,7 @@ fn creepage_stiffness(st: &GsStep, s: &[f64]) -> f64 {
     }
     for k in 0..n {
         if stick.binary_search(&k).is_err() {
-            let d = frozen_jacobian([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps, st.local(k));
+            let d = frozen_jacobian([s[2 * k], s[2 * k + 1]], st.mu_p3[k], st.eps, st.local[k]);
             kappa += st.area[k] * d[0] / (1.0 + scale * c1[(2 * k, 2 * k)] * d[0]);
         }
     }

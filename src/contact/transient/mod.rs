@@ -505,10 +505,7 @@ impl Transient {
             }
             None => (vec![0.0; 2 * n], 0.0),
         };
-        let local: Vec<Local> = kept
-            .iter()
-            .map(|&r| Local { steady: input.characteristic, memory: memory.map(|m| m.at(r, input.dt)) })
-            .collect();
+        let local: Vec<Local> = kept.iter().map(|&r| Local::new(input.characteristic, memory, r, input.dt)).collect();
         if let Some(prescribed) = input.creepage_x {
             xi = prescribed;
         }
@@ -522,8 +519,7 @@ impl Transient {
                 dt: input.dt,
                 speed: input.speed,
                 eps: self.eps,
-                characteristic: input.characteristic,
-                memory: memory.map(|m| (kept.as_slice(), m)),
+                local: &local,
                 mu_p3: &mu_p3,
                 area: &area,
                 w0: &w0,
