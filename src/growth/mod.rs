@@ -22,6 +22,7 @@ pub mod state;
 pub mod stop;
 pub mod study;
 pub mod traffic;
+pub mod wear_map;
 
 use crate::contact::grid::RailSurface;
 use crate::contact::{RailContact, TangentialSolver};

@@ -19,6 +19,7 @@
 //! study continued from a stored state computes bit for bit what the
 //! uninterrupted study would have.
 
+use super::RailPass;
 use super::hertz_check::HertzCheck;
 use super::mix::{next_class, tally};
 use super::roughness::profile_line;
@@ -27,17 +28,15 @@ use super::spectrum::wavelengths;
 use super::state::RunState;
 use super::stop::rails_stop_reason;
 use super::traffic::change_rate;
-use super::{Rail, RailPass, growth_passage_rails};
-use crate::build::{Derived, DynamicsError, build_deposit, build_solver, derive, study_grid, track_dynamics};
-use crate::contact::{ContactError, Elements, TangentialSolver};
-use crate::dynamics::TrackDynamics;
+use super::wear_map::WearMap;
+use crate::build::{DynamicsError, study_grid};
+use crate::contact::{ContactError, Elements};
 use crate::levels::{BandLevels, level_rates};
 use crate::metrics::centre_row;
 use crate::model_choice::hertz_validity::{PROFILE_NOISE_AMPLITUDE, PROFILE_NOISE_ELEMENT};
 use crate::params::{GrowthParams, NormalContact, Scene, StopRule, TrafficClass, TrafficScaling};
-use crate::passage::{PassageError, PassageSpec, run_passage};
+use crate::passage::PassageError;
 use crate::rail_grid::RailGrid;
-use crate::wear::WearKernel;
 use ndarray::Array2;
 
 /// What a study reports while it goes.
@@ -125,36 +124,19 @@ pub struct Advanced {
     pub max_wear: f64,
 }
 
-/// One traffic class's passage (speed, mean loads) and track dynamics
-/// (speed, contact spring at its load, unsprung mass).
-struct ClassModel {
-    passage: PassageSpec,
-    /// The passage of the wheelset's second rail, where it has one.
-    second_passage: Option<PassageSpec>,
-    dynamics: Option<Box<dyn TrackDynamics>>,
-    /// The wear one passage of the class leaves on the smooth rails (the
-    /// first's, then the second's) where its track forces a dynamic force
-    /// there; computed at the class's first passage of this invocation.
-    forced: Option<Vec<Vec<f64>>>,
-}
-
 /// A growth study (or a single passage) in progress: the scene's kernels,
 /// built once, and the state after the passages done.
 pub struct Study<'a> {
     scene: &'a Scene,
     growth: Option<&'a GrowthParams>,
-    d: Derived,
-    solver: Box<dyn TangentialSolver>,
-    /// The second rail's solver (its wheel runs beside the first's).
-    second_solver: Option<Box<dyn TangentialSolver>>,
-    deposit: Box<dyn WearKernel>,
+    /// The passage's wear as a function of the rails, per traffic class.
+    map: WearMap,
     elements: Elements,
     grid: RailGrid,
     passes: usize,
     scaling: TrafficScaling,
     classes: Vec<TrafficClass>,
     shares: Vec<f64>,
-    models: Vec<ClassModel>,
     waves: Vec<f64>,
     centre: usize,
     mean_patch: (f64, f64),
@@ -220,25 +202,13 @@ impl<'a> Study<'a> {
     /// and the speed and loads come with each step. Fails where the
     /// dynamics in every direction cannot be set up (before any passage).
     pub fn new(scene: &'a Scene, mut state: RunState) -> Result<Self, DynamicsError> {
-        let d = derive(scene);
-        let solver = build_solver(scene, &d.shape);
-        let second_solver = scene.second_rail.as_ref().map(|_| build_solver(scene, &d.shape));
-        let elements = solver.elements();
-        let deposit = build_deposit(&elements);
         let growth = scene.growth.as_ref();
         let grid = study_grid(scene);
         let classes: Vec<TrafficClass> = growth.map_or_else(Vec::new, |g| g.classes.clone());
-        let models: Vec<ClassModel> = classes
-            .iter()
-            .map(|c| {
-                let cs = scene.for_class(c);
-                let cd = derive(&cs);
-                let dynamics = track_dynamics(&cs, &cd)?;
-                let second_passage = cs.second_rail_scene().map(|s| derive(&s).passage);
-                Ok(ClassModel { passage: cd.passage, second_passage, dynamics, forced: None })
-            })
-            .collect::<Result<_, DynamicsError>>()?;
-        let has_dynamics = models.iter().any(|m| m.dynamics.is_some());
+        let map = WearMap::new(scene, &classes)?;
+        let elements = map.elements();
+        let d = map.derived();
+        let has_dynamics = (0..classes.len()).any(|c| map.dynamics(c).is_some());
         // What the wheel sees: the profile weighted across the mean patch
         // width. The mean patch: of the mean load, or under mixed traffic
         // the classes' patches weighted by their shares (one line for every
@@ -281,15 +251,11 @@ impl<'a> Study<'a> {
         Ok(Study {
             scene,
             growth,
-            solver,
-            second_solver,
-            deposit,
             elements,
             passes: growth.map_or(1, |g| g.passes),
             scaling: growth.map_or(TrafficScaling::Fixed { scale: 1.0, max_update_ratio: 1.0 }, |g| g.traffic),
             shares: classes.iter().map(|c| c.share).collect(),
             classes,
-            models,
             waves: wavelengths(grid.nx, grid.dx),
             centre: centre_row(&grid),
             grid,
@@ -298,7 +264,7 @@ impl<'a> Study<'a> {
             first: state.rows.len(),
             stopped,
             state,
-            d,
+            map,
             levels,
             limit,
         })
@@ -330,7 +296,7 @@ impl<'a> Study<'a> {
         };
         let keep_history = growth.is_none_or(|g| g.contact_history.contains(&pass));
         let record_fields = keep_history && scene.output.store_fields;
-        let normal = self.normal_contact();
+        let normal = self.map.normal();
         let clock = cpu_time::ProcessTime::now();
         // Progress in units of the longest passage of any class: this
         // passage's own steps (its class's run-in and wheels) scaled to it.
@@ -345,16 +311,7 @@ impl<'a> Study<'a> {
         let fallbacks;
         let rails: Vec<RailPass> = match growth {
             None => {
-                let mut r = run_passage(
-                    &self.d.passage,
-                    &self.d.shape,
-                    self.solver.as_mut(),
-                    self.deposit.as_ref(),
-                    &self.grid,
-                    record_fields,
-                    &mut report,
-                )
-                .map_err(fail)?;
+                let mut r = self.map.single(record_fields, &mut report).map_err(fail)?;
                 fallbacks = r.fallback_steps;
                 let wear = std::mem::take(&mut r.wear);
                 vec![RailPass {
@@ -367,33 +324,10 @@ impl<'a> Study<'a> {
                 }]
             }
             Some(_) => {
-                let model = &mut self.models[class];
-                let (solver, deposit, grid, shape) =
-                    (self.solver.as_mut(), self.deposit.as_ref(), &self.grid, &self.d.shape);
-                let mut second_solver = self.second_solver.as_deref_mut();
-                let mut passage =
-                    |profiles: [Option<&Array2<f64>>; 2], record: bool, report: &mut dyn FnMut(usize, usize)| {
-                        let specs = [Some(&model.passage), model.second_passage.as_ref()];
-                        let rails: Vec<Rail> = specs
-                            .into_iter()
-                            .zip(profiles)
-                            .filter_map(|(spec, profile)| Some(Rail { spec: spec?, profile: profile? }))
-                            .collect();
-                        growth_passage_rails(
-                            &rails,
-                            shape,
-                            &mut *solver,
-                            second_solver.as_deref_mut(),
-                            deposit,
-                            grid,
-                            normal,
-                            model.dynamics.as_deref(),
-                            record,
-                            report,
-                        )
-                    };
-                let profiles = [Some(&self.state.profile), self.state.second_rail.as_ref().map(|s| &s.profile)];
-                let g = passage(profiles, record_fields, &mut report);
+                let profiles: Vec<&Array2<f64>> = std::iter::once(&self.state.profile)
+                    .chain(self.state.second_rail.as_ref().map(|s| &s.profile))
+                    .collect();
+                let g = self.map.passage(class, &profiles, record_fields, &mut report);
                 // At saturation the dynamic force may take N below F_x / mu:
                 // the prescribed force can no longer be transmitted, the end
                 // of what the model describes; the study stops there.
@@ -442,16 +376,12 @@ impl<'a> Study<'a> {
                 }
                 fallbacks = g.fallback_steps;
                 // The wear one passage of this class leaves on the smooth
-                // rail, where its track forces a dynamic force there (the
-                // discrete supports' parametric excitation): it does not
-                // depend on the profile, the update integrates it exactly,
-                // and the update bound counts the rest (growth::traffic).
-                if model.forced.is_none() && model.dynamics.as_deref().is_some_and(|dy| dy.forces_smooth_rail()) {
-                    let smooth = Array2::zeros(self.state.profile.raw_dim());
-                    let two = self.state.second_rail.is_some();
-                    let w0 = passage([Some(&smooth), two.then_some(&smooth)], false, &mut |_, _| {}).map_err(fail)?;
-                    model.forced = Some(w0.rails.iter().map(|r| line(&r.wear)).collect());
-                }
+                // rail, where it wears a pattern there (the discrete
+                // supports' parametric excitation, imposed load harmonics):
+                // it does not depend on the profile, the update integrates
+                // it exactly, and the update bound and the growth rate
+                // count the rest (growth::traffic).
+                self.map.forced(class).map_err(fail)?;
                 g.rails
             }
         };
@@ -532,18 +462,6 @@ impl<'a> Study<'a> {
         Ok(Some(Advanced { cpu_seconds, max_wear }))
     }
 
-    /// What the normal contact of this passage sees of the rail: the
-    /// consistent chain's is the linear contact on the adapted mesh and the
-    /// nonlinear profile contact on the fixed grid.
-    fn normal_contact(&self) -> NormalContact {
-        match self.scene.contact.normal {
-            NormalContact::Auto { .. } if self.scene.contact.model.fixed_grid().is_none() => {
-                NormalContact::Linear { grid_scale: 1.0 }
-            }
-            normal => normal,
-        }
-    }
-
     /// The traffic scale m of a passage of `class` whose centre-line wear
     /// is `wear` on each rail (the first rail's first), and the relative
     /// profile change rho per real passage it bounds. With imposed dynamics the wear does not depend on the
@@ -555,13 +473,13 @@ impl<'a> Study<'a> {
         // the faster one bounds the update.
         let rate = |k: usize, profile: &Array2<f64>, wear: &[f64]| {
             let mut w = wear.to_vec();
-            if let Some(w0) = self.models[class].forced.as_ref().and_then(|f| f.get(k)) {
-                w.iter_mut().zip(w0).for_each(|(w, f)| *w -= f);
+            if let Some(w0) = self.map.forced_if_known(class).and_then(|f| f.get(k)) {
+                w.iter_mut().zip(w0.row(self.centre)).for_each(|(w, f)| *w -= f);
             }
             change_rate(&profile.row(self.centre).to_vec(), &w)
         };
-        let rho = match self.models.get(class) {
-            Some(model) if model.dynamics.is_some() => {
+        let rho = match self.map.dynamics(class) {
+            Some(_) => {
                 let profiles =
                     std::iter::once(&self.state).chain(self.state.second_rail.as_deref()).map(|s| &s.profile);
                 profiles.zip(wear).enumerate().map(|(k, (p, w))| rate(k, p, w)).fold(f64::MIN, f64::max)
@@ -575,8 +493,7 @@ impl<'a> Study<'a> {
     /// Contact steps of the longest simulated passage of any class (its
     /// run-in and all its wheels), the unit of [`Event::Steps`].
     fn steps_per_passage(&self) -> usize {
-        let of = |m: &ClassModel| m.passage.n_steps() * m.dynamics.as_deref().map_or(1, |d| d.wheels());
-        self.models.iter().map(of).max().unwrap_or(0).max(self.d.passage.n_steps())
+        self.map.steps_per_passage()
     }
 
     /// Passages the study will have (`growth.passes`; 1 for one passage).
