@@ -27,5 +27,6 @@ pub mod passage;
 pub mod quadrature;
 pub mod rail_grid;
 pub mod run;
+pub mod spectrum;
 pub mod sweep;
 pub mod wear;

@@ -23,6 +23,7 @@ macro_rules! say_raw {
 mod check;
 mod interrupt;
 mod progress;
+mod spectrum_cli;
 mod sweep_cli;
 
 use clap::{Parser, Subcommand};
@@ -81,6 +82,22 @@ enum Command {
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Override a config key (repeatable).
+        #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
+        set: Vec<String>,
+        /// Replace the output file if it exists.
+        #[arg(long)]
+        overwrite: bool,
+    },
+    /// The linear growth spectrum of a growth study's passage: each Bloch
+    /// class's modes (growth rate, wavelength, drift, pattern) and the
+    /// smooth rail's forced pattern.
+    Spectrum {
+        /// Scene config (TOML) of a growth study ([spectrum] optional).
+        config: PathBuf,
+        /// Output file (default: the config's name with _spectrum.h5).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Override a config key (repeatable), e.g. --set spectrum.classes=4.
         #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
         set: Vec<String>,
         /// Replace the output file if it exists.
@@ -149,6 +166,20 @@ fn main() -> ExitCode {
             resume(&file, passes.map(|n| n as usize), output.as_deref())
         }
         Command::Sweep { command } => sweep_cli::main(command),
+        Command::Spectrum { config, output, set, overwrite } => {
+            let resolved = match load(&config, &set) {
+                Ok(r) => r,
+                Err(code) => return code,
+            };
+            let out = output.unwrap_or_else(|| {
+                let stem = config.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or("run".into());
+                PathBuf::from(format!("{stem}_spectrum.h5"))
+            });
+            if let Err(code) = new_output(&out, overwrite, false).and_then(|_| writable(&out)) {
+                return code;
+            }
+            spectrum_cli::spectrum(&resolved, &out)
+        }
         Command::Track { config, output, set, overwrite } => {
             let resolved = match load(&config, &set) {
                 Ok(r) => r,

@@ -21,6 +21,7 @@ pub mod record;
 pub mod roughness;
 pub mod schema;
 mod second_rail;
+mod spectrum;
 mod track;
 pub mod traffic;
 pub mod units;
@@ -223,7 +224,7 @@ fn plausibility(table: &Table, prefix: &str, out: &mut Vec<String>) {
 }
 
 /// The sections of a config, in the order they are documented.
-pub const SECTIONS: [&str; 17] = [
+pub const SECTIONS: [&str; 18] = [
     "material",
     "geometry",
     "rolling",
@@ -241,6 +242,7 @@ pub const SECTIONS: [&str; 17] = [
     "wheelset",
     "second_rail",
     "track",
+    "spectrum",
 ];
 
 /// On the fixed grid the step is the element: `--set contact.dx` or
@@ -346,6 +348,13 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     };
     let ctx = roughness::Context { source: records, stretch, wheel_radius };
     let growth = growth::read(&mut root, &mut resolved, base, &ctx, errors);
+    let spectrum = spectrum::read(
+        &mut root,
+        &mut resolved,
+        growth.as_ref().is_ok_and(|g| g.is_some()),
+        stretch.map(|(a, b)| b - a),
+        errors,
+    );
     let levels = levels::read(&mut root, &mut resolved, dir, errors);
     let vehicle = vehicle::read(&mut root, &mut resolved, errors);
     let wheelset = wheelset::read(&mut root, &mut resolved, dir, errors);
@@ -570,6 +579,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         vehicle,
         wheelset,
         second_rail,
+        spectrum,
     };
     second_rail::check(&mut scene, errors);
     check_sleeper_bays(&scene, errors);

@@ -52,6 +52,25 @@ pub fn fold_periodic(ext: &Array2<f64>, ext_grid: &RailGrid, grid: &RailGrid) ->
     out
 }
 
+/// The Hertz semi-axes (a, b) (m) of a study's mean patch, across which
+/// its contact-filtered line is weighted: of the mean load, or under mixed
+/// traffic the classes' patches weighted by their shares (one line for
+/// every passage, so that growth rates compare across passages of
+/// different classes).
+pub fn mean_patch(scene: &crate::params::Scene, shape: &HertzShape) -> (f64, f64) {
+    let patch = |n: f64| shape.patch(n).expect("validated loads keep N > 0");
+    match scene.growth.as_ref().map(|g| g.classes.as_slice()) {
+        Some(classes) if !classes.is_empty() => classes.iter().fold((0.0, 0.0), |(a, b), c| {
+            let p = patch(c.normal_force);
+            (a + c.share * p.a, b + c.share * p.b)
+        }),
+        _ => {
+            let p = patch(scene.loads.normal_force);
+            (p.a, p.b)
+        }
+    }
+}
+
 /// The centre-line profile seen by the wheel: the profile averaged across
 /// the patch width with the Hertz line-load weight: the pressure integrated
 /// along x, `int p dx = (pi/2) a p0 (1 - (y/b)^2)`, so the weight is

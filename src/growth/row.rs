@@ -34,7 +34,9 @@ pub(super) struct RowKeep<'s> {
 
 impl RowKeep<'_> {
     /// Updates a rail's `state` with its `wear` of one passage (`r -= m
-    /// W`; with its leading wheel's share of it per wear regime), appends
+    /// W`; with its leading wheel's share of it per wear regime; `forced`
+    /// the smooth rail's wear `W_0` of the passage's class where it wears a
+    /// pattern, whose part of the change the growth rate leaves out), appends
     /// its row, its stored state and its wheels' histories
     /// (the leading wheel's, the others') where kept; `(loss, clipped)`
     /// its steps without contact and with the linear contact's patch
@@ -43,6 +45,7 @@ impl RowKeep<'_> {
         &self,
         state: &mut RunState,
         (wear, wear_regime_share): (Array2<f64>, Vec<f64>),
+        forced: Option<&Array2<f64>>,
         (history, others): (PatchHistory, Vec<PatchHistory>),
         (loss, clipped): (usize, usize),
     ) -> PassRow {
@@ -59,6 +62,16 @@ impl RowKeep<'_> {
         state.profile.scaled_add(-m, &wear);
         let roughness_level = self.levels.levels(&state.profile);
         let filtered_spectrum = amplitudes(&filtered(&state.profile));
+        // The roughness-driven change: the profile as the wear less the
+        // smooth rail's would have left it, r - m (W - W_0).
+        let (driven, forced_wear) = match forced {
+            Some(w0) => {
+                let mut r = state.profile.clone();
+                r.scaled_add(m, w0);
+                (amplitudes(&filtered(&r)), amplitudes(&filtered(w0)))
+            }
+            None => (filtered_spectrum.clone(), vec![0.0; filtered_spectrum.len()]),
+        };
         let row = PassRow {
             index: self.pass as i64,
             traffic,
@@ -73,7 +86,8 @@ impl RowKeep<'_> {
             clipped_steps: clipped as f64,
             wear_regime_share,
             // Below 1e-12 m (1 pm) an amplitude is numerical noise.
-            growth_rate: growth_rates(&before, &filtered_spectrum, m, 1e-12),
+            growth_rate: growth_rates(&before, &driven, m, 1e-12),
+            forced_wear,
             spectrum: amplitudes(&line(&state.profile)),
             filtered_spectrum,
             level_rate: level_rates(&levels_before, &roughness_level, m),

@@ -46,9 +46,21 @@ pub struct PassRow {
     /// (m): the profile averaged across the mean patch width with the Hertz
     /// line-load weight, the line the wheel sees and the dynamics is driven by.
     pub filtered_spectrum: Vec<f64>,
-    /// Growth rate of each harmonic of the contact-filtered profile over this
-    /// passage (dB per 1e5 real passages), on the record's `wavelengths`.
+    /// Roughness-driven growth rate of each harmonic of the
+    /// contact-filtered profile over this passage (dB per 1e5 real
+    /// passages), on the record's `wavelengths`: the profile's change by
+    /// the wear less the smooth rail's (`W - W_0`), `20 lg(|R - m (W -
+    /// W_0)| / |R|) 1e5 / m` per harmonic, the exponential growth or decay
+    /// of the roughness. Where the smooth rail wears no pattern (`W_0`
+    /// uniform) the profile's own change.
     pub growth_rate: Vec<f64>,
+    /// Amplitude of each harmonic of the contact-filtered wear one passage
+    /// of the class leaves on the smooth rail, `W_0` (m per wheel passage),
+    /// on the record's `wavelengths`: the forced pattern (the discrete
+    /// supports' sleeper passing, imposed load harmonics), which deepens
+    /// linearly with traffic whatever the roughness; zero where the smooth
+    /// rail wears none (empty in files written before it was recorded).
+    pub forced_wear: Vec<f64>,
     /// The rail's roughness level in each band after the passage (dB re 1
     /// um; [`crate::levels`]: the running band's lines, mean-square
     /// averaged).

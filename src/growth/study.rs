@@ -214,14 +214,7 @@ impl<'a> Study<'a> {
         // the classes' patches weighted by their shares (one line for every
         // passage, so that growth rates compare across passages of
         // different classes).
-        let mean_patch = if classes.is_empty() {
-            (d.patch_mean.a, d.patch_mean.b)
-        } else {
-            classes.iter().fold((0.0, 0.0), |(a, b), c| {
-                let p = d.shape.patch(c.normal_force).expect("validated loads keep N > 0");
-                (a + c.share * p.a, b + c.share * p.b)
-            })
-        };
+        let mean_patch = super::mean_patch(scene, &d.shape);
         let hertz_check = HertzCheck {
             active: scene.contact.normal == NormalContact::Hertz && has_dynamics,
             fixed: scene.contact.model.fixed_grid().is_some(),
@@ -421,18 +414,20 @@ impl<'a> Study<'a> {
         };
         let max_wear = rails[0].wear.iter().cloned().fold(0.0, f64::max);
         let mut rails = rails.into_iter();
-        let kept = |state: &mut RunState, r: RailPass| {
+        let forced = self.map.forced_if_known(class);
+        let kept = |state: &mut RunState, r: RailPass, k: usize| {
             let share = regime_share(&r.leading.regime_volume);
             keep.apply(
                 state,
                 (r.wear, share),
+                forced.and_then(|f| f.get(k)),
                 (r.leading.history, r.wheel_histories),
                 (r.contact_loss_steps, r.clipped_steps),
             )
         };
-        let row = kept(&mut self.state, rails.next().expect("the first rail"));
+        let row = kept(&mut self.state, rails.next().expect("the first rail"), 0);
         let second_row = match (self.state.second_rail.as_deref_mut(), rails.next()) {
-            (Some(state), Some(r)) => Some(kept(state, r)),
+            (Some(state), Some(r)) => Some(kept(state, r, 1)),
             _ => None,
         };
         let names = self.scene.second_rail.as_ref().map(|r| &r.names);

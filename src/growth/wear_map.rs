@@ -114,6 +114,17 @@ impl WearMap {
         self.normal
     }
 
+    /// Holds the normal contact `contact.normal = "auto"` chooses per
+    /// passage at the choice of one passage: the linear profile contact
+    /// (`linear`) or the nonlinear one, on the same solver (a
+    /// linearisation's perturbed passages take the base rail's contact).
+    pub fn pin_normal(&mut self, linear: bool) {
+        if let NormalContact::Auto { grid_scale } = self.normal {
+            self.normal =
+                if linear { NormalContact::Linear { grid_scale } } else { NormalContact::Profile { grid_scale } };
+        }
+    }
+
     /// Class `class`'s track dynamics (None: imposed loads only).
     pub fn dynamics(&self, class: usize) -> Option<&dyn TrackDynamics> {
         self.models.get(class).and_then(|m| m.dynamics.as_deref())

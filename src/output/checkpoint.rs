@@ -108,6 +108,11 @@ fn read_rail_state(path: &Path, layout: &StateLayout, prefix: &str) -> Result<Ru
         Ok(Some(t))
     };
     let (levels, rates) = (band_table("roughness_level")?, band_table("level_rate")?);
+    // The forced wear (files written before it have none: empty rows).
+    let forced = match read_f64(path, &passes_group, "forced_wear") {
+        Ok(_) => Some(table("forced_wear")?),
+        Err(_) => None,
+    };
     // The wear regimes' shares (files written before the wear laws have
     // none: empty rows).
     let shares = match read_f64(path, &passes_group, "wear_regime_share") {
@@ -166,6 +171,7 @@ fn read_rail_state(path: &Path, layout: &StateLayout, prefix: &str) -> Result<Ru
             spectrum: spectrum.row(k).to_vec(),
             filtered_spectrum: filtered.row(k).to_vec(),
             growth_rate: rate.row(k).to_vec(),
+            forced_wear: forced.as_ref().map_or_else(Vec::new, |t| t.row(k).to_vec()),
             roughness_level: if initial_level.is_empty() { Vec::new() } else { band_row(&levels, k) },
             level_rate: if initial_level.is_empty() { Vec::new() } else { band_row(&rates, k) },
         })

@@ -328,7 +328,19 @@ fn write_passes(g: &NcGroup, rows: &[PassRow], wavelengths: &[f64], classes: &[T
         &dims,
         rate.view().into_dyn(),
         "dB/1e5 passages",
-        "growth rate of each harmonic of the contact-filtered profile over the passage",
+        "roughness-driven growth rate of each harmonic of the contact-filtered profile over the passage (the \
+         change by the wear less the smooth rail's, W - W0)",
+    )?;
+    // Rows read from files written before the forced wear was recorded
+    // have none: zeros (the smooth rail's wear was not computed then).
+    let forced = table(|r| &r.forced_wear);
+    g.var_f64(
+        "forced_wear",
+        &dims,
+        forced.view().into_dyn(),
+        "m",
+        "amplitude of the contact-filtered wear one wheel passage of the class leaves on the smooth rail (W0: the \
+         forced pattern, deepening linearly with traffic; per wheel passage)",
     )?;
     Ok(())
 }

@@ -482,6 +482,9 @@ pub struct Scene {
     /// The wheelset's second rail (`[second_rail]`), if modelled: the
     /// rail of the scene is then the first (the wheelset's wheel 0).
     pub second_rail: Option<SecondRail>,
+    /// What `corrugation spectrum` measures (`[spectrum]`; None: absent,
+    /// the command takes the defaults).
+    pub spectrum: Option<crate::spectrum::SpectrumParams>,
 }
 
 /// The second rail of a wheelset (`[second_rail]`): its contact's steady

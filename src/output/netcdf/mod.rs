@@ -138,6 +138,8 @@ struct Dim {
     len: usize,
     unlimited: bool,
     scale: Dataset,
+    /// Whether it has a coordinate variable (else a dimension alone, [`NcGroup::dim`]).
+    coordinate: bool,
 }
 
 /// A netCDF group being written: wraps an [`hdf5::Group`] and remembers the dimensions it
@@ -205,6 +207,29 @@ impl NcGroup {
         unlimited: bool,
     ) -> Result<(), NcError> {
         self.coord(name, values, units, long_name, unlimited)
+    }
+
+    /// Define dimension `name` of length `len` without a coordinate variable, as netCDF-C
+    /// writes one: a dimension scale of that name whose `NAME` says it is "a netCDF dimension
+    /// but not a netCDF variable". A data variable of the same name on other dimensions may
+    /// then be written ([`NcGroup::var_f64`] stores it as netCDF-C does, under the name
+    /// `_nc4_non_coord_<name>`, which netCDF readers and xarray show as `name`).
+    pub fn dim(&self, name: &str, len: usize) -> Result<(), NcError> {
+        let full = self.child_path(name);
+        let what = || format!("dimension {full:?}");
+        self.check_name(name, &what)?;
+        let zeros = vec![0i64; len];
+        let data = ArrayView1::from(&zeros).into_dyn();
+        let dimid = self.ctx.next_dimid.fetch_add(1, Ordering::Relaxed);
+        let scale = (|| {
+            let ds = self.create_dataset(name, data, &[false], false)?;
+            h5ds::set_scale(&ds, &format!("{DIMENSION_WITHOUT_VARIABLE}{len:10}"))?;
+            write_attr(&ds, "_Netcdf4Dimid", &dimid)?;
+            Ok(ds)
+        })()
+        .map_err(|e| self.write_err(what(), e))?;
+        self.dims.borrow_mut().push(Dim { name: name.to_owned(), len, unlimited: false, scale, coordinate: false });
+        Ok(())
     }
 
     /// Like [`NcGroup::coord_f64`] with an `i64` coordinate (e.g. step or element indices).
@@ -329,7 +354,13 @@ impl NcGroup {
             Ok(ds)
         })()
         .map_err(|e| self.write_err(what(), e))?;
-        self.dims.borrow_mut().push(Dim { name: name.to_owned(), len: values.len(), unlimited, scale });
+        self.dims.borrow_mut().push(Dim {
+            name: name.to_owned(),
+            len: values.len(),
+            unlimited,
+            scale,
+            coordinate: true,
+        });
         Ok(())
     }
 
@@ -343,12 +374,24 @@ impl NcGroup {
     ) -> Result<(), NcError> {
         let full = self.child_path(name);
         let what = || format!("variable {full:?}");
-        self.check_name(name, &what)?;
         let defined = self.dims.borrow();
-        if defined.iter().any(|d| d.name == name) {
-            let msg = "the name is a dimension; write coordinates with coord_*".to_owned();
-            return Err(self.invalid(what(), msg));
-        }
+        // A variable named like a dimension of this group (one without a
+        // coordinate variable, on other dimensions) is stored as netCDF-C
+        // stores it.
+        let stored = match defined.iter().find(|d| d.name == name) {
+            Some(_) if dims.contains(&name) => {
+                let msg = "the name is a dimension of the variable; write coordinates with coord_*".to_owned();
+                return Err(self.invalid(what(), msg));
+            }
+            Some(d) if d.coordinate => {
+                let msg = "the name is a dimension with a coordinate variable".to_owned();
+                return Err(self.invalid(what(), msg));
+            }
+            Some(_) => format!("{NON_COORD_PREFIX}{name}"),
+            None => name.to_owned(),
+        };
+        let name = stored.as_str();
+        self.check_name(name, &what)?;
         if dims.len() != data.ndim() {
             let msg = format!(
                 "data has {} axes (shape {:?}) but {} dimensions {dims:?} were given",
@@ -468,6 +511,14 @@ impl NcGroup {
         NcError::Invalid { path: self.ctx.path.clone(), what, msg }
     }
 }
+
+/// The `NAME` of a dimension scale that is not a netCDF variable (netCDF-C's
+/// `DIM_WITHOUT_VARIABLE`; the dimension's length follows, right-aligned in 10 characters).
+const DIMENSION_WITHOUT_VARIABLE: &str = "This is a netCDF dimension but not a netCDF variable.";
+
+/// netCDF-C's prefix of a variable stored under another name because a dimension without a
+/// coordinate variable has its name.
+const NON_COORD_PREFIX: &str = "_nc4_non_coord_";
 
 fn write_attr<T: H5Type>(loc: &Location, name: &str, value: &T) -> hdf5::Result<()> {
     loc.new_attr::<T>().create(name)?.write_scalar(value)

@@ -1,0 +1,249 @@
+//! The file `corrugation spectrum` writes (book: docs/src/reference/
+//! spectrum-file.md): the root's resolved config, program and version; group
+//! `spectrum` with
+//!
+//! * dimension `mode` (fastest growing first): `growth_rate` (dB per 1e5
+//!   wheel passages), `wavelength` (m, the mode's largest harmonic),
+//!   `frequency` (Hz at the scene's speed), `drift` (m per 1e5 wheel
+//!   passages, + in the direction of travel), `bloch_wavenumber` (1/m, the
+//!   class's `kappa`), `purity` (1, the largest harmonic's share),
+//!   `support_ratio` (1, the envelope at the stretch's start over its middle:
+//!   over the sleeper against mid-span on a one-bay stretch with a sleeper at
+//!   its start), `eigenvalue_real` and `eigenvalue_imag` (1 per wheel
+//!   passage), with two rails `rail_share` (1, on the first rail);
+//! * dimensions (`mode`, `position`): `envelope` (1, rms 1 over the stretch);
+//! * dimension `wavelength` (the stretch's harmonics `L / n`, given by
+//!   `forced_wavelength`: the name `wavelength` is the modes'; netCDF stores
+//!   that variable as `_nc4_non_coord_wavelength`, which xarray and netCDF
+//!   readers show as `wavelength`): `forced_wear` (m per wheel passage, the
+//!   smooth rail's pattern) and
+//!   `base_wear` (the base rail's wear, the same way), with two rails the
+//!   second's as `second_rail_forced_wear`, `second_rail_base_wear`;
+//! * dimension `harmonic` (every perturbed harmonic of every class):
+//!   `harmonic_wavelength` (m), `harmonic_wavenumber` (1/m, signed),
+//!   `harmonic_class`, `harmonic_rail`, `diagonal_rate` (dB per 1e5 wheel
+//!   passages: the rate of the harmonic alone, `-Re J(s, s)`) and
+//!   `diagonal_drift` (m per 1e5 wheel passages).
+//!
+//! * dimensions (`harmonic`, `source`): `jacobian_real`, `jacobian_imag`
+//!   (1 per wheel passage), the map `J` itself, zero between classes.
+//!
+//! Attributes of the group: the stretch (m), the supercell's stretches, the
+//! perturbation (m), the difference scheme, the normal contact, the cost.
+
+use super::netcdf::{NcError, write_atomically};
+use crate::spectrum::modes::DB_PER_NEPER;
+use crate::spectrum::{Spectrum, SpectrumParams};
+use ndarray::{Array1, Array2};
+use std::f64::consts::PI;
+use std::path::Path;
+
+/// Writes `s` (measured as `params` say) for the resolved `config` to
+/// `path` atomically.
+pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, config: &str) -> Result<(), NcError> {
+    write_atomically(path, |root| {
+        root.attr_str("title", "linear growth spectrum")?;
+        root.attr_str("program", "corrugation")?;
+        root.attr_str("version", env!("CARGO_PKG_VERSION"))?;
+        root.attr_str("config", config)?;
+        let g = root.group("spectrum")?;
+        g.attr_f64("stretch", s.stretch)?;
+        g.attr_i64("bloch_classes", s.cells as i64)?;
+        g.attr_f64("perturbation", params.perturbation)?;
+        g.attr_str("difference", params.difference.into())?;
+        g.attr_str("normal_contact", if s.linear_contact { "linear" } else { "nonlinear or Hertz" })?;
+        g.attr_f64("passage_equivalents", s.passage_equivalents)?;
+        g.attr_f64("cpu_seconds", s.cpu_seconds)?;
+        g.attr_f64("wall_seconds", s.wall_seconds)?;
+        g.attr_f64("speed", s.speed)?;
+        let n = s.modes.len();
+        let index: Vec<i64> = (0..n as i64).collect();
+        g.coord_i64("mode", &index, "1", "mode, fastest growing first", false)?;
+        // The forced pattern's dimension `wavelength` has no coordinate
+        // variable (the name is the modes' wavelength's): its wavelengths are
+        // `forced_wavelength`, named in `forced_wear`'s `coordinates`.
+        g.dim("wavelength", s.wavelengths.len())?;
+        let supercell = s.supercell();
+        let per_mode = |f: &dyn Fn(usize) -> f64| (0..n).map(f).collect::<Array1<f64>>();
+        let columns: [(&str, Array1<f64>, &str, &str); 9] = [
+            (
+                "growth_rate",
+                per_mode(&|k| s.modes[k].growth_rate()),
+                "dB/1e5 passages",
+                "exponential growth rate of the mode (dB per 1e5 wheel passages)",
+            ),
+            ("wavelength", per_mode(&|k| s.wavelength(k)), "m", "wavelength of the mode's largest harmonic"),
+            ("frequency", per_mode(&|k| s.frequency(k)), "Hz", "frequency of the mode's largest harmonic at the speed"),
+            (
+                "drift",
+                per_mode(&|k| s.modes[k].drift(s.class_of(k), supercell) * 1e5),
+                "m/1e5 passages",
+                "drift of the mode's pattern along the rail per 1e5 wheel passages (+: direction of travel)",
+            ),
+            (
+                "bloch_wavenumber",
+                per_mode(&|k| 2.0 * PI * s.class_of(k).j as f64 / supercell),
+                "1/m",
+                "Bloch wavenumber kappa of the mode's class (its harmonics are kappa + 2 pi n / stretch)",
+            ),
+            ("purity", per_mode(&|k| s.modes[k].purity()), "1", "share of the mode's energy in its largest harmonic"),
+            (
+                "support_ratio",
+                per_mode(&|k| {
+                    let e = s.modes[k].envelope(s.class_of(k), 0, &[0.0, 0.5 * s.stretch], supercell);
+                    if e[1] > 0.0 { e[0] / e[1] } else { f64::NAN }
+                }),
+                "1",
+                "envelope of the pattern at the stretch's start over its middle (a one-bay stretch with a sleeper at \
+                 its start: over the sleeper against mid-span)",
+            ),
+            (
+                "eigenvalue_real",
+                per_mode(&|k| s.modes[k].eigenvalue.re),
+                "1",
+                "real part of the eigenvalue of the per-passage update (growth per wheel passage, neper)",
+            ),
+            (
+                "eigenvalue_imag",
+                per_mode(&|k| s.modes[k].eigenvalue.im),
+                "1",
+                "imaginary part of the eigenvalue (phase turn of the pattern per wheel passage, rad)",
+            ),
+        ];
+        for (name, values, units, long) in &columns {
+            g.var_f64(name, &["mode"], values.view().into_dyn(), units, long)?;
+        }
+        if s.rails == 2 {
+            let share = per_mode(&|k| s.modes[k].rail_share(s.class_of(k), 0));
+            g.var_f64(
+                "rail_share",
+                &["mode"],
+                share.view().into_dyn(),
+                "1",
+                "share of the mode's energy on the first rail",
+            )?;
+        }
+        g.coord_f64("position", &s.positions, "m", "position along the stretch from its start", false)?;
+        let envelope = Array2::from_shape_fn((n, s.positions.len()), |(k, p)| {
+            s.modes[k].envelope(s.class_of(k), 0, &s.positions[p..p + 1], supercell)[0]
+        });
+        // (Each row normalised over all the positions, not one at a time.)
+        let envelope = normalise_rows(envelope);
+        g.var_f64(
+            "envelope",
+            &["mode", "position"],
+            envelope.view().into_dyn(),
+            "1",
+            "local amplitude of the mode's pattern along the stretch (first rail; rms 1)",
+        )?;
+        let waves = Array1::from(s.wavelengths.clone());
+        g.var_f64(
+            "forced_wavelength",
+            &["wavelength"],
+            waves.view().into_dyn(),
+            "m",
+            "wavelength of the stretch's harmonic (stretch / n) of the forced and base wear",
+        )?;
+        let names = [("", 0usize), ("second_rail_", 1)];
+        for (prefix, r) in names.iter().take(s.rails) {
+            let forced = Array1::from(s.forced_wear[*r].clone());
+            g.var_f64(
+                &format!("{prefix}forced_wear"),
+                &["wavelength"],
+                forced.view().into_dyn(),
+                "m",
+                "amplitude of the contact-filtered wear one wheel passage leaves on the smooth rail (the forced \
+                 pattern; per wheel passage)",
+            )?;
+            g.var_attr_str(&format!("{prefix}forced_wear"), "coordinates", "forced_wavelength")?;
+            let base = Array1::from(s.base_wear[*r].clone());
+            g.var_f64(
+                &format!("{prefix}base_wear"),
+                &["wavelength"],
+                base.view().into_dyn(),
+                "m",
+                "amplitude of the contact-filtered wear one wheel passage leaves on the base rail (per wheel passage)",
+            )?;
+            g.var_attr_str(&format!("{prefix}base_wear"), "coordinates", "forced_wavelength")?;
+        }
+        // Every perturbed harmonic.
+        let mut rows: Vec<(f64, f64, i64, i64, f64, f64)> = Vec::new();
+        for (class, j) in s.classes.iter().zip(&s.matrices) {
+            let m = class.basis.len();
+            for (k, h) in class.basis.iter().enumerate() {
+                let q = 2.0 * PI * h.index as f64 / supercell;
+                let c = j[k * m + k];
+                let rate = -DB_PER_NEPER * c.re * 1e5;
+                let drift = c.im / q * 1e5;
+                rows.push((supercell / h.index.unsigned_abs() as f64, q, class.j as i64, h.rail as i64, rate, drift));
+            }
+        }
+        let idx: Vec<i64> = (0..rows.len() as i64).collect();
+        g.coord_i64("harmonic", &idx, "1", "perturbed harmonic (every class's basis)", false)?;
+        let col = |f: &dyn Fn(&(f64, f64, i64, i64, f64, f64)) -> f64| rows.iter().map(f).collect::<Array1<f64>>();
+        let icol = |f: &dyn Fn(&(f64, f64, i64, i64, f64, f64)) -> i64| rows.iter().map(f).collect::<Array1<i64>>();
+        g.var_f64("harmonic_wavelength", &["harmonic"], col(&|r| r.0).view().into_dyn(), "m", "wavelength")?;
+        g.var_f64(
+            "harmonic_wavenumber",
+            &["harmonic"],
+            col(&|r| r.1).view().into_dyn(),
+            "1/m",
+            "signed wavenumber of the harmonic",
+        )?;
+        g.var_i64("harmonic_class", &["harmonic"], icol(&|r| r.2).view().into_dyn(), "1", "Bloch class j")?;
+        g.var_i64("harmonic_rail", &["harmonic"], icol(&|r| r.3).view().into_dyn(), "1", "rail (0: the first)")?;
+        g.var_f64(
+            "diagonal_rate",
+            &["harmonic"],
+            col(&|r| r.4).view().into_dyn(),
+            "dB/1e5 passages",
+            "growth rate of the harmonic alone, without its coupling to the others (-Re J(s, s))",
+        )?;
+        // The map itself: J on every class's basis (zero across classes).
+        g.coord_i64("source", &idx, "1", "perturbed harmonic the response is to (as harmonic)", false)?;
+        let total = rows.len();
+        let (mut re, mut im) = (Array2::<f64>::zeros((total, total)), Array2::<f64>::zeros((total, total)));
+        let mut offset = 0;
+        for (class, j) in s.classes.iter().zip(&s.matrices) {
+            let m = class.basis.len();
+            for r in 0..m {
+                for c in 0..m {
+                    re[[offset + r, offset + c]] = j[r * m + c].re;
+                    im[[offset + r, offset + c]] = j[r * m + c].im;
+                }
+            }
+            offset += m;
+        }
+        for (name, part, a) in [("jacobian_real", "real", &re), ("jacobian_imag", "imaginary", &im)] {
+            g.var_f64(
+                name,
+                &["harmonic", "source"],
+                a.view().into_dyn(),
+                "1",
+                &format!(
+                    "{part} part of the linearised wear map J per wheel passage: the complex amplitude of the \
+                     contact-filtered wear at the harmonic per unit complex amplitude of the profile at the source"
+                ),
+            )?;
+        }
+        g.var_f64(
+            "diagonal_drift",
+            &["harmonic"],
+            col(&|r| r.5).view().into_dyn(),
+            "m/1e5 passages",
+            "drift of the harmonic alone (Im J(s, s) / q)",
+        )?;
+        Ok(())
+    })
+}
+
+/// Each row of `a` scaled to rms 1 (rows of zeros kept).
+fn normalise_rows(mut a: Array2<f64>) -> Array2<f64> {
+    for mut row in a.rows_mut() {
+        let rms = (row.iter().map(|v| v * v).sum::<f64>() / row.len().max(1) as f64).sqrt();
+        if rms > 0.0 {
+            row.mapv_inplace(|v| v / rms);
+        }
+    }
+    a
+}
