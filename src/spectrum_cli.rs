@@ -114,13 +114,19 @@ fn summary(s: &Spectrum, out: &Path) {
     let forced = &s.forced_wear[0];
     let mut order: Vec<usize> = (0..forced.len()).collect();
     order.sort_by(|a, b| forced[*b].total_cmp(&forced[*a]));
-    if forced.iter().any(|f| *f > 0.0) {
+    // Harmonics below 1e-6 of the mean wear are the round-off of a uniform
+    // wear along the stretch.
+    if forced.iter().any(|f| *f > 1e-6 * s.mean_wear[0]) {
         let top: Vec<String> = order
             .iter()
             .take(4)
             .map(|&k| format!("{:.1} mm {:.3} nm", s.wavelengths[k] * 1e3, forced[k] * 1e5 * 1e9))
             .collect();
-        say!("forced pattern (the smooth rail's wear per 1e5 wheel passages): {}", top.join(", "));
+        say!(
+            "forced pattern (the smooth rail's wear per 1e5 wheel passages, of {:.3} um in all): {}",
+            s.mean_wear[0] * 1e5 * 1e6,
+            top.join(", ")
+        );
     } else {
         say!("forced pattern: none (the smooth rail wears uniformly along the stretch)");
     }

@@ -401,6 +401,13 @@ fn probes() -> Vec<(String, Table)> {
         &[],
     ));
     out.push(with("levels against ISO 3095", "[levels]\nlimit = \"iso3095\"", &[]));
+    out.push(with(
+        "a spectrum",
+        "[spectrum]\nwavelength_min = 0.012\nwavelength_max = 0.12\nclasses = 2\nperturbation = 5e-8\n\
+         difference = \"forward\"\nbase = \"roughness\"",
+        &[],
+    ));
+    out.push(with("a spectrum at a resolution", "[spectrum]\nresolution = 0.005", &[]));
     out.push(with("the modal wheelset", "[wheelset]\nmodel = \"modal\"", &[]));
     out.push(with(
         "the second rail under force control",

@@ -68,8 +68,12 @@ fn levels_limit_and_traffic_in_operator_units() {
     let (level, rate, to_limit) =
         (table(&out, "roughness_level"), table(&out, "level_rate"), table(&out, "passages_to_limit"));
     assert_eq!(level.dim(), (3, nominal.len()));
+    // (A continuous track wears no forced pattern: the forecast is the
+    // exponential one.)
+    let forced = table(&out, "forced_band_wear");
+    assert!(forced.iter().all(|f| *f == 0.0), "{forced:?}");
     for ((p, k), n) in to_limit.indexed_iter() {
-        assert_eq!(*n, passages_to_limit(level[[p, k]], rate[[p, k]], limit[k]));
+        assert_eq!(*n, passages_to_limit(level[[p, k]], rate[[p, k]], 0.0, limit[k]));
         if n.is_finite() && *n > 0.0 {
             assert!((level[[p, k]] + rate[[p, k]] * n / 1e5 - limit[k]).abs() < 1e-9);
         }

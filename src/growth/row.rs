@@ -6,7 +6,7 @@
 use super::contact_filtered_line;
 use super::spectrum::{amplitudes, growth_rates};
 use super::state::{PassRow, RailSnapshot, RunState};
-use crate::levels::{BandLevels, level_rates};
+use crate::levels::{BandLevels, LEVEL_FLOOR, R0, level_rates};
 use crate::metrics::rms_corrugation;
 use crate::passage::PatchHistory;
 use crate::rail_grid::RailGrid;
@@ -64,13 +64,16 @@ impl RowKeep<'_> {
         let filtered_spectrum = amplitudes(&filtered(&state.profile));
         // The roughness-driven change: the profile as the wear less the
         // smooth rail's would have left it, r - m (W - W_0).
-        let (driven, forced_wear) = match forced {
+        let (driven, forced_wear, driven_level, forced_band_wear) = match forced {
             Some(w0) => {
                 let mut r = state.profile.clone();
                 r.scaled_add(m, w0);
-                (amplitudes(&filtered(&r)), amplitudes(&filtered(w0)))
+                let band_rms = self.levels.levels(w0).iter().map(|l| rms_of_level(*l)).collect();
+                (amplitudes(&filtered(&r)), amplitudes(&filtered(w0)), self.levels.levels(&r), band_rms)
             }
-            None => (filtered_spectrum.clone(), vec![0.0; filtered_spectrum.len()]),
+            None => {
+                (filtered_spectrum.clone(), vec![0.0; filtered_spectrum.len()], roughness_level.clone(), Vec::new())
+            }
         };
         let row = PassRow {
             index: self.pass as i64,
@@ -90,7 +93,8 @@ impl RowKeep<'_> {
             forced_wear,
             spectrum: amplitudes(&line(&state.profile)),
             filtered_spectrum,
-            level_rate: level_rates(&levels_before, &roughness_level, m),
+            level_rate: level_rates(&levels_before, &driven_level, m),
+            forced_band_wear,
             roughness_level,
         };
         if self.store {
@@ -105,4 +109,9 @@ impl RowKeep<'_> {
         state.rows.push(row.clone());
         row
     }
+}
+
+/// The rms (m) of a band level `l` (dB re 1 um); 0 at the floor.
+fn rms_of_level(l: f64) -> f64 {
+    if l <= LEVEL_FLOOR { 0.0 } else { R0 * 10f64.powf(l / 20.0) }
 }

@@ -65,9 +65,14 @@ pub struct PassRow {
     /// um; [`crate::levels`]: the running band's lines, mean-square
     /// averaged).
     pub roughness_level: Vec<f64>,
-    /// Growth rate of each band's level over this passage (dB per 1e5 real
-    /// wheel passages).
+    /// Roughness-driven growth rate of each band's level over this passage
+    /// (dB per 1e5 real wheel passages): the level the profile's change by
+    /// `W - W_0` leaves, as `growth_rate` per harmonic.
     pub level_rate: Vec<f64>,
+    /// The forced pattern's rms in each band (m per wheel passage): the
+    /// band level's measure of `W_0` over the running band (empty where the
+    /// smooth rail wears none, or in files written before it was recorded).
+    pub forced_band_wear: Vec<f64>,
 }
 
 /// A stored rail state.

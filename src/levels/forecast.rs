@@ -1,17 +1,32 @@
 //! When a band reaches its limit: the wheel passages from a passage until
-//! the band's level, growing at its current rate, reaches the limit, and
-//! the same traffic in the operator's units (million gross tonnes, days).
+//! the band's level reaches the limit, and the same traffic in the
+//! operator's units (million gross tonnes, days).
+//!
+//! A band's roughness grows two ways at once (book:
+//! docs/src/theory/growth-spectrum.md): exponentially, at the
+//! roughness-driven rate `r` of its level (dB per 1e5 wheel passages, the
+//! change by the wear less the smooth rail's), and linearly, by the forced
+//! pattern the smooth rail wears (`f`, m rms per wheel passage: the
+//! sleeper passing, imposed loads). Per harmonic, `dR/dn = s R + F` gives
+//! `R(n) = R0 e^(s n) + F (e^(s n) - 1) / s`; over a band's harmonics,
+//! whose roughness and forced pattern have unrelated phases, the mean
+//! squares add:
 //!
 //! ```text
-//! N = (L_lim - L) / r * 1e5     (r > 0, L < L_lim)
-//! N = 0                         (L >= L_lim: already there)
-//! N = inf                       (r <= 0: the band does not grow)
+//! A(n)^2 = A0^2 e^(2 s n) + f^2 ((e^(s n) - 1) / s)^2,   s = r ln(10) / (20 1e5)
 //! ```
 //!
-//! `L` the band level (dB re 1 um), `r` its rate (dB per 1e5 wheel
-//! passages). A level grows linearly in dB while the corrugation grows
-//! exponentially (the linear regime), so this is the linear regime's
-//! forecast; a saturating band reaches its limit later than it says.
+//! (`A0 = r0 10^(L/20)` the band's rms now). The forecast is the first `n`
+//! at which `A(n)` reaches the limit's rms: `(L_lim - L) / r 1e5` where
+//! there is no forced pattern; 0 for a band at or above it; inf where the
+//! band never reaches it (a decaying band whose forced pattern settles
+//! below the limit, at `f / |s|`). A band that holds no roughness of its
+//! own (below [`HELD_LEVEL`]) is driven by the others' wear rather than
+//! grown from itself: its roughness-driven change per passage counts as a
+//! forcing, not as an exponential rate.
+//!
+//! This is the linear regime's forecast; a saturating band reaches its
+//! limit later than it says.
 //!
 //! Traffic: one wheel passage of the rail is one axle passage of the
 //! track, so `MGT = sum of axle loads (t) / 1e6` and `days = passages /
@@ -20,16 +35,62 @@
 use super::Band;
 use crate::params::Operation;
 
-/// Wheel passages from a band at `level` growing at `rate` until it
-/// reaches `limit` (see the module doc).
-pub fn passages_to_limit(level: f64, rate: f64, limit: f64) -> f64 {
+/// Wheel passages from a band at `level` (dB re 1 um) whose roughness
+/// grows at `rate` (dB per 1e5 wheel passages) and by the forced pattern
+/// `forced` (m rms per wheel passage) until it reaches `limit` (dB re 1
+/// um; see the module doc).
+pub fn passages_to_limit(level: f64, rate: f64, forced: f64, limit: f64) -> f64 {
     if level >= limit {
-        0.0
-    } else if rate > 0.0 {
-        (limit - level) / rate * 1e5
-    } else {
-        f64::INFINITY
+        return 0.0;
     }
+    if forced.is_nan() || forced <= 0.0 || !limit.is_finite() {
+        return if rate > 0.0 { (limit - level) / rate * 1e5 } else { f64::INFINITY };
+    }
+    let (a0, target) = (super::R0 * 10f64.powf(level / 20.0), super::R0 * 10f64.powf(limit / 20.0));
+    let s = rate * std::f64::consts::LN_10 / 20.0 / 1e5;
+    let amplitude = |n: f64| {
+        let grown = if (s * n).abs() < 1e-8 { n } else { (s * n).exp_m1() / s };
+        ((a0 * (s * n).exp()).powi(2) + (forced * grown).powi(2)).sqrt()
+    };
+    // The first crossing: the amplitude can fall first (a decaying band)
+    // and rise again, so a scan by factors of 1.1 from one passage to
+    // 1e15, then bisection in the first bracket.
+    let mut low = 0.0;
+    let mut n = 1.0;
+    while n <= 1e15 {
+        if amplitude(n) >= target {
+            let mut high = n;
+            for _ in 0..200 {
+                let mid = 0.5 * (low + high);
+                if amplitude(mid) >= target {
+                    high = mid
+                } else {
+                    low = mid
+                }
+                if high - low <= 1e-12 * high {
+                    break;
+                }
+            }
+            return high;
+        }
+        low = n;
+        n *= 1.1;
+    }
+    f64::INFINITY
+}
+
+/// A band's roughness-driven rate and forcing for the forecast: a band at
+/// `level` (dB re 1 um) below [`HELD_LEVEL`] holds no roughness of its
+/// own, so the change `rate` (dB per 1e5 wheel passages) the others' wear
+/// drives in it counts as a forcing added to `forced` (m rms per wheel
+/// passage), and its exponential rate as 0 (see the module doc).
+pub fn driven(level: f64, rate: f64, forced: f64) -> (f64, f64) {
+    if level > HELD_LEVEL {
+        return (rate, forced);
+    }
+    let a = super::R0 * 10f64.powf(level / 20.0);
+    let change = a * (rate * std::f64::consts::LN_10 / 20.0 / 1e5).abs();
+    (0.0, (forced * forced + change * change).sqrt())
 }
 
 /// The bands that reached their limit between the levels `before` and
@@ -124,8 +185,11 @@ pub struct Standing<'a> {
     pub initial: &'a [f64],
     /// Levels after each passage (dB re 1 um).
     pub levels: &'a [Vec<f64>],
-    /// Rates of each passage (dB per 1e5 wheel passages).
+    /// Roughness-driven rates of each passage (dB per 1e5 wheel passages).
     pub rates: &'a [Vec<f64>],
+    /// The forced pattern of each passage's class in each band (m rms per
+    /// wheel passage; empty rows: none).
+    pub forced: &'a [Vec<f64>],
     /// Real wheel passages represented after each passage.
     pub traffic: &'a [f64],
     /// The operator's units.
@@ -166,47 +230,50 @@ pub fn outlook(s: &Standing) -> Vec<String> {
         before = after;
     }
     let pass = s.levels.len();
-    let to_limit: Vec<f64> = (0..s.bands.len()).map(|k| passages_to_limit(last[k], rates[k], s.limit[k])).collect();
-    // A band the initial roughness does not hold grows from nothing by the
-    // wear the other bands drive: its rate in dB is not an exponential
-    // growth's, and no forecast.
-    let held = |k: usize| s.initial.get(k).is_none_or(|l| *l > HELD_LEVEL);
-    let growing = |k: &usize| to_limit[*k] > 0.0 && to_limit[*k].is_finite();
-    let next =
-        (0..s.bands.len()).filter(growing).filter(|&k| held(k)).min_by(|&a, &b| to_limit[a].total_cmp(&to_limit[b]));
-    let unheld: Vec<usize> = (0..s.bands.len())
-        .filter(growing)
-        .filter(|&k| !held(k) && next.is_none_or(|n| to_limit[k] < to_limit[n]))
+    let forced = s.forced.last().map_or(&[][..], Vec::as_slice);
+    let model = |k: usize| driven(last[k], rates[k], forced.get(k).copied().unwrap_or(0.0));
+    let to_limit: Vec<f64> = (0..s.bands.len())
+        .map(|k| {
+            let (rate, f) = model(k);
+            passages_to_limit(last[k], rate, f, s.limit[k])
+        })
         .collect();
+    let growing = |k: &usize| to_limit[*k] > 0.0 && to_limit[*k].is_finite();
+    let next = (0..s.bands.len()).filter(growing).min_by(|&a, &b| to_limit[a].total_cmp(&to_limit[b]));
     match next {
         Some(k) => {
+            let (rate, f) = model(k);
             let column: Vec<f64> = s.levels.iter().map(|l| l[k]).collect();
-            let slower = power_law(&column, s.traffic, rates[k]).map_or_else(String::new, |p| {
+            let slower = power_law(&column, s.traffic, rate).filter(|_| f == 0.0).map_or_else(String::new, |p| {
                 format!(
                     "; but its amplitude has grown as traffic^{p:.2} (not exponentially): at that pace it reaches the \
                      limit after {}",
                     s.units.describe(so_far * 10f64.powf((s.limit[k] - last[k]) / (20.0 * p)))
                 )
             });
+            let how = match (rate != 0.0, f > 0.0) {
+                (true, true) => format!(
+                    "growing at {rate:+.2} dB per 1e5 wheel passages from {:.1} dB and by the forced pattern's \
+                     {:.3} um rms per 1e5 wheel passages",
+                    last[k],
+                    f * 1e5 * 1e6
+                ),
+                (false, true) => format!(
+                    "worn in by the forced pattern's {:.3} um rms per 1e5 wheel passages from {:.1} dB",
+                    f * 1e5 * 1e6,
+                    last[k]
+                ),
+                _ => format!("{rate:+.2} dB per 1e5 wheel passages from {:.1} dB", last[k]),
+            };
             lines.push(format!(
                 "the {} band reaches the {name} limit ({:.1} dB re 1 um) after {} from the start, at passage \
-                 {pass}'s rate ({:+.2} dB per 1e5 wheel passages from {:.1} dB){slower}",
+                 {pass}'s rates ({how}){slower}",
                 s.bands[k].label(),
                 s.limit[k],
                 s.units.describe(so_far + to_limit[k]),
-                rates[k],
-                last[k],
             ))
         }
         None => lines.push(format!("at passage {pass}'s rates no band below the {name} limit grows towards it")),
-    }
-    if !unheld.is_empty() {
-        let list: Vec<String> = unheld.iter().map(|&k| s.bands[k].label()).collect();
-        lines.push(format!(
-            "left out of the forecast: {} (below {HELD_LEVEL} dB re 1 um before the first passage, outside the initial \
-             roughness: they grow from nothing by the wear, not at an exponential rate)",
-            list.join(", ")
-        ));
     }
     let above: Vec<usize> = (0..s.bands.len()).filter(|&k| to_limit[k] == 0.0).collect();
     if !above.is_empty() {
@@ -247,17 +314,50 @@ mod tests {
 
     #[test]
     fn passages_to_limit_follows_the_level_and_rate() {
-        // 5 dB below, 0.5 dB per 1e5: 1e6 passages.
-        assert_eq!(passages_to_limit(10.0, 0.5, 15.0), 1e6);
-        assert_eq!(passages_to_limit(15.0, 0.5, 15.0), 0.0);
-        assert_eq!(passages_to_limit(16.0, -0.5, 15.0), 0.0);
-        assert_eq!(passages_to_limit(10.0, 0.0, 15.0), f64::INFINITY);
-        assert_eq!(passages_to_limit(10.0, -1.0, 15.0), f64::INFINITY);
-        assert_eq!(passages_to_limit(10.0, 1.0, f64::INFINITY), f64::INFINITY);
+        // No forced pattern: 5 dB below, 0.5 dB per 1e5: 1e6 passages.
+        assert_eq!(passages_to_limit(10.0, 0.5, 0.0, 15.0), 1e6);
+        assert_eq!(passages_to_limit(15.0, 0.5, 0.0, 15.0), 0.0);
+        assert_eq!(passages_to_limit(16.0, -0.5, 0.0, 15.0), 0.0);
+        assert_eq!(passages_to_limit(10.0, 0.0, 0.0, 15.0), f64::INFINITY);
+        assert_eq!(passages_to_limit(10.0, -1.0, 0.0, 15.0), f64::INFINITY);
+        assert_eq!(passages_to_limit(10.0, 1.0, 0.0, f64::INFINITY), f64::INFINITY);
         // Consistent: the level at the forecast traffic is the limit.
         let (l, r, lim) = (-3.7, 0.83, 2.9);
-        let n = passages_to_limit(l, r, lim);
+        let n = passages_to_limit(l, r, 0.0, lim);
         assert!((l + r * n / 1e5 - lim).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_forced_pattern_adds_its_linear_growth_to_the_exponential_one() {
+        let rms = |l: f64| 1e-6 * 10f64.powf(l / 20.0);
+        // No exponential growth: A(n)^2 = A0^2 + (f n)^2, closed form.
+        let (l, f, lim) = (-10.0, 2e-12, 0.0);
+        let want = (rms(lim).powi(2) - rms(l).powi(2)).sqrt() / f;
+        let n = passages_to_limit(l, 0.0, f, lim);
+        assert!((n / want - 1.0).abs() < 1e-9, "{n} vs {want}");
+        // From nothing (the floor): the forced pattern's own pace, A_lim / f.
+        let n = passages_to_limit(-120.0, 0.0, f, lim);
+        assert!((n / (rms(lim) / f) - 1.0).abs() < 1e-6, "{n}");
+        // Growing and forced: sooner than either alone; the amplitude of
+        // the model at the forecast is the limit's.
+        let (l, r, f, lim) = (-6.0, 0.8, 1e-12, 3.0);
+        let n = passages_to_limit(l, r, f, lim);
+        assert!(n < passages_to_limit(l, r, 0.0, lim) && n < passages_to_limit(l, 0.0, f, lim));
+        let s = r * std::f64::consts::LN_10 / 20.0 / 1e5;
+        let a = ((rms(l) * (s * n).exp()).powi(2) + (f * (s * n).exp_m1() / s).powi(2)).sqrt();
+        assert!((a / rms(lim) - 1.0).abs() < 1e-9, "{a} vs {}", rms(lim));
+        // Decaying: the forced pattern settles at f / |s|: below the limit
+        // never, above it at a finite traffic (after the decay's dip).
+        let s = -0.5 * std::f64::consts::LN_10 / 20.0 / 1e5;
+        assert_eq!(passages_to_limit(-6.0, -0.5, 0.5 * rms(0.0) * s.abs(), 0.0), f64::INFINITY);
+        let n = passages_to_limit(-6.0, -0.5, 2.0 * rms(0.0) * s.abs(), 0.0);
+        assert!(n.is_finite() && n > 0.0, "{n}");
+        // A band holding no roughness of its own: its driven change is a
+        // forcing, not an exponential rate from 1 nm.
+        let (rate, forced) = driven(-80.0, 200.0, 0.0);
+        assert_eq!(rate, 0.0);
+        assert!((forced - rms(-80.0) * 200.0 * std::f64::consts::LN_10 / 20.0 / 1e5).abs() < 1e-24);
+        assert_eq!(driven(-20.0, 2.0, 1e-12), (2.0, 1e-12));
     }
 
     #[test]
@@ -303,6 +403,7 @@ mod tests {
             initial: &[13.0, 8.5],
             levels: &levels,
             rates: &rates,
+            forced: &[],
             traffic: &[1e5, 2e5],
             units,
         };
@@ -315,27 +416,32 @@ mod tests {
             lines[1].starts_with("the 25 mm band reaches the ISO 3095 limit (13.0 dB re 1 um) after 10 MGT, 50 days")
         );
         assert!(
-            lines[1].ends_with("at passage 2's rate (+1.00 dB per 1e5 wheel passages from 10.0 dB)"),
+            lines[1].ends_with("at passage 2's rates (+1.00 dB per 1e5 wheel passages from 10.0 dB)"),
             "{}",
             lines[1]
         );
         assert!(lines[2].contains("31.5 mm (by 0.5 dB)"));
-        // A band absent from the initial roughness that grows fastest
-        // towards the limit is left out of the forecast, and said so.
+        // A band absent from the initial roughness that the forced pattern
+        // wears in: forecast at the forced pattern's pace (no exponential
+        // rate from nothing), and named first where it comes first.
         let bands = [Band::third_octave(15), Band::third_octave(16), Band::third_octave(22)];
         let limit = [15.0, 13.0, 5.0];
-        let levels = vec![vec![14.0, 9.0, -60.0], vec![14.2, 10.0, -50.0]];
-        let rates = vec![vec![0.2, 0.5, 60.0], vec![0.2, 1.0, 70.0]];
+        let levels = vec![vec![14.0, 9.0, -120.0], vec![14.2, 10.0, -50.0]];
+        let rates = vec![vec![0.2, 0.5, 0.0], vec![0.2, 1.0, 0.0]];
+        let forced = vec![vec![0.0, 0.0, 1e-11], vec![0.0, 0.0, 1e-11]];
         let s = Standing {
             bands: &bands,
             limit: &limit,
             levels: &levels,
             rates: &rates,
+            forced: &forced,
             initial: &[13.0, 8.5, -120.0],
             ..s
         };
         let lines = outlook(&s);
-        assert!(lines[0].starts_with("the 25 mm band reaches"), "{lines:?}");
-        assert!(lines[1].starts_with("left out of the forecast: 6.3 mm (below -60 dB"), "{lines:?}");
+        // 5 dB = 1.78 um at 1e-11 m per passage: 1.78e5 passages from now.
+        assert!(lines[0].starts_with("the 6.3 mm band reaches"), "{lines:?}");
+        assert!(lines[0].contains("worn in by the forced pattern's 1.000 um rms per 1e5 wheel passages"), "{lines:?}");
+        assert!(!lines.iter().any(|l| l.contains("left out")), "{lines:?}");
     }
 }

@@ -108,6 +108,7 @@ fn read_rail_state(path: &Path, layout: &StateLayout, prefix: &str) -> Result<Ru
         Ok(Some(t))
     };
     let (levels, rates) = (band_table("roughness_level")?, band_table("level_rate")?);
+    let forced_bands = band_table("forced_band_wear")?;
     // The forced wear (files written before it have none: empty rows).
     let forced = match read_f64(path, &passes_group, "forced_wear") {
         Ok(_) => Some(table("forced_wear")?),
@@ -174,6 +175,11 @@ fn read_rail_state(path: &Path, layout: &StateLayout, prefix: &str) -> Result<Ru
             forced_wear: forced.as_ref().map_or_else(Vec::new, |t| t.row(k).to_vec()),
             roughness_level: if initial_level.is_empty() { Vec::new() } else { band_row(&levels, k) },
             level_rate: if initial_level.is_empty() { Vec::new() } else { band_row(&rates, k) },
+            forced_band_wear: match &forced_bands {
+                // All zeros is the file's way of writing none.
+                Some(t) if t.row(k).iter().any(|v| *v != 0.0) => t.row(k).to_vec(),
+                _ => Vec::new(),
+            },
         })
         .collect();
 

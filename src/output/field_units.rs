@@ -16,7 +16,7 @@
 use super::netcdf::{NcError, NcGroup};
 use super::run_file::RunRecord;
 use crate::growth::state::PassRow;
-use crate::levels::forecast::{Units, cumulative_mgt, passages_to_limit};
+use crate::levels::forecast::{Units, cumulative_mgt, driven, passages_to_limit};
 use ndarray::{Array1, Array2, ArrayView1};
 
 /// The operator's traffic after each row: (MGT, days), where given.
@@ -110,16 +110,29 @@ pub fn write_passes(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
         &dims,
         rate.view().into_dyn(),
         "dB/1e5 passages",
-        "growth rate of the band's roughness level over the passage, dB per 1e5 real wheel passages",
+        "roughness-driven growth rate of the band's roughness level over the passage (the change by the wear less \
+         the smooth rail's, W - W0), dB per 1e5 real wheel passages",
     )?;
-    let to_limit = table(&|_, row, k| passages_to_limit(row.roughness_level[k], row.level_rate[k], r.limit[k]));
+    let forced = table(&|_, row, k| row.forced_band_wear.get(k).copied().unwrap_or(0.0));
+    g.var_f64(
+        "forced_band_wear",
+        &dims,
+        forced.view().into_dyn(),
+        "m",
+        "rms in the band of the wear one wheel passage of the class leaves on the smooth rail (the forced pattern, \
+         per wheel passage; the running band's lines as roughness_level)",
+    )?;
+    let to_limit = table(&|_, row, k| {
+        let (rate, f) = driven(row.roughness_level[k], row.level_rate[k], forced_of(row, k));
+        passages_to_limit(row.roughness_level[k], rate, f, r.limit[k])
+    });
     g.var_f64(
         "passages_to_limit",
         &dims,
         to_limit.view().into_dyn(),
         "1",
-        "real wheel passages from the passage until the band reaches its limit at the passage's rate \
-         (0: at or above it; inf: the band does not grow)",
+        "real wheel passages from the passage until the band reaches its limit, growing at the passage's \
+         roughness-driven rate and by the forced pattern (0: at or above it; inf: it never reaches it)",
     )?;
     let u = units(r);
     if mgt.is_some()
@@ -158,4 +171,10 @@ pub fn write_rail(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
         g.var_f64("traffic_days", &["pass"], at(days).view().into_dyn(), "d", "days of traffic represented")?;
     }
     Ok(())
+}
+
+/// Row `row`'s forced pattern in band `k` (m rms per wheel passage; 0 where
+/// none was recorded).
+fn forced_of(row: &PassRow, k: usize) -> f64 {
+    row.forced_band_wear.get(k).copied().unwrap_or(0.0)
 }

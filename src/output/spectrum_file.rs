@@ -167,7 +167,7 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
             g.var_attr_str(&format!("{prefix}base_wear"), "coordinates", "forced_wavelength")?;
         }
         // Every perturbed harmonic.
-        let mut rows: Vec<(f64, f64, i64, i64, f64, f64)> = Vec::new();
+        let mut rows: Vec<HarmonicRow> = Vec::new();
         for (class, j) in s.classes.iter().zip(&s.matrices) {
             let m = class.basis.len();
             for (k, h) in class.basis.iter().enumerate() {
@@ -180,8 +180,8 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
         }
         let idx: Vec<i64> = (0..rows.len() as i64).collect();
         g.coord_i64("harmonic", &idx, "1", "perturbed harmonic (every class's basis)", false)?;
-        let col = |f: &dyn Fn(&(f64, f64, i64, i64, f64, f64)) -> f64| rows.iter().map(f).collect::<Array1<f64>>();
-        let icol = |f: &dyn Fn(&(f64, f64, i64, i64, f64, f64)) -> i64| rows.iter().map(f).collect::<Array1<i64>>();
+        let col = |f: &dyn Fn(&HarmonicRow) -> f64| rows.iter().map(f).collect::<Array1<f64>>();
+        let icol = |f: &dyn Fn(&HarmonicRow) -> i64| rows.iter().map(f).collect::<Array1<i64>>();
         g.var_f64("harmonic_wavelength", &["harmonic"], col(&|r| r.0).view().into_dyn(), "m", "wavelength")?;
         g.var_f64(
             "harmonic_wavenumber",
@@ -236,6 +236,11 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
         Ok(())
     })
 }
+
+/// A perturbed harmonic's row: wavelength (m), signed wavenumber (1/m),
+/// class, rail, its rate alone (dB per 1e5 wheel passages) and drift alone
+/// (m per 1e5 wheel passages).
+type HarmonicRow = (f64, f64, i64, i64, f64, f64);
 
 /// Each row of `a` scaled to rms 1 (rows of zeros kept).
 fn normalise_rows(mut a: Array2<f64>) -> Array2<f64> {

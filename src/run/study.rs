@@ -312,6 +312,7 @@ fn continue_run(
             let rows = &state.rows;
             let levels: Vec<Vec<f64>> = rows.iter().map(|r| r.roughness_level.clone()).collect();
             let rates: Vec<Vec<f64>> = rows.iter().map(|r| r.level_rate.clone()).collect();
+            let forced: Vec<Vec<f64>> = rows.iter().map(|r| r.forced_band_wear.clone()).collect();
             let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
             let shares: Vec<f64> = study.classes().iter().map(|c| c.share).collect();
             crate::levels::forecast::outlook(&crate::levels::forecast::Standing {
@@ -321,6 +322,7 @@ fn continue_run(
                 initial: &state.initial_level,
                 levels: &levels,
                 rates: &rates,
+                forced: &forced,
                 traffic: &traffic,
                 units: crate::levels::forecast::Units::new(&g.operation, &shares),
             })

@@ -99,10 +99,11 @@ impl Default for SpectrumParams {
     }
 }
 
-/// Default `spectrum.perturbation` (m): 0.1 um, a decade inside the range
-/// where the central differences of growth_discrete.toml's single
-/// harmonics agree to 0.001 dB per 1e5 (0.01 to 0.1 um; at 0.4 um 0.007).
-pub const DEFAULT_PERTURBATION: f64 = 1e-7;
+/// Default `spectrum.perturbation` (m): 10 nm. On growth_exact.toml's
+/// chain the central differences at 1 and 10 nm agree within 0.003 dB per
+/// 1e5 at 10-60 mm; at 0.1 um the contact's third-order response moves the
+/// 10 mm rate by 0.027 (docs/src/theory/growth-spectrum.md).
+pub const DEFAULT_PERTURBATION: f64 = 1e-8;
 
 /// Why the spectrum could not be measured.
 #[derive(Debug, thiserror::Error)]
@@ -173,6 +174,10 @@ pub struct Spectrum {
     pub forced_wear: Vec<Vec<f64>>,
     /// The wear of one wheel passage over the base rail, the same way (m).
     pub base_wear: Vec<Vec<f64>>,
+    /// The mean depth of the smooth rail's contact-filtered wear per wheel
+    /// passage on each rail (m): the scale the forced pattern is small or
+    /// large against.
+    pub mean_wear: Vec<f64>,
     /// Positions along the stretch of the modes' envelopes (m from its start).
     pub positions: Vec<f64>,
     /// Rails in the model (1 or 2).
@@ -270,6 +275,7 @@ pub fn linear_spectrum(
         classes.iter().map(|c| vec![Complex64::default(); c.basis.len().pow(2)]).collect();
     let cell_harmonics = cell.nx / 2;
     let mut forced = vec![vec![Complex64::default(); cell_harmonics]; rails];
+    let mut mean_wear = vec![0.0; rails];
     let mut base_wear = vec![vec![Complex64::default(); cell_harmonics]; rails];
     let mut warnings = Vec::new();
     let mut linear_contact = false;
@@ -302,7 +308,9 @@ pub fn linear_spectrum(
             g.rails.iter().map(|r| filtered(&r.wear)).collect()
         };
         for (r, line) in smooth_lines.iter().enumerate() {
-            on_cell(&dft(line), &mut forced[r], *share);
+            let spectrum = dft(line);
+            on_cell(&spectrum, &mut forced[r], *share);
+            mean_wear[r] += share * bloch::coefficient(&spectrum, 0).re;
         }
         // Each round's responses, per class and slot: the coefficients of
         // the class's basis.
@@ -379,6 +387,7 @@ pub fn linear_spectrum(
         wavelengths: crate::growth::spectrum::wavelengths(cell.nx, cell.dx),
         forced_wear: forced.iter().map(amplitude).collect(),
         base_wear: base_wear.iter().map(amplitude).collect(),
+        mean_wear,
         positions: (0..points).map(|k| stretch * k as f64 / points as f64).collect(),
         rails,
         linear_contact,
