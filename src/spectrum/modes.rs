@@ -26,6 +26,7 @@
 use super::bloch::Class;
 use faer::Mat;
 use faer::c64;
+use faer::linalg::solvers::DenseSolveCore;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -44,6 +45,12 @@ pub struct Mode {
     pub vector: Vec<Complex64>,
     /// The basis entry of the largest component.
     pub dominant: usize,
+    /// The dual (left) vector: the row of the inverse of the class's
+    /// eigenvector matrix that belongs to this mode, scaled with `vector`,
+    /// so that `sum_s dual_s R_s` is the mode's amplitude in any roughness
+    /// `R` of the class (exactly `exp(mu n)` times its initial value in the
+    /// linear regime, whatever the other modes do).
+    pub dual: Vec<Complex64>,
 }
 
 /// Why the eigenproblem failed.
@@ -69,6 +76,8 @@ pub fn modes(classes: &[Class], matrices: &[Vec<Complex64>]) -> Result<Vec<Mode>
         });
         let evd = g.eigen().map_err(|_| EigenError { class: c, size: n })?;
         let scale = (0..n).map(|k| evd.S()[k].norm()).fold(0.0f64, f64::max);
+        // The duals: the rows of U^-1.
+        let inverse = evd.U().partial_piv_lu().inverse();
         for k in 0..n {
             let mu = evd.S()[k];
             let mu = Complex64::new(mu.re, mu.im);
@@ -82,7 +91,9 @@ pub fn modes(classes: &[Class], matrices: &[Vec<Complex64>]) -> Result<Vec<Mode>
             let turn =
                 if norm > 0.0 { v[dominant].conj() / (v[dominant].norm() * norm) } else { Complex64::new(1.0, 0.0) };
             v.iter_mut().for_each(|x| *x *= turn);
-            out.push(Mode { class: c, eigenvalue: mu, vector: v, dominant });
+            // U's column k scaled by `turn`: its dual row by 1 / turn.
+            let dual = (0..n).map(|r| Complex64::new(inverse[(k, r)].re, inverse[(k, r)].im) / turn).collect();
+            out.push(Mode { class: c, eigenvalue: mu, vector: v, dominant, dual });
         }
     }
     out.sort_by(|a, b| {
@@ -107,6 +118,12 @@ impl Mode {
     /// in the direction of travel).
     pub fn drift(&self, class: &Class, supercell: f64) -> f64 {
         -self.eigenvalue.im / self.wavenumber(class, supercell)
+    }
+
+    /// The mode's amplitude in the roughness whose coefficients on the
+    /// class's basis are `roughness` (m): `sum_s dual_s R_s`.
+    pub fn amplitude(&self, roughness: &[Complex64]) -> Complex64 {
+        self.dual.iter().zip(roughness).map(|(d, r)| d * r).sum()
     }
 
     /// Share of the mode's energy in its largest harmonic (1).
@@ -171,6 +188,8 @@ mod tests {
             let q = 2.0 * PI * b.index as f64 / 1.0;
             assert!((m.drift(class, 1.0) - (-want.im / q)).abs() < 1e-18);
             assert!((m.drift(class, 1.0) - 3e-7 * s as f64 / (2.0 * PI * s as f64)).abs() < 1e-15);
+            // The dual picks the mode's own harmonic.
+            assert!((m.amplitude(&m.vector) - 1.0).norm() < 1e-12);
             let env = m.envelope(class, 0, &[0.0, 0.25, 0.5], 1.0);
             assert!(env.iter().all(|e| (e - 1.0).abs() < 1e-12), "a single harmonic has a flat envelope: {env:?}");
         }
@@ -206,6 +225,13 @@ mod tests {
         want.sort_by(|x, y| y.re.total_cmp(&x.re));
         for (m, w) in found.iter().zip(want) {
             assert!((m.eigenvalue - w).norm() < 1e-15, "{} vs {w}", m.eigenvalue);
+        }
+        // Duals and vectors are biorthogonal.
+        for (a, m) in found.iter().enumerate() {
+            for (b, o) in found.iter().enumerate() {
+                let want = if a == b { 1.0 } else { 0.0 };
+                assert!((m.amplitude(&o.vector) - want).norm() < 1e-9, "{a}, {b}");
+            }
         }
         let positions: Vec<f64> = (0..8).map(|k| k as f64 / 8.0).collect();
         let env = found[0].envelope(class, 0, &positions, 4.0);
