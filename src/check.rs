@@ -359,7 +359,46 @@ pub fn print_check(r: &Resolved) {
             println!("record             {line}");
         }
     }
+    print_spectrum(s, &cost);
     print_inputs(&r.toml);
+}
+
+/// What `corrugation spectrum` would measure (a growth study's config; its
+/// `[spectrum]` or the defaults) and its cost from the passage's estimate.
+fn print_spectrum(s: &corrugation::params::Scene, cost: &CostEstimate) {
+    if s.growth.is_none() {
+        return;
+    }
+    let params = s.spectrum.unwrap_or_default();
+    let rails = 1 + usize::from(s.second_rail.is_some());
+    let Some(p) = corrugation::spectrum::plan(s, &params, rails) else {
+        println!(
+            "spectrum           spectrum.wavelength_min to _max ({} to {} m) holds no harmonic of the stretch",
+            params.wavelength_min, params.wavelength_max
+        );
+        return;
+    };
+    let harmonics: usize = p.classes.iter().map(|c| c.1).sum();
+    let base = match params.base {
+        corrugation::spectrum::Base::Smooth => "the smooth rail",
+        corrugation::spectrum::Base::Roughness => "the initial roughness",
+    };
+    println!(
+        "spectrum           `corrugation spectrum`{}: {} Bloch class(es) on a supercell of {:.4} m, {harmonics} harmonics \
+         of {:.1} to {:.1} mm about {base}, {} difference(s) of {:.1e} m: {} rounds, {} passages ({} over one stretch), \
+         about {:.0} s on 2 cores",
+        if s.spectrum.is_some() { "" } else { " with the defaults" },
+        p.classes.len(),
+        p.supercell,
+        params.wavelength_min * 1e3,
+        params.wavelength_max * 1e3,
+        <&str>::from(params.difference),
+        params.perturbation,
+        p.rounds,
+        p.passages,
+        p.passage_equivalents,
+        p.passage_equivalents as f64 * cost.per_passage + cost.setup * params.classes as f64,
+    );
 }
 
 /// What became of a measured record (for `check` and the start of `run`).

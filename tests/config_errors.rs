@@ -436,3 +436,37 @@ fn friction_memory_keys() {
     let e = errors(BASE, &["material.memory_speed=0"]);
     assert!(e.iter().any(|m| m.contains("material.memory_speed") && m.contains("(0, 10]")), "{e:?}");
 }
+
+#[test]
+fn spectrum_keys_are_checked_and_need_a_growth_study() {
+    const GROWTH: &str = include_str!("../configs/growth_exact.toml");
+    let one = |set: &[&str]| {
+        let e = errors(GROWTH, set);
+        assert_eq!(e.len(), 1, "{set:?}: {e:?}");
+        e[0].clone()
+    };
+    let e = one(&["spectrum.classes=0"]);
+    assert!(e.starts_with("spectrum.classes: "), "{e}");
+    let e = one(&["spectrum.classes=2", "spectrum.resolution=0.005"]);
+    assert!(e.contains("spectrum.resolution: and spectrum.classes both set the Bloch classes"), "{e}");
+    let e = one(&["spectrum.wavelength_min=0.05", "spectrum.wavelength_max=0.02"]);
+    assert!(e.contains("spectrum.wavelength_max: = 0.02 m must be > spectrum.wavelength_min = 0.05 m"), "{e}");
+    // 150 mm at 0.1 mm on the 120 mm stretch: 1875 classes.
+    let e = one(&["spectrum.resolution=1e-4"]);
+    assert!(e.contains("needs 1875 Bloch classes") && e.contains("at most 256"), "{e}");
+    let e = one(&["spectrum.perturbation=1e-3"]);
+    assert!(
+        e.contains("spectrum.perturbation: = 0.001 is out of range; expected a number in [0.0000000001, 0.00001]"),
+        "{e}"
+    );
+    let e = one(&["spectrum.difference=backward"]);
+    assert!(e.contains("spectrum.difference: = \"backward\" is not allowed"), "{e}");
+    let e = one(&["spectrum.bas=smooth"]);
+    assert!(e.contains("spectrum.bas") && e.contains("base"), "{e}");
+    // A resolution gives the classes: 150 mm at 5 mm on 120 mm is 37.5, 38.
+    let r = load_str(GROWTH, "g", &["spectrum.resolution=0.005".to_string()]).unwrap();
+    assert_eq!(r.scene.spectrum.unwrap().classes, 38);
+    // Without a growth study the section is refused.
+    let e = errors(BASE, &["spectrum.classes=2"]);
+    assert!(e.iter().any(|m| m.contains("spectrum: is only allowed with a [growth] section")), "{e:?}");
+}

@@ -1,4 +1,4 @@
-"""Command line: ``corrugation-post {figures,compare,growth,speeds,mechanisms,sweep,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,check}`` (or ``python -m corrugation_post``).
+"""Command line: ``corrugation-post {figures,compare,growth,speeds,mechanisms,sweep,speed-accuracy,accuracy-map,growth-accuracy,stability,grid-convergence,validity-map,track,spectrum,check}`` (or ``python -m corrugation_post``).
 
 Exit status: 0 success; 1 some outputs could not be made (messages on stderr);
 2 unusable input (missing file, not a run file, passage not stored) or bad usage.
@@ -89,6 +89,11 @@ def _parser() -> argparse.ArgumentParser:
     trk = sub.add_parser("track", help="receptance figure of a `corrugation track` file")
     trk.add_argument("file", help="track file (.h5)")
     trk.add_argument("--out", required=True, help="output folder (created if needed)")
+
+    spc = sub.add_parser("spectrum", help="figures and table of a `corrugation spectrum` file: the modes' rates "
+                         "against wavelength, the forced pattern, the fastest modes' envelopes")
+    spc.add_argument("file", help="spectrum file (.h5)")
+    spc.add_argument("--out", required=True, help="output folder (created if needed)")
 
     chk = sub.add_parser("check", help="check a run file against the layout contract")
     chk.add_argument("run", help="run file (.h5)")
@@ -213,6 +218,14 @@ def _track(args) -> int:
     return EXIT_OK
 
 
+def _spectrum(args) -> int:
+    from .spectrum import figure
+
+    for p in figure(args.file, args.out):
+        print(p)
+    return EXIT_OK
+
+
 def _check(args) -> int:
     from .schema import check_file
 
@@ -231,7 +244,7 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     handler = {"figures": _figures, "compare": _compare, "growth": _growth, "speeds": _speeds, "mechanisms": _mechanisms, "sweep": _sweep,
                "speed-accuracy": _speed_accuracy, "accuracy-map": _accuracy_map, "growth-accuracy": _growth_accuracy, "stability": _stability, "grid-convergence": _grid_convergence,
-               "validity-map": _validity_map, "track": _track, "check": _check}[args.command]
+               "validity-map": _validity_map, "track": _track, "spectrum": _spectrum, "check": _check}[args.command]
     try:
         return handler(args)
     except RunFileError as err:

@@ -41,6 +41,8 @@ pub fn read(
     // 2 pi / (M L), the wavelengths about lambda^2 / (M L) apart.
     let classes = match (s.has("classes"), s.has("resolution")) {
         (true, true) => {
+            s.usize("classes", None, 1, MAX_CLASSES);
+            s.f64("resolution", None, Range::OpenClosed(0.0, 10.0));
             s.error("resolution", "and spectrum.classes both set the Bloch classes: give one of them".into());
             None
         }

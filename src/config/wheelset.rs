@@ -57,7 +57,16 @@ pub(super) fn read(
     let loss_factor = s.f64("torsional_loss_factor", Some(AXLE_TORSIONAL_LOSS_FACTOR), Range::Closed(0.0, 1.0));
     // `model` is recorded only where given: the torsion's resolved config
     // (and its run files) stay as they were.
-    let model = if s.has("model") { s.choice("model", None, &["torsion", "modal"]) } else { Some("torsion".into()) };
+    let model =
+        if s.has("model") { s.choice("model", None, &["rigid", "torsion", "modal"]) } else { Some("torsion".into()) };
+    if model.as_deref() == Some("rigid") {
+        // The rigid wheel: no wheelset model (its torsion's keys unused).
+        for key in MODAL_KEYS {
+            s.reject(key, "is a key of the modal model: only with wheelset.model = \"modal\"");
+        }
+        resolved.insert("wheelset".into(), Value::Table(s.finish()));
+        return Some(None);
+    }
     let modal = match model.as_deref() {
         Some("modal") => read_modal(&mut s, base).map(Some),
         Some(_) => {

@@ -18,7 +18,9 @@
 //!   readers show as `wavelength`): `forced_wear` (m per wheel passage, the
 //!   smooth rail's pattern) and
 //!   `base_wear` (the base rail's wear, the same way), with two rails the
-//!   second's as `second_rail_forced_wear`, `second_rail_base_wear`;
+//!   second's as `second_rail_forced_wear`, `second_rail_base_wear`; the
+//!   scalar `mean_wear` (m per wheel passage, the smooth rail's mean depth;
+//!   `second_rail_mean_wear`);
 //! * dimension `harmonic` (every perturbed harmonic of every class):
 //!   `harmonic_wavelength` (m), `harmonic_wavenumber` (1/m, signed),
 //!   `harmonic_class`, `harmonic_rail`, `diagonal_rate` (dB per 1e5 wheel
@@ -124,11 +126,11 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
             )?;
         }
         g.coord_f64("position", &s.positions, "m", "position along the stretch from its start", false)?;
-        let envelope = Array2::from_shape_fn((n, s.positions.len()), |(k, p)| {
-            s.modes[k].envelope(s.class_of(k), 0, &s.positions[p..p + 1], supercell)[0]
-        });
-        // (Each row normalised over all the positions, not one at a time.)
-        let envelope = normalise_rows(envelope);
+        let mut envelope = Array2::zeros((n, s.positions.len()));
+        for (k, mut row) in envelope.rows_mut().into_iter().enumerate() {
+            let e = s.modes[k].envelope(s.class_of(k), 0, &s.positions, supercell);
+            row.iter_mut().zip(e).for_each(|(d, v)| *d = v);
+        }
         g.var_f64(
             "envelope",
             &["mode", "position"],
@@ -165,6 +167,14 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
                 "amplitude of the contact-filtered wear one wheel passage leaves on the base rail (per wheel passage)",
             )?;
             g.var_attr_str(&format!("{prefix}base_wear"), "coordinates", "forced_wavelength")?;
+            let mean = ndarray::Array0::from_elem((), s.mean_wear[*r]);
+            g.var_f64(
+                &format!("{prefix}mean_wear"),
+                &[],
+                mean.view().into_dyn(),
+                "m",
+                "mean depth of the contact-filtered wear one wheel passage leaves on the smooth rail (per wheel passage)",
+            )?;
         }
         // Every perturbed harmonic.
         let mut rows: Vec<HarmonicRow> = Vec::new();
@@ -241,14 +251,3 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
 /// class, rail, its rate alone (dB per 1e5 wheel passages) and drift alone
 /// (m per 1e5 wheel passages).
 type HarmonicRow = (f64, f64, i64, i64, f64, f64);
-
-/// Each row of `a` scaled to rms 1 (rows of zeros kept).
-fn normalise_rows(mut a: Array2<f64>) -> Array2<f64> {
-    for mut row in a.rows_mut() {
-        let rms = (row.iter().map(|v| v * v).sum::<f64>() / row.len().max(1) as f64).sqrt();
-        if rms > 0.0 {
-            row.mapv_inplace(|v| v / rms);
-        }
-    }
-    a
-}

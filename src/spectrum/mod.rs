@@ -216,6 +216,46 @@ pub fn band(params: &SpectrumParams, nodes: usize, length: f64) -> Option<(usize
     (low <= high).then_some((low, high))
 }
 
+/// What a spectrum of a scene will measure, before measuring it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plan {
+    /// The supercell's length `M L` (m).
+    pub supercell: f64,
+    /// The classes measured, and how many harmonics (both signs, every
+    /// rail) each holds.
+    pub classes: Vec<(usize, usize)>,
+    /// Rounds of perturbations (one passage each, two with central
+    /// differences).
+    pub rounds: usize,
+    /// Supercell passages in all (every traffic class, the base, the
+    /// smooth rail where the base is not smooth).
+    pub passages: usize,
+    /// The same in passages over one stretch.
+    pub passage_equivalents: usize,
+}
+
+/// The plan of `params` on `scene` (a growth study's) with `rails` rails;
+/// None where the band holds no harmonic.
+pub fn plan(scene: &Scene, params: &SpectrumParams, rails: usize) -> Option<Plan> {
+    let cell = study_grid(scene);
+    let nodes = cell.nx * params.classes;
+    let length = nodes as f64 * cell.dx;
+    let (low, high) = band(params, nodes, length)?;
+    let classes = bloch::classes(params.classes, low, high, rails);
+    let rounds = bloch::rounds(&bloch::slots(&classes)).len();
+    let per_round = if params.difference == Difference::Central { 2 } else { 1 };
+    let traffic = scene.growth.as_ref().map_or(1, |g| g.classes.len().max(1));
+    let smooth = usize::from(params.base != Base::Smooth);
+    let passages = traffic * (1 + smooth + per_round * rounds);
+    Some(Plan {
+        supercell: length,
+        classes: classes.iter().map(|c| (c.j, c.basis.len())).collect(),
+        rounds,
+        passages,
+        passage_equivalents: passages * params.classes,
+    })
+}
+
 /// The growth spectrum of `scene` (a growth study's scene: its contact,
 /// dynamics, traffic) about the rails `base` (m, on the study's grid; the
 /// first rail's, then the second's), as `params` ask.

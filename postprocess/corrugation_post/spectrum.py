@@ -1,0 +1,124 @@
+"""Figures and tables of ``corrugation spectrum`` files (the linear growth
+spectrum): each mode's growth rate against its wavelength (wavelength
+decreasing along the axis, the field's convention), coloured by its purity,
+with the harmonics' rates alone beside; the forced pattern the smooth rail
+wears; and the fastest modes' envelopes along the stretch."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .io import RunFileError
+
+# Modes whose envelope spectrum_envelope.png draws.
+ENVELOPES = 4
+
+
+def load(path):
+    """The group ``spectrum`` of a spectrum file, as an xarray Dataset."""
+    try:
+        ds = xr.open_dataset(path, engine="h5netcdf", group="spectrum")
+    except (OSError, ValueError) as err:
+        raise RunFileError(f"{path}: not a spectrum file (no group 'spectrum'): {err}") from None
+    for name in ("growth_rate", "wavelength", "frequency", "forced_wear", "forced_wavelength"):
+        if name not in ds.variables:
+            raise RunFileError(f"{path}: group 'spectrum' has no variable '{name}'")
+    return ds
+
+
+def table(ds, modes: int = 10):
+    """The fastest ``modes`` modes as rows (dicts)."""
+    rows = []
+    for m in range(min(modes, ds.sizes["mode"])):
+        rows.append({
+            "mode": m,
+            "growth_rate_db_per_1e5": float(ds.growth_rate[m]),
+            "wavelength_mm": float(ds.wavelength[m]) * 1e3,
+            "frequency_hz": float(ds.frequency[m]),
+            "drift_mm_per_1e5": float(ds.drift[m]) * 1e3,
+            "purity": float(ds.purity[m]),
+            "support_ratio": float(ds.support_ratio[m]),
+        })
+    return rows
+
+
+def figure(path, out):
+    """Writes spectrum_modes.png, spectrum_forced.png, spectrum_envelope.png
+    and spectrum_modes.csv into ``out``; returns their paths."""
+    import matplotlib.pyplot as plt
+
+    ds = load(path)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    targets = []
+    lam = ds.wavelength.values * 1e3
+    rate = ds.growth_rate.values
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    if "diagonal_rate" in ds.variables:
+        hl = ds.harmonic_wavelength.values * 1e3
+        positive = ds.harmonic_wavenumber.values > 0
+        ax.plot(hl[positive], ds.diagonal_rate.values[positive], "_", color="grey", ms=10,
+                label="each harmonic alone (J's diagonal)")
+    sc = ax.scatter(lam, rate, c=ds.purity.values, cmap="viridis", vmin=0, vmax=1, zorder=3, label="modes")
+    fig.colorbar(sc, ax=ax, label="purity (largest harmonic's share)")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xscale("log")
+    ax.invert_xaxis()
+    ax.set_xlabel("wavelength of the mode's largest harmonic (mm)")
+    ax.set_ylabel("growth rate (dB per 1e5 wheel passages)")
+    speed = ds.attrs.get("speed")
+    title = f"linear growth spectrum: {ds.sizes['mode']} modes, {int(ds.attrs.get('bloch_classes', 1))} Bloch class(es)"
+    if speed:
+        title += f", {float(speed) * 3.6:.0f} km/h"
+    ax.set_title(title)
+    ax.legend(fontsize=8, loc="lower left")
+    if speed:
+        top = ax.secondary_xaxis("top", functions=(lambda l: float(speed) / np.maximum(l, 1e-9) * 1e3,
+                                                   lambda f: float(speed) / np.maximum(f, 1e-9) * 1e3))
+        top.set_xlabel("frequency (Hz)")
+    fig.tight_layout()
+    target = out / "spectrum_modes.png"
+    fig.savefig(target, dpi=120)
+    plt.close(fig)
+    targets.append(target)
+
+    fig, ax = plt.subplots(figsize=(8, 3.5))
+    waves = ds.forced_wavelength.values * 1e3
+    ax.semilogx(waves, ds.forced_wear.values * 1e5 * 1e9, ".-", label="forced (smooth rail)")
+    ax.invert_xaxis()
+    ax.set_xlabel("wavelength (mm)")
+    ax.set_ylabel("wear per 1e5 wheel passages (nm)")
+    ax.set_title("the forced pattern: what the smooth rail wears whatever the roughness")
+    fig.tight_layout()
+    target = out / "spectrum_forced.png"
+    fig.savefig(target, dpi=120)
+    plt.close(fig)
+    targets.append(target)
+
+    if "envelope" in ds.variables and ds.sizes["mode"] > 0:
+        fig, ax = plt.subplots(figsize=(8, 3.5))
+        x = ds.position.values * 1e3
+        for m in range(min(ENVELOPES, ds.sizes["mode"])):
+            ax.plot(x, ds.envelope.values[m], label=f"{lam[m]:.1f} mm, {rate[m]:+.2f} dB/1e5")
+        ax.set_xlabel("position along the stretch (mm; a sleeper at 0 on a one-bay stretch)")
+        ax.set_ylabel("local amplitude (rms 1)")
+        ax.set_title("the fastest modes' patterns along the stretch")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        target = out / "spectrum_envelope.png"
+        fig.savefig(target, dpi=120)
+        plt.close(fig)
+        targets.append(target)
+
+    rows = table(ds)
+    target = out / "spectrum_modes.csv"
+    with open(target, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()) if rows else ["mode"])
+        w.writeheader()
+        w.writerows(rows)
+    targets.append(target)
+    return targets
