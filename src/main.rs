@@ -92,8 +92,13 @@ enum Command {
     /// class's modes (growth rate, wavelength, drift, pattern) and the
     /// smooth rail's forced pattern.
     Spectrum {
-        /// Scene config (TOML) of a growth study ([spectrum] optional).
+        /// Scene config (TOML) of a growth study ([spectrum] optional), or
+        /// a growth study's run file: the spectrum about its stored rail.
         config: PathBuf,
+        /// With a run file: about the rail stored after this passage (from
+        /// 1; default: the last passage's).
+        #[arg(long = "pass", value_parser = clap::value_parser!(u32).range(1..))]
+        pass: Option<u32>,
         /// Output file (default: the config's name with _spectrum.h5).
         #[arg(short, long)]
         output: Option<PathBuf>,
@@ -166,10 +171,25 @@ fn main() -> ExitCode {
             resume(&file, passes.map(|n| n as usize), output.as_deref())
         }
         Command::Sweep { command } => sweep_cli::main(command),
-        Command::Spectrum { config, output, set, overwrite } => {
-            let resolved = match load(&config, &set) {
-                Ok(r) => r,
-                Err(code) => return code,
+        Command::Spectrum { config, pass, output, set, overwrite } => {
+            let run_file = corrugation::config::is_hdf5(&config);
+            let resolved = if run_file {
+                match corrugation::run::stored_config(&config, &set) {
+                    Ok(r) => r,
+                    Err(e) => {
+                        say!("error: {e}");
+                        return ExitCode::from(2);
+                    }
+                }
+            } else {
+                if pass.is_some() {
+                    say!("error: --pass picks a stored passage of a run file; {} is a config", config.display());
+                    return ExitCode::from(2);
+                }
+                match load(&config, &set) {
+                    Ok(r) => r,
+                    Err(code) => return code,
+                }
             };
             let out = output.unwrap_or_else(|| {
                 let stem = config.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or("run".into());
@@ -178,7 +198,16 @@ fn main() -> ExitCode {
             if let Err(code) = new_output(&out, overwrite, false).and_then(|_| writable(&out)) {
                 return code;
             }
-            spectrum_cli::spectrum(&resolved, &out)
+            let stored = match run_file.then(|| spectrum_cli::stored_rail(&config, &resolved, pass.map(|p| p as usize)))
+            {
+                Some(Ok(rails)) => Some(rails),
+                Some(Err(e)) => {
+                    say!("error: {e}");
+                    return ExitCode::from(2);
+                }
+                None => None,
+            };
+            spectrum_cli::spectrum(&resolved, stored, &out)
         }
         Command::Track { config, output, set, overwrite } => {
             let resolved = match load(&config, &set) {

@@ -14,8 +14,28 @@ use std::time::Instant;
 /// Modes printed at the end.
 const PRINTED: usize = 8;
 
-/// Measures and writes the spectrum of `resolved` to `out`.
-pub fn spectrum(resolved: &Resolved, out: &Path) -> ExitCode {
+/// The rail a run file's study holds: its profile after the passages
+/// stored, or with `pass` (from 1) that passage's stored snapshot; each
+/// rail's.
+pub fn stored_rail(file: &Path, resolved: &Resolved, pass: Option<usize>) -> Result<Vec<ndarray::Array2<f64>>, String> {
+    let state = corrugation::run::stored_state(file, resolved).map_err(|e| e.to_string())?;
+    let pick = |s: &corrugation::growth::state::RunState| match pass {
+        None => Ok(s.profile.clone()),
+        Some(p) => s.rail.iter().find(|r| r.index as usize + 1 == p).map(|r| r.profile.clone()).ok_or_else(|| {
+            let kept: Vec<String> = s.rail.iter().map(|r| (r.index + 1).to_string()).collect();
+            format!(
+                "{}: passage {p} is not stored (rail snapshots of passages {}; growth.store_every sets them)",
+                file.display(),
+                kept.join(", ")
+            )
+        }),
+    };
+    std::iter::once(&state).chain(state.second_rail.as_deref()).map(pick).collect()
+}
+
+/// Measures and writes the spectrum of `resolved` to `out`, about `stored`
+/// (a run file's rail) or the config's `spectrum.base`.
+pub fn spectrum(resolved: &Resolved, stored: Option<Vec<ndarray::Array2<f64>>>, out: &Path) -> ExitCode {
     let scene = &resolved.scene;
     if scene.growth.is_none() {
         say!(
@@ -26,12 +46,13 @@ pub fn spectrum(resolved: &Resolved, out: &Path) -> ExitCode {
     }
     let params = scene.spectrum.unwrap_or_default();
     let state = initial_state(scene);
-    let base: Vec<ndarray::Array2<f64>> = match params.base {
-        Base::Smooth => {
+    let base: Vec<ndarray::Array2<f64>> = match (stored, params.base) {
+        (Some(rails), _) => rails,
+        (None, Base::Smooth) => {
             let z = ndarray::Array2::zeros(state.profile.raw_dim());
             vec![z; 1 + usize::from(state.second_rail.is_some())]
         }
-        Base::Roughness => std::iter::once(state.profile.clone())
+        (None, Base::Roughness) => std::iter::once(state.profile.clone())
             .chain(state.second_rail.as_ref().map(|s| s.profile.clone()))
             .collect(),
     };

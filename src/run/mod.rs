@@ -4,4 +4,4 @@
 
 mod study;
 
-pub use study::{Event, ResumeError, RunError, RunState, RunSummary, resume, run_scene};
+pub use study::{Event, ResumeError, RunError, RunState, RunSummary, resume, run_scene, stored_config, stored_state};

@@ -162,6 +162,51 @@ pub fn resume(
     out: Option<&Path>,
     progress: &mut dyn FnMut(Event),
 ) -> Result<RunSummary, ResumeError> {
+    let read = |source| ResumeError::Read { path: path.to_owned(), source };
+    let mut resolved = stored_config(path, &[])?;
+    let done = read_f64(path, "passes", "traffic").map_err(read)?.len();
+    if let Some(more) = more {
+        if done + more > MAX_PASSES {
+            return Err(ResumeError::TooMany { path: path.to_owned(), done, more });
+        }
+        resolved = stored_config(path, &[format!("growth.passes={}", done + more)])?;
+    }
+    let scene = &resolved.scene;
+    let Some(growth) = &scene.growth else {
+        return Err(ResumeError::NotGrowth { path: path.to_owned() });
+    };
+    if done > growth.passes {
+        let msg = format!("holds {done} passages, more than its config's growth.passes = {}", growth.passes);
+        return Err(read(NcError::Invalid { path: path.to_owned(), what: "passes/pass".into(), msg }));
+    }
+    let complete = read_attr_str(path, "", "status").map_err(read)? == "complete";
+    // Complete and nothing more asked: in place there is nothing to do (a
+    // copy to another file is written as before).
+    if complete && more.is_none() && out.is_none_or(|o| o == path) {
+        return Err(ResumeError::Complete { path: path.to_owned(), done });
+    }
+    let mut state = stored_state(path, &resolved)?;
+    // A snapshot stored only because the earlier run ended there is not one
+    // the longer run stores.
+    // (Each rail's: the second rail stores with the first.)
+    let drop_end = |state: &mut RunState| {
+        if growth.passes > done
+            && let Some(last) = state.rail.last()
+            && !(last.index as usize + 1).is_multiple_of(growth.store_every)
+        {
+            state.rail.pop();
+        }
+    };
+    drop_end(&mut state);
+    if let Some(second) = state.second_rail.as_deref_mut() {
+        drop_end(second);
+    }
+    Ok(continue_run(&resolved, state, out.unwrap_or(path), progress)?)
+}
+
+/// The config a growth study's run file `path` stores, with `set`
+/// overrides (a measured initial roughness from the file's own copy).
+pub fn stored_config(path: &Path, set: &[String]) -> Result<Resolved, ResumeError> {
     // The file system's word for a missing or unreadable file, not the
     // HDF5 library's.
     if let Err(source) = std::fs::File::open(path) {
@@ -183,34 +228,32 @@ pub fn resume(
     let toml = read_attr_str(path, "", "config").map_err(read)?;
     let source = format!("stored in {}", path.display());
     let config_err = |source| ResumeError::Config { path: path.to_owned(), source };
-    // A measured initial roughness comes from the file's own copy.
     let records = match read_record(path).map_err(read)? {
         Some(r) => RecordSource::Stored(r),
         None => RecordSource::Dir(".".into()),
     };
-    let mut resolved = load_str_with(&toml, &source, &[], &records).map_err(config_err)?;
+    let resolved = load_str_with(&toml, &source, set, &records).map_err(config_err)?;
     if resolved.scene.growth.is_none() {
         return Err(ResumeError::NotGrowth { path: path.to_owned() });
     }
-    let done = read_f64(path, "passes", "traffic").map_err(read)?.len();
-    if let Some(more) = more {
-        if done + more > MAX_PASSES {
-            return Err(ResumeError::TooMany { path: path.to_owned(), done, more });
-        }
-        let set = [format!("growth.passes={}", done + more)];
-        resolved = load_str_with(&toml, &source, &set, &records).map_err(config_err)?;
-    }
+    Ok(resolved)
+}
+
+/// The state a growth study's run file `path` holds (its profile after
+/// the passages stored, their rows, the rail snapshots), read with the
+/// layout of its config `resolved` ([`stored_config`]).
+pub fn stored_state(path: &Path, resolved: &Resolved) -> Result<RunState, ResumeError> {
+    let read = |source| ResumeError::Read { path: path.to_owned(), source };
     let scene = &resolved.scene;
     let Some(growth) = &scene.growth else {
         return Err(ResumeError::NotGrowth { path: path.to_owned() });
     };
     let grid = study_grid(scene);
-    let elements = scene.contact.model.elements(scene);
     let layout = StateLayout {
         grid_shape: (grid.ny, grid.nx),
         wavelengths: wavelengths(grid.nx, grid.dx).len(),
         bands: crate::levels::resolved_bands(scene.levels.bands, grid.nx, grid.dx).len(),
-        elements,
+        elements: scene.contact.model.elements(scene),
         fields: scene.output.store_fields,
         history_passes: &growth.contact_history,
         classes: growth.classes.len(),
@@ -221,33 +264,7 @@ pub fn resume(
             .collect(),
         second_rail: scene.second_rail.is_some(),
     };
-    if done > growth.passes {
-        let msg = format!("holds {done} passages, more than its config's growth.passes = {}", growth.passes);
-        return Err(read(NcError::Invalid { path: path.to_owned(), what: "passes/pass".into(), msg }));
-    }
-    let complete = read_attr_str(path, "", "status").map_err(read)? == "complete";
-    // Complete and nothing more asked: in place there is nothing to do (a
-    // copy to another file is written as before).
-    if complete && more.is_none() && out.is_none_or(|o| o == path) {
-        return Err(ResumeError::Complete { path: path.to_owned(), done });
-    }
-    let mut state = read_run_state(path, &layout).map_err(read)?;
-    // A snapshot stored only because the earlier run ended there is not one
-    // the longer run stores.
-    // (Each rail's: the second rail stores with the first.)
-    let drop_end = |state: &mut RunState| {
-        if growth.passes > done
-            && let Some(last) = state.rail.last()
-            && !(last.index as usize + 1).is_multiple_of(growth.store_every)
-        {
-            state.rail.pop();
-        }
-    };
-    drop_end(&mut state);
-    if let Some(second) = state.second_rail.as_deref_mut() {
-        drop_end(second);
-    }
-    Ok(continue_run(&resolved, state, out.unwrap_or(path), progress)?)
+    read_run_state(path, &layout).map_err(read)
 }
 
 /// Runs the passages from `state.rows.len()` to the planned number, with
