@@ -520,6 +520,9 @@ fn number(v: &toml::Value) -> Option<f64> {
 /// What the growth loop's dynamics closes, direction by direction, and what
 /// the dynamics in every direction costs before the first passage.
 fn print_directions(s: &corrugation::params::Scene, g: &corrugation::params::GrowthParams, cost: &CostEstimate) {
+    if let Some(choice) = &s.wheelset_choice {
+        println!("wheelset choice    auto: {choice} (wheelset.model = \"rigid\", \"torsion\" or \"modal\" forces one)");
+    }
     if g.dynamics == DynamicsKind::Imposed {
         return;
     }
@@ -550,6 +553,21 @@ fn print_directions(s: &corrugation::params::Scene, g: &corrugation::params::Gro
          right of the centre line), the wheel {wheel}; creep forces from {creep}",
         contact_offset * 1e3
     );
+    let mut left_out = Vec::new();
+    if s.second_rail.is_none() {
+        left_out.push(
+            "the other rail's contact (the wheelset's other wheel runs free: its creep forces uncorrelated with this \
+             rail's profile; [second_rail] couples both)",
+        );
+    }
+    if s.wheelset.as_ref().is_none_or(|w| w.modal.is_none()) {
+        left_out.push("the wheelset's flexible modes (wheelset.model = \"modal\")");
+    }
+    if !spin {
+        left_out.push("the spin's variation");
+    }
+    left_out.push("the vehicle above the primary suspension (its modes are below the band)");
+    println!("left out           {}", left_out.join("; "));
     if spin {
         let wheel_turns = if s.wheelset.as_ref().is_some_and(|w| w.modal.is_some()) {
             "the wheelset's yaw, the axle's horizontal bending and the wheels' axial modes"

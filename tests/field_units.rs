@@ -3,7 +3,7 @@
 //! limit, `growth.stop = "limit"`, and resume bit for bit with them; the
 //! config keys of `[levels]` and `[traffic]` and their refusals.
 use corrugation::config::{load_file, load_str};
-use corrugation::levels::forecast::passages_to_limit;
+use corrugation::levels::forecast::{driven, passages_to_limit};
 use corrugation::levels::limit::ISO3095_LIMIT;
 use corrugation::output::netcdf::{read_attr_str, read_f64};
 use corrugation::run::{resume, run_scene};
@@ -64,7 +64,9 @@ fn levels_limit_and_traffic_in_operator_units() {
         let want = ISO3095_LIMIT.iter().find(|(cm, _)| (cm * 10.0 - n).abs() < 1e-9).map_or(f64::INFINITY, |p| p.1);
         assert_eq!(limit[k], want, "{n} mm");
     }
-    // passages_to_limit is the level's distance to the limit at its rate.
+    // passages_to_limit is the level's distance to the limit at its rate
+    // (a band below 1 nm, which holds no roughness of its own, at the pace
+    // of its driven change: levels::forecast::driven).
     let (level, rate, to_limit) =
         (table(&out, "roughness_level"), table(&out, "level_rate"), table(&out, "passages_to_limit"));
     assert_eq!(level.dim(), (3, nominal.len()));
@@ -73,8 +75,9 @@ fn levels_limit_and_traffic_in_operator_units() {
     let forced = table(&out, "forced_band_wear");
     assert!(forced.iter().all(|f| *f == 0.0), "{forced:?}");
     for ((p, k), n) in to_limit.indexed_iter() {
-        assert_eq!(*n, passages_to_limit(level[[p, k]], rate[[p, k]], 0.0, limit[k]));
-        if n.is_finite() && *n > 0.0 {
+        let (r, f) = driven(level[[p, k]], rate[[p, k]], 0.0);
+        assert_eq!(*n, passages_to_limit(level[[p, k]], r, f, limit[k]));
+        if n.is_finite() && *n > 0.0 && f == 0.0 {
             assert!((level[[p, k]] + rate[[p, k]] * n / 1e5 - limit[k]).abs() < 1e-9);
         }
     }

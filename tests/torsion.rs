@@ -86,7 +86,7 @@ fn scene(set: &[&str]) -> Result<corrugation::config::Resolved, corrugation::con
     .map(|s| s.to_string())
     .collect();
     all.extend(set.iter().map(|s| s.to_string()));
-    load_str(&format!("{text}\n[wheelset]\n"), "g", &all)
+    load_str(&format!("{text}\n[wheelset]\nmodel = \"torsion\"\n"), "g", &all)
 }
 
 #[test]
@@ -119,7 +119,7 @@ fn the_torsional_mode_needs_creepage_control_and_a_track_model() {
     // The vertical dynamics' torsional feedback acts on a prescribed
     // creepage; in every direction the wheel's rotation is part of the
     // contact's dynamics under either control.
-    let forced = format!("{}\n[wheelset]\n", include_str!("../configs/growth_fastsim.toml"));
+    let forced = format!("{}\n[wheelset]\nmodel = \"torsion\"\n", include_str!("../configs/growth_fastsim.toml"));
     let e = errors(load_str(&forced, "g", &["dynamics.directions=vertical".into()]));
     assert!(e.len() == 1 && e[0].starts_with("wheelset") && e[0].contains("load.control = \"creepage\""), "{e:?}");
     assert!(errors(load_str(&forced, "g", &[])).is_empty());
@@ -160,4 +160,33 @@ fn assert_creepage_is_eq3(resolved: &corrugation::config::Resolved, file: &std::
     let worst = inside.iter().zip(&expected).fold(0.0f64, |m, (&k, e)| m.max((xi[k] + 1.3e-3 - e).abs()));
     eprintln!("{group}: creepage variation up to {span:.3e}; against eq. 3 within {worst:.3e}");
     assert!(span > 1e-7 && worst < 1e-6 * span, "{group}: {worst:e} of {span:e}");
+}
+
+#[test]
+fn a_run_file_written_before_the_automatic_wheelset_resumes_with_its_torsional_mode() {
+    // Before `wheelset.model = "auto"`, a [wheelset] without `model` was
+    // the torsional mode, and the resolved config did not record it: such
+    // a file (its stored config without the line) resumes bit for bit as
+    // the torsional study it was.
+    let dir = tempfile::tempdir().unwrap();
+    let (full, part) = (dir.path().join("full.h5"), dir.path().join("part.h5"));
+    run_scene(&scene(&["growth.passes=2"]).unwrap(), &full, &mut |_| {}).unwrap();
+    run_scene(&scene(&["growth.passes=1"]).unwrap(), &part, &mut |_| {}).unwrap();
+    let old = {
+        let f = hdf5::File::open(&part).unwrap();
+        let text: hdf5::types::VarLenUnicode = f.attr("config").unwrap().read_scalar().unwrap();
+        text.as_str().lines().filter(|l| !l.starts_with("model = \"torsion\"")).collect::<Vec<_>>().join("\n")
+    };
+    assert!(old.contains("[wheelset]") && !old.contains("model = \"torsion\""));
+    {
+        let f = hdf5::File::open_rw(&part).unwrap();
+        f.delete_attr("config").unwrap();
+        let v: hdf5::types::VarLenUnicode = old.parse().unwrap();
+        f.new_attr::<hdf5::types::VarLenUnicode>().create("config").unwrap().write_scalar(&v).unwrap();
+    }
+    resume(&part, Some(1), None, &mut |_| {}).unwrap();
+    for (g, v) in [("rail", "state"), ("passes", "rms_corrugation")] {
+        let (a, b) = (read_f64(&full, g, v).unwrap(), read_f64(&part, g, v).unwrap());
+        assert!(a.iter().zip(b.iter()).all(|(x, y)| x.to_bits() == y.to_bits()), "{g}/{v}");
+    }
 }

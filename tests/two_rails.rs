@@ -205,7 +205,7 @@ fn without_the_spins_channel_the_spin_stays_at_its_mean() {
 
 #[test]
 fn a_second_rail_the_scene_cannot_carry_is_refused_naming_the_key() {
-    let set = ["second_rail.normal_force=1.1e5".to_string()];
+    let set = ["second_rail.normal_force=1.1e5".to_string(), "wheelset.model=torsion".to_string()];
     let base = include_str!("../configs/growth_fastsim.toml");
     let Err(e) = load_str(base, "g", &set) else { panic!("accepted without the modal wheelset") };
     let e = e.to_string();

@@ -30,18 +30,38 @@ fn errors(text: &str) -> Vec<String> {
 }
 
 #[test]
-fn the_torsional_model_s_resolved_config_has_no_new_key() {
-    // [wheelset] as before `model` existed: the resolved section holds the
-    // three torsion keys only (run files stay as they were), and the
-    // scene's model is the torsion's two modes.
+fn a_bare_section_takes_the_automatic_wheelset_and_records_it() {
+    // [wheelset] without `model`: `auto`, recorded in the resolved config
+    // (a stored section without it was written before `auto`, when it
+    // meant the torsional mode: tests/resume.rs), here the modal wheelset
+    // of a track in every direction; `model = "torsion"` keeps the
+    // torsion's three keys and its two modes.
     let r = load_str(&config(""), "t", &[]).unwrap();
     let section = r.toml.split("[wheelset]").nth(1).unwrap();
+    assert!(section.contains("model = \"auto\""), "{section}");
+    assert!(r.scene.wheelset.as_ref().unwrap().modal.is_some());
+    assert!(r.scene.wheelset_choice.as_deref().is_some_and(|c| c.starts_with("modal")));
+    let r = load_str(&config("model = \"torsion\""), "t", &[]).unwrap();
+    let section = r.toml.split("[wheelset]").nth(1).unwrap();
     let keys: Vec<&str> = section.lines().filter_map(|l| l.split_once(" = ").map(|(k, _)| k)).collect();
-    assert_eq!(keys, ["polar_inertia", "torsional_loss_factor", "torsional_stiffness"], "{section}");
+    assert_eq!(keys, ["model", "polar_inertia", "torsional_loss_factor", "torsional_stiffness"], "{section}");
     let w = r.scene.wheelset.as_ref().unwrap();
-    assert!(w.modal.is_none());
+    assert!(w.modal.is_none() && r.scene.wheelset_choice.is_none());
     let model = wheelset_model(&r.scene).unwrap();
     assert_eq!(model.modes().len(), 2);
+    // The vertical dynamics under creepage control: auto takes the torsion;
+    // under force control, or with imposed loads, the rigid wheel.
+    let vertical = load_str(&config(""), "t", &["dynamics.directions=vertical".into()]).unwrap();
+    assert!(vertical.scene.wheelset.as_ref().is_some_and(|w| w.modal.is_none()));
+    let imposed = load_str(&config(""), "t", &["dynamics.model=imposed".into()]).unwrap();
+    assert!(imposed.scene.wheelset.is_none());
+    let rigid = load_str(&config("model = \"rigid\""), "t", &[]).unwrap();
+    assert!(rigid.scene.wheelset.is_none());
+    let e = errors(&config("model = \"rigid\"\ntorsional_stiffness = 1e6"));
+    assert!(
+        e.len() == 1 && e[0].starts_with("wheelset.torsional_stiffness: is a key of the wheelset's torsion"),
+        "{e:?}"
+    );
 }
 
 #[test]
@@ -68,7 +88,7 @@ fn the_modal_model_reads_its_keys_with_their_defaults() {
 
 #[test]
 fn modal_keys_are_checked_and_belong_to_the_modal_model() {
-    let e = errors(&config("mass = 1500"));
+    let e = errors(&config("model = \"torsion\"\nmass = 1500"));
     assert!(e.len() == 1 && e[0].starts_with("wheelset.mass: is a key of the modal model"), "{e:?}");
     let e = errors(&config("model = \"flexible\""));
     assert!(e.len() == 1 && e[0].starts_with("wheelset.model") && e[0].contains("\"modal\""), "{e:?}");

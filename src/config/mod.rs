@@ -451,6 +451,11 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     let (Some(vehicle), Some(wheelset), Some(levels), Some(second_rail)) = (vehicle, wheelset, levels, second) else {
         return (None, resolved);
     };
+    // The wheelset `auto` takes for this study.
+    let (wheelset, wheelset_choice) = match &growth {
+        Ok(g) => wheelset::resolve(wheelset, g.as_ref(), creepage_x.is_some()),
+        Err(()) => return (None, resolved),
+    };
     let Some(track) = track else {
         return (None, resolved);
     };
@@ -578,6 +583,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         track,
         vehicle,
         wheelset,
+        wheelset_choice,
         second_rail,
         spectrum,
     };

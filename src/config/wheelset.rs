@@ -1,14 +1,14 @@
-//! The `[wheelset]` section: the wheelset's torsional mode
-//! ([`crate::dynamics::torsion`]) and, with `model = "modal"`, the flexible
-//! rotating wheelset ([`crate::dynamics::wheelset`]), read into
-//! [`WheelsetParams`]. Absent, none: the creepage (or the force) is held as
-//! prescribed.
+//! The `[wheelset]` section: the rigid wheel, the wheelset's torsional
+//! mode ([`crate::dynamics::torsion`]) or the flexible rotating wheelset
+//! ([`crate::dynamics::wheelset`]), read into [`WheelsetParams`] (None: the
+//! rigid wheel). `model = "auto"`, the default (also without the section),
+//! takes the physics the scene needs ([`auto_model`]).
 //!
-//! Keys (SI units): `torsional_stiffness` (N m/rad), `polar_inertia` (kg
-//! m^2, per wheel with its half axle), `torsional_loss_factor`; `model` =
-//! `"torsion"` (the default: the torsional mode alone, as before `model`
-//! existed; the resolved config records `model` only where given) or
-//! `"modal"`, which adds `modes` (`"default"` or a CSV table's path,
+//! Keys (SI units): `model` = `"auto"`, `"rigid"`, `"torsion"` (the
+//! torsional mode alone) or `"modal"`; `torsional_stiffness` (N m/rad),
+//! `polar_inertia` (kg m^2, per wheel with its half axle),
+//! `torsional_loss_factor`; with `"modal"` (and `"auto"`) `modes`
+//! (`"default"` or a CSV table's path,
 //! relative to the config file), `mass` (kg), `roll_inertia`, `yaw_inertia`
 //! (kg m^2), `suspension_stiffness_x`, `_y`, `_z` (N/m per axle box),
 //! `suspension_loss_factor`, `axle_box_spacing`, `contact_spacing` (m) and,
@@ -39,46 +39,127 @@ const MODAL_KEYS: [&str; 12] = [
     "wheel_damping",
 ];
 
-/// Reads `[wheelset]` where the config has one: Some(None) without it,
-/// None when a key is invalid. A table's path is relative to `base` (the
-/// config file's directory).
+/// The wheelset a config asks for (`wheelset.model`), before the scene
+/// says what `auto` is.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct WheelsetKeys {
+    /// `auto`, `rigid`, `torsion` or `modal`.
+    pub(super) model: String,
+    /// The torsional mode's keys (every model but the rigid wheel's).
+    pub(super) torsion: (f64, f64, f64),
+    /// The modal model's keys (`auto` and `modal`).
+    pub(super) modal: Option<ModalWheelsetParams>,
+}
+
+/// Reads `[wheelset]` (absent: every key at its default, `model =
+/// "auto"`); None when a key is invalid. A table's path is relative to
+/// `base` (the config file's directory). The resolved config records
+/// `model` wherever the section is given (a stored config with a section
+/// and no `model` was written before `auto`, when that meant the torsional
+/// mode: [`crate::run::stored_config`] reads it so), and no section where
+/// there was none.
 pub(super) fn read(
     root: &mut Table,
     resolved: &mut Table,
     base: &Path,
     errors: &mut Vec<ConfigError>,
-) -> Option<Option<WheelsetParams>> {
-    if !root.contains_key("wheelset") {
-        return Some(None);
-    }
+) -> Option<WheelsetKeys> {
+    let given = root.contains_key("wheelset");
     let mut s = Section::new(root, "", "wheelset", errors);
-    let stiffness = s.f64("torsional_stiffness", Some(AXLE_TORSIONAL_STIFFNESS), Range::Closed(1e4, 1e9));
-    let inertia = s.f64("polar_inertia", Some(WHEEL_POLAR_INERTIA), Range::Closed(1.0, 1e3));
-    let loss_factor = s.f64("torsional_loss_factor", Some(AXLE_TORSIONAL_LOSS_FACTOR), Range::Closed(0.0, 1.0));
-    // `model` is recorded only where given: the torsion's resolved config
-    // (and its run files) stay as they were.
-    let model =
-        if s.has("model") { s.choice("model", None, &["rigid", "torsion", "modal"]) } else { Some("torsion".into()) };
-    if model.as_deref() == Some("rigid") {
-        // The rigid wheel: no wheelset model (its torsion's keys unused).
-        for key in MODAL_KEYS {
-            s.reject(key, "is a key of the modal model: only with wheelset.model = \"modal\"");
+    let model = s.choice("model", Some("auto"), &["auto", "rigid", "torsion", "modal"]);
+    let rigid = model.as_deref() == Some("rigid");
+    let (stiffness, inertia, loss_factor) = if rigid {
+        for key in ["torsional_stiffness", "polar_inertia", "torsional_loss_factor"] {
+            s.reject(key, "is a key of the wheelset's torsion: not with wheelset.model = \"rigid\"");
         }
-        resolved.insert("wheelset".into(), Value::Table(s.finish()));
-        return Some(None);
-    }
+        (Some(AXLE_TORSIONAL_STIFFNESS), Some(WHEEL_POLAR_INERTIA), Some(AXLE_TORSIONAL_LOSS_FACTOR))
+    } else {
+        (
+            s.f64("torsional_stiffness", Some(AXLE_TORSIONAL_STIFFNESS), Range::Closed(1e4, 1e9)),
+            s.f64("polar_inertia", Some(WHEEL_POLAR_INERTIA), Range::Closed(1.0, 1e3)),
+            s.f64("torsional_loss_factor", Some(AXLE_TORSIONAL_LOSS_FACTOR), Range::Closed(0.0, 1.0)),
+        )
+    };
     let modal = match model.as_deref() {
-        Some("modal") => read_modal(&mut s, base).map(Some),
+        Some("modal") | Some("auto") => read_modal(&mut s, base).map(Some),
         Some(_) => {
             for key in MODAL_KEYS {
-                s.reject(key, "is a key of the modal model: only with wheelset.model = \"modal\"");
+                s.reject(key, "is a key of the modal model: only with wheelset.model = \"modal\" or \"auto\"");
             }
             Some(None)
         }
         None => None,
     };
-    resolved.insert("wheelset".into(), Value::Table(s.finish()));
-    Some(Some(WheelsetParams { stiffness: stiffness?, inertia: inertia?, loss_factor: loss_factor?, modal: modal? }))
+    let table = s.finish();
+    if given {
+        resolved.insert("wheelset".into(), Value::Table(table));
+    }
+    Some(WheelsetKeys { model: model?, torsion: (stiffness?, inertia?, loss_factor?), modal: modal? })
+}
+
+/// What `wheelset.model = "auto"` takes for a scene whose growth study is
+/// `growth` (None: a single passage) under creepage control (`creepage`)
+/// or force control, and why: the flexible rotating wheelset wherever the
+/// dynamics has a track model in every direction (it moves the spectrum
+/// beyond the chain's tolerance there: docs/src/theory/wheelset.md,
+/// scripts/wheelset_rule.sh); with the vertical model under creepage
+/// control its torsional mode, the one wheelset body that model couples
+/// (the creepage's answer to the normal force); the rigid wheel elsewhere
+/// (imposed loads; the vertical model under force control, where the
+/// torsion has nothing to vary).
+pub fn auto_model(growth: Option<&crate::params::GrowthParams>, creepage: bool) -> (&'static str, &'static str) {
+    match growth {
+        None => ("rigid", "a single passage has no dynamics"),
+        Some(g) if g.dynamics == DynamicsKind::Imposed => ("rigid", "imposed loads: no dynamics to couple"),
+        Some(g) if g.directions == Directions::Vertical && creepage => (
+            "torsion",
+            "the vertical model under creepage control couples the wheelset's torsion (the creepage's answer to the \
+             normal force)",
+        ),
+        Some(g) if g.directions == Directions::Vertical => (
+            "rigid",
+            "the vertical model under force control: its wheel is the unsprung mass, the torsion has no creepage \
+             to vary",
+        ),
+        Some(_) => (
+            "modal",
+            "a track model in every direction: the wheelset's modes move the growth spectrum (the rigid wheel \
+             leaves them out)",
+        ),
+    }
+}
+
+/// The wheelset of `keys` for a scene whose growth study is `growth`:
+/// `auto` resolved ([`auto_model`]), None for the rigid wheel; with the
+/// choice's reason where `auto` made it.
+pub(super) fn resolve(
+    keys: WheelsetKeys,
+    growth: Option<&crate::params::GrowthParams>,
+    creepage: bool,
+) -> (Option<WheelsetParams>, Option<String>) {
+    let (model, why) = match keys.model.as_str() {
+        "auto" => {
+            let (m, why) = auto_model(growth, creepage);
+            (m, Some(format!("{m}: {why}")))
+        }
+        m => (
+            if m == "rigid" {
+                "rigid"
+            } else if m == "modal" {
+                "modal"
+            } else {
+                "torsion"
+            },
+            None,
+        ),
+    };
+    let (stiffness, inertia, loss_factor) = keys.torsion;
+    let params = match model {
+        "rigid" => None,
+        "modal" => Some(WheelsetParams { stiffness, inertia, loss_factor, modal: keys.modal }),
+        _ => Some(WheelsetParams { stiffness, inertia, loss_factor, modal: None }),
+    };
+    (params, why)
 }
 
 /// The modal model's keys.

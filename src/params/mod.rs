@@ -477,8 +477,11 @@ pub struct Scene {
     pub track: crate::dynamics::track::TrackConfig,
     /// The vehicle's wheels on the rail (`[vehicle]`; one by default).
     pub vehicle: VehicleParams,
-    /// The wheelset (`[wheelset]`), if modelled.
+    /// The wheelset (`[wheelset]`), if modelled (None: the rigid wheel).
     pub wheelset: Option<WheelsetParams>,
+    /// What `wheelset.model = "auto"` chose and why (None where the
+    /// config names the model).
+    pub wheelset_choice: Option<String>,
     /// The wheelset's second rail (`[second_rail]`), if modelled: the
     /// rail of the scene is then the first (the wheelset's wheel 0).
     pub second_rail: Option<SecondRail>,

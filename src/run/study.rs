@@ -232,7 +232,19 @@ pub fn stored_config(path: &Path, set: &[String]) -> Result<Resolved, ResumeErro
         Some(r) => RecordSource::Stored(r),
         None => RecordSource::Dir(".".into()),
     };
-    let resolved = load_str_with(&toml, &source, set, &records).map_err(config_err)?;
+    // A stored [wheelset] without `model` was written before `auto`
+    // existed, when it meant the torsional mode (now the resolved config
+    // always records it): it resumes as it ran.
+    let legacy = toml
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|t| t.get("wheelset").cloned())
+        .is_some_and(|w| w.as_table().is_some_and(|w| !w.contains_key("model")));
+    let mut set = set.to_vec();
+    if legacy {
+        set.insert(0, "wheelset.model=torsion".into());
+    }
+    let resolved = load_str_with(&toml, &source, &set, &records).map_err(config_err)?;
     if resolved.scene.growth.is_none() {
         return Err(ResumeError::NotGrowth { path: path.to_owned() });
     }
