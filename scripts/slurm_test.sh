@@ -13,7 +13,10 @@
 #      scancel once it has a checkpoint, checks that `sweep status` reports
 #      that member as a checkpoint, re-submits with --only-unfinished (an
 #      array of exactly that member), which resumes it, and compares the
-#      collected dataset with the local one bit for bit.
+#      collected dataset with the local one bit for bit;
+#   4. spreads a linear growth spectrum over a job array of two parts and a
+#      merge job (`corrugation spectrum --slurm 2`), and compares the merged
+#      spectrum with the one measured here in one piece, bit for bit.
 # Every daemon it started is stopped by PID, also on failure. About 40 s on
 # 2 cores (the cluster starts in about 1 s).
 # Needs root (or sudo) to install packages and run the daemons.
@@ -191,4 +194,23 @@ grep -q "4 members: 4 complete" status.txt
 "$bin" sweep collect killed.toml -o killed.h5
 same local.h5 killed.h5
 say "killed member resumed by --only-unfinished = local run, bit for bit"
+
+# A spectrum over two array tasks and the merge job.
+short=(--set rail.x_max=0.06 --set passage.end=0.06 --set roughness.wavelength_max=0.06
+       --set spectrum.wavelength_min=0.019 --set spectrum.wavelength_max=0.061)
+"$bin" spectrum "$repo/configs/growth_exact.toml" "${short[@]}" -o here.h5
+merge=$("$bin" spectrum "$repo/configs/growth_exact.toml" "${short[@]}" -o spread.h5 --slurm 2 --cpus-per-task 1)
+say "submitted the spectrum's parts and its merge job $merge"
+for _ in $(seq 900); do [ -z "$(squeue -h 2>/dev/null)" ] && break; sleep 0.2; done
+[ -f spread.h5 ] || { say "the merge job wrote no spectrum"; cat spread.h5.parts/*.out >&2 || true; exit 1; }
+"$py" - here.h5 spread.h5 <<'EOF'
+import sys, h5py
+a, b = (h5py.File(p, "r")["spectrum"] for p in sys.argv[1:])
+names = sorted(a)
+assert names == sorted(b), "different variables"
+for k in names:
+    assert a[k][()].tobytes() == b[k][()].tobytes(), f"{k} differs"
+print(f"spectrum: {len(names)} variables equal bit for bit")
+EOF
+say "spectrum spread over a job array and merged = measured in one piece, bit for bit"
 say "passed in $(( $(date +%s) - start )) s"

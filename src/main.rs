@@ -99,12 +99,44 @@ enum Command {
         /// 1; default: the last passage's).
         #[arg(long = "pass", value_parser = clap::value_parser!(u32).range(1..))]
         pass: Option<u32>,
+        /// Measure part K of N only (K from 1): its rounds, written as a
+        /// part file for `corrugation spectrum-merge` (a job array's task).
+        #[arg(long, value_name = "K/N", value_parser = part_arg, conflicts_with = "slurm")]
+        part: Option<(usize, usize)>,
+        /// Spread the measurement over a Slurm job array of N parts and a
+        /// merge job (writes OUT's folder OUT.parts/, submits, prints the
+        /// merge job's id).
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
+        slurm: Option<u32>,
+        /// With --slurm: CPUs per array task.
+        #[arg(long, default_value_t = 1, requires = "slurm")]
+        cpus_per_task: usize,
+        /// With --slurm: an argument for sbatch (repeatable), e.g.
+        /// --sbatch-arg=--partition=long.
+        #[arg(long = "sbatch-arg", allow_hyphen_values = true, requires = "slurm")]
+        sbatch_arg: Vec<String>,
+        /// With --slurm: write the scripts, do not submit them.
+        #[arg(long, requires = "slurm")]
+        no_submit: bool,
         /// Output file (default: the config's name with _spectrum.h5).
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Override a config key (repeatable), e.g. --set spectrum.classes=4.
         #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
         set: Vec<String>,
+        /// Replace the output file if it exists.
+        #[arg(long)]
+        overwrite: bool,
+    },
+    /// Merge the parts of one spectrum's measurement (`spectrum --part
+    /// K/N`, every K) into its spectrum file.
+    SpectrumMerge {
+        /// The part files.
+        #[arg(required = true)]
+        parts: Vec<PathBuf>,
+        /// Output spectrum file.
+        #[arg(short, long)]
+        output: PathBuf,
         /// Replace the output file if it exists.
         #[arg(long)]
         overwrite: bool,
@@ -171,7 +203,24 @@ fn main() -> ExitCode {
             resume(&file, passes.map(|n| n as usize), output.as_deref())
         }
         Command::Sweep { command } => sweep_cli::main(command),
-        Command::Spectrum { config, pass, output, set, overwrite } => {
+        Command::SpectrumMerge { parts, output, overwrite } => {
+            if let Err(code) = new_output(&output, overwrite, false).and_then(|_| writable(&output)) {
+                return code;
+            }
+            spectrum_cli::merge(&parts, &output)
+        }
+        Command::Spectrum {
+            config,
+            pass,
+            part,
+            slurm,
+            cpus_per_task,
+            sbatch_arg,
+            no_submit,
+            output,
+            set,
+            overwrite,
+        } => {
             let run_file = corrugation::config::is_hdf5(&config);
             let resolved = if run_file {
                 match corrugation::run::stored_config(&config, &set) {
@@ -198,6 +247,17 @@ fn main() -> ExitCode {
             if let Err(code) = new_output(&out, overwrite, false).and_then(|_| writable(&out)) {
                 return code;
             }
+            if let Some(n) = slurm {
+                let job =
+                    spectrum_cli::SlurmJob { parts: n as usize, cpus_per_task, sbatch_args: sbatch_arg, no_submit };
+                let set = if pass.is_some() {
+                    say!("error: --slurm measures about the config's rail; --pass picks a run file's");
+                    return ExitCode::from(2);
+                } else {
+                    set
+                };
+                return spectrum_cli::slurm(&resolved, &config, &set, &out, &job);
+            }
             let stored = match run_file.then(|| spectrum_cli::stored_rail(&config, &resolved, pass.map(|p| p as usize)))
             {
                 Some(Ok(rails)) => Some(rails),
@@ -207,7 +267,7 @@ fn main() -> ExitCode {
                 }
                 None => None,
             };
-            spectrum_cli::spectrum(&resolved, stored, &out)
+            spectrum_cli::spectrum(&resolved, stored, part.map(|(k, n)| (k - 1, n)), &out)
         }
         Command::Track { config, output, set, overwrite } => {
             let resolved = match load(&config, &set) {
@@ -301,6 +361,14 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// `K/N` of `--part`: part K (from 1) of N.
+fn part_arg(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("{s:?}: expected K/N with 1 <= K <= N, e.g. 2/8");
+    let (k, n) = s.split_once('/').ok_or_else(bad)?;
+    let (k, n): (usize, usize) = (k.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?);
+    if k == 0 || k > n { Err(bad()) } else { Ok((k, n)) }
 }
 
 /// Restores the default action of SIGPIPE (end the process), which Rust's

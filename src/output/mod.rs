@@ -7,6 +7,7 @@ mod h5ds;
 pub mod netcdf;
 pub mod run_file;
 pub mod spectrum_file;
+pub mod spectrum_part;
 pub mod track_file;
 
 use std::path::Path;

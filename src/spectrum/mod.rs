@@ -35,18 +35,17 @@
 //! share-weighted sum, `J = sum_c s_c J_c`.
 
 pub mod bloch;
+pub mod measure;
 pub mod modes;
 
 use crate::build::{DynamicsError, study_grid};
-use crate::growth::wear_map::WearMap;
-use crate::growth::{contact_filtered_line, mean_patch};
 use crate::params::Scene;
 use crate::passage::PassageError;
 use bloch::{Class, Harmonic, Slot};
+use measure::Responses;
 use modes::Mode;
 use ndarray::Array2;
 use num_complex::Complex64;
-use rustfft::FftPlanner;
 
 /// How the linearisation is differenced (`spectrum.difference`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, strum::EnumString, strum::IntoStaticStr, strum::VariantNames)]
@@ -122,6 +121,9 @@ pub enum SpectrumError {
     /// The eigenproblem failed.
     #[error(transparent)]
     Eigen(#[from] modes::EigenError),
+    /// The parts of a measurement do not make one.
+    #[error("{0}")]
+    Parts(String),
     /// The band holds no harmonic of the supercell.
     #[error(
         "spectrum.wavelength_min = {min} m to spectrum.wavelength_max = {max} m holds no harmonic of the {length} m \
@@ -237,20 +239,16 @@ pub struct Plan {
 /// The plan of `params` on `scene` (a growth study's) with `rails` rails;
 /// None where the band holds no harmonic.
 pub fn plan(scene: &Scene, params: &SpectrumParams, rails: usize) -> Option<Plan> {
+    let (classes, _, rounds) = measure::layout(scene, params, rails).ok()?;
     let cell = study_grid(scene);
-    let nodes = cell.nx * params.classes;
-    let length = nodes as f64 * cell.dx;
-    let (low, high) = band(params, nodes, length)?;
-    let classes = bloch::classes(params.classes, low, high, rails);
-    let rounds = bloch::rounds(&bloch::slots(&classes)).len();
     let per_round = if params.difference == Difference::Central { 2 } else { 1 };
     let traffic = scene.growth.as_ref().map_or(1, |g| g.classes.len().max(1));
     let smooth = usize::from(params.base != Base::Smooth);
-    let passages = traffic * (1 + smooth + per_round * rounds);
+    let passages = traffic * (1 + smooth + per_round * rounds.len());
     Some(Plan {
-        supercell: length,
+        supercell: cell.nx as f64 * cell.dx * params.classes as f64,
         classes: classes.iter().map(|c| (c.j, c.basis.len())).collect(),
-        rounds,
+        rounds: rounds.len(),
         passages,
         passage_equivalents: passages * params.classes,
     })
@@ -258,190 +256,63 @@ pub fn plan(scene: &Scene, params: &SpectrumParams, rails: usize) -> Option<Plan
 
 /// The growth spectrum of `scene` (a growth study's scene: its contact,
 /// dynamics, traffic) about the rails `base` (m, on the study's grid; the
-/// first rail's, then the second's), as `params` ask.
+/// first rail's, then the second's), as `params` ask: every round measured
+/// ([`measure::measure`]) and the classes' matrices assembled and solved
+/// ([`Spectrum::from_responses`]).
 pub fn linear_spectrum(
     scene: &Scene,
     base: &[Array2<f64>],
     params: &SpectrumParams,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Spectrum, SpectrumError> {
-    let clock = cpu_time::ProcessTime::now();
-    let wall = std::time::Instant::now();
-    let cell = study_grid(scene);
-    let stretch = cell.nx as f64 * cell.dx;
-    let cells = params.classes;
-    let big = supercell(scene, cells);
-    let classes_traffic = scene.growth.as_ref().map(|g| g.classes.clone()).unwrap_or_default();
-    let mut map = WearMap::new(&big, &classes_traffic)?;
-    let grid = map.grid().clone();
-    let nodes = grid.nx;
-    let length = nodes as f64 * grid.dx;
-    let rails = base.len();
-    let (low, high) = band(params, nodes, length).ok_or(SpectrumError::EmptyBand {
-        min: params.wavelength_min,
-        max: params.wavelength_max,
-        length,
-        shortest: 2.0 * length / nodes as f64,
-    })?;
-    let classes = bloch::classes(cells, low, high, rails);
-    let plan = bloch::slots(&classes);
-    let rounds = bloch::rounds(&plan);
-    // The base rails over the supercell.
-    let tiled: Vec<Array2<f64>> =
-        base.iter().map(|b| Array2::from_shape_fn((grid.ny, nodes), |(j, i)| b[[j, i % cell.nx]])).collect();
-    let smooth = tiled.iter().all(|b| b.iter().all(|v| *v == 0.0));
-    let b = mean_patch(scene, &map.derived().shape).1;
-    let filtered = |w: &Array2<f64>| contact_filtered_line(w, &grid, b);
-    let fft = FftPlanner::new().plan_fft_forward(nodes);
-    let dft = |line: &[f64]| {
-        let mut buf: Vec<Complex64> = line.iter().map(|v| Complex64::new(*v, 0.0)).collect();
-        fft.process(&mut buf);
-        buf
-    };
-    let per_round = match params.difference {
-        Difference::Central => 2,
-        Difference::Forward => 1,
-    };
-    let shares: Vec<f64> =
-        if classes_traffic.is_empty() { vec![1.0] } else { classes_traffic.iter().map(|c| c.share).collect() };
-    let extra = usize::from(!smooth);
-    let total = shares.len() * (1 + extra + per_round * rounds.len());
-    let mut done = 0;
-    let mut step = |done: &mut usize| {
-        *done += 1;
-        progress(Progress { done: *done, total });
-    };
-    let mut matrices: Vec<Vec<Complex64>> =
-        classes.iter().map(|c| vec![Complex64::default(); c.basis.len().pow(2)]).collect();
-    let cell_harmonics = cell.nx / 2;
-    let mut forced = vec![vec![Complex64::default(); cell_harmonics]; rails];
-    let mut mean_wear = vec![0.0; rails];
-    let mut base_wear = vec![vec![Complex64::default(); cell_harmonics]; rails];
-    let mut warnings = Vec::new();
-    let mut linear_contact = false;
-    let on_cell = |coefficients: &[Complex64], into: &mut [Complex64], share: f64| {
-        // The stretch's harmonic n is the supercell's n M.
-        for (n, v) in into.iter_mut().enumerate() {
-            *v += share * bloch::coefficient(coefficients, ((n + 1) * cells) as i64);
-        }
-    };
-    for (c, share) in shares.iter().enumerate() {
-        let fail = |what: String| move |source| SpectrumError::Passage { what, source };
-        let refs: Vec<&Array2<f64>> = tiled.iter().collect();
-        // The base passage: its wear, and which normal contact it took
-        // (every perturbed passage takes the same).
-        let g = map.passage(c, &refs, false, &mut |_, _| {}).map_err(fail("the base rail's passage".into()))?;
-        step(&mut done);
-        linear_contact = g.linear_contact;
-        map.pin_normal(g.linear_contact);
-        let base_lines: Vec<Vec<f64>> = g.rails.iter().map(|r| filtered(&r.wear)).collect();
-        for (r, line) in base_lines.iter().enumerate() {
-            on_cell(&dft(line), &mut base_wear[r], *share);
-        }
-        let smooth_lines = if smooth {
-            base_lines.clone()
-        } else {
-            let zero = Array2::zeros((grid.ny, nodes));
-            let z: Vec<&Array2<f64>> = vec![&zero; rails];
-            let g = map.passage(c, &z, false, &mut |_, _| {}).map_err(fail("the smooth rail's passage".into()))?;
-            step(&mut done);
-            g.rails.iter().map(|r| filtered(&r.wear)).collect()
-        };
-        for (r, line) in smooth_lines.iter().enumerate() {
-            let spectrum = dft(line);
-            on_cell(&spectrum, &mut forced[r], *share);
-            mean_wear[r] += share * bloch::coefficient(&spectrum, 0).re;
-        }
-        // Each round's responses, per class and slot: the coefficients of
-        // the class's basis.
-        let mut responses: Vec<Vec<Vec<Complex64>>> = plan.iter().map(|s| vec![Vec::new(); s.len()]).collect();
-        for (t, round) in rounds.iter().enumerate() {
-            let perturbed = |sign: f64| -> Vec<Array2<f64>> {
-                tiled
-                    .iter()
-                    .enumerate()
-                    .map(|(r, b)| {
-                        let d = bloch::perturbation(round, r, nodes, sign * params.perturbation);
-                        Array2::from_shape_fn((grid.ny, nodes), |(j, i)| b[[j, i]] + d[i])
-                    })
-                    .collect()
-            };
-            let mut run = |profiles: Vec<Array2<f64>>, what: String| -> Result<Vec<Vec<f64>>, SpectrumError> {
-                let refs: Vec<&Array2<f64>> = profiles.iter().collect();
-                let g = map.passage(c, &refs, false, &mut |_, _| {}).map_err(fail(what.clone()))?;
-                step(&mut done);
-                if g.linear_contact != linear_contact || g.rerun.is_some() {
-                    warnings.push(format!("{what} took another normal contact than the base rail's"));
-                }
-                for (r, rail) in g.rails.iter().enumerate() {
-                    if rail.clipped_steps > 0 || rail.contact_loss_steps > 0 {
-                        warnings.push(format!(
-                            "{what}: rail {r} left the linear range ({} steps with the patch opened inside, {} without \
-                             contact): lower spectrum.perturbation",
-                            rail.clipped_steps, rail.contact_loss_steps
-                        ));
-                    }
-                }
-                Ok(g.rails.iter().map(|r| filtered(&r.wear)).collect())
-            };
-            let plus = run(perturbed(1.0), format!("round {} of {}, +", t + 1, rounds.len()))?;
-            let lines: Vec<Vec<f64>> = match params.difference {
-                Difference::Central => {
-                    let minus = run(perturbed(-1.0), format!("round {} of {}, -", t + 1, rounds.len()))?;
-                    plus.iter()
-                        .zip(&minus)
-                        .map(|(p, m)| p.iter().zip(m).map(|(a, b)| 0.5 * (a - b)).collect())
-                        .collect()
-                }
-                Difference::Forward => {
-                    plus.iter().zip(&base_lines).map(|(p, m)| p.iter().zip(m).map(|(a, b)| a - b).collect()).collect()
-                }
-            };
-            let spectra: Vec<Vec<Complex64>> = lines.iter().map(|l| dft(l)).collect();
-            for slot in round {
-                let class = &classes[slot.class];
-                responses[slot.class][t] =
-                    class.basis.iter().map(|h: &Harmonic| bloch::coefficient(&spectra[h.rail], h.index)).collect();
-            }
-        }
-        let found = bloch::assemble(&classes, &plan, params.perturbation, |slot: &Slot, target: &Harmonic| {
-            let class = &classes[slot.class];
-            let k = plan[slot.class].iter().position(|s| s == slot).expect("the slot is in its class's plan");
-            let row = class.basis.iter().position(|h| h == target).expect("the target is in its class's basis");
-            responses[slot.class][k][row]
-        });
-        for (total, part) in matrices.iter_mut().zip(found) {
-            total.iter_mut().zip(part).for_each(|(t, p)| *t += share * p);
-        }
-    }
-    let modes = modes::modes(&classes, &matrices)?;
-    let amplitude = |v: &Vec<Complex64>| v.iter().map(|c| 2.0 * c.norm()).collect::<Vec<f64>>();
-    let points = cell.nx.min(ENVELOPE_POINTS);
-    Ok(Spectrum {
-        stretch,
-        cells,
-        speed: scene.speed,
-        classes,
-        matrices,
-        modes,
-        wavelengths: crate::growth::spectrum::wavelengths(cell.nx, cell.dx),
-        forced_wear: forced.iter().map(amplitude).collect(),
-        base_wear: base_wear.iter().map(amplitude).collect(),
-        mean_wear,
-        positions: (0..points).map(|k| stretch * k as f64 / points as f64).collect(),
-        rails,
-        linear_contact,
-        passage_equivalents: (done * cells) as f64,
-        cpu_seconds: clock.elapsed().as_secs_f64(),
-        wall_seconds: wall.elapsed().as_secs_f64(),
-        warnings,
-    })
+    let responses = measure::measure(scene, base, params, None, progress)?;
+    Spectrum::from_responses(scene, params, responses)
 }
 
 /// Points along the stretch at which a mode's envelope is given.
 pub const ENVELOPE_POINTS: usize = 120;
 
 impl Spectrum {
+    /// The spectrum of the measured `responses` (every slot of every class
+    /// measured) of `scene` with `params`: each class's `J` assembled
+    /// ([`bloch::assemble`]), its modes, the forced pattern's amplitudes.
+    pub fn from_responses(scene: &Scene, params: &SpectrumParams, r: Responses) -> Result<Self, SpectrumError> {
+        let missing = r.columns.iter().flatten().filter(|c| c.is_empty()).count();
+        if missing > 0 {
+            return Err(SpectrumError::Parts(format!("{missing} perturbations of the measurement are missing")));
+        }
+        let matrices = bloch::assemble(&r.classes, &r.plan, params.perturbation, |slot: &Slot, target: &Harmonic| {
+            let class = &r.classes[slot.class];
+            let k = r.plan[slot.class].iter().position(|s| s == slot).expect("the slot is in its class's plan");
+            let row = class.basis.iter().position(|h| h == target).expect("the target is in its class's basis");
+            r.columns[slot.class][k][row]
+        });
+        let modes = modes::modes(&r.classes, &matrices)?;
+        let cell = study_grid(scene);
+        let amplitude = |v: &Vec<Complex64>| v.iter().map(|c| 2.0 * c.norm()).collect::<Vec<f64>>();
+        let points = cell.nx.min(ENVELOPE_POINTS);
+        let stretch = cell.nx as f64 * cell.dx;
+        Ok(Spectrum {
+            stretch,
+            cells: r.cells,
+            speed: scene.speed,
+            classes: r.classes,
+            matrices,
+            modes,
+            wavelengths: crate::growth::spectrum::wavelengths(cell.nx, cell.dx),
+            forced_wear: r.forced.iter().map(amplitude).collect(),
+            base_wear: r.base.iter().map(amplitude).collect(),
+            mean_wear: r.mean_wear,
+            positions: (0..points).map(|k| stretch * k as f64 / points as f64).collect(),
+            rails: r.rails,
+            linear_contact: r.linear_contact,
+            passage_equivalents: (r.passages * r.cells) as f64,
+            cpu_seconds: r.cpu_seconds,
+            wall_seconds: r.wall_seconds,
+            warnings: r.warnings,
+        })
+    }
+
     /// The supercell's length `M L` (m).
     pub fn supercell(&self) -> f64 {
         self.stretch * self.cells as f64

@@ -14,6 +14,7 @@ pub mod collect;
 pub mod member;
 pub mod slurm;
 pub mod spec;
+pub mod spectrum_job;
 
 use crate::config::Resolved;
 use crate::cost::{CostEstimate, estimate};

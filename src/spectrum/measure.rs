@@ -1,0 +1,295 @@
+//! The measurement of a linear growth spectrum: the passages over the
+//! supercell (the base rail, the smooth rail, each round's perturbed rails)
+//! and each perturbation's response on its class's basis
+//! ([`super::bloch`]). A measurement can be split into parts (rounds `t`
+//! with `t mod n = k`), each run on its own (a job array's task) and merged
+//! ([`Responses::merge`]) before the classes' matrices are assembled.
+
+use super::bloch::{self, Class, Harmonic, Slot};
+use super::{Difference, Progress, SpectrumError, SpectrumParams, band, supercell};
+use crate::build::study_grid;
+use crate::growth::wear_map::WearMap;
+use crate::growth::{contact_filtered_line, mean_patch};
+use crate::params::Scene;
+use ndarray::Array2;
+use num_complex::Complex64;
+use rustfft::FftPlanner;
+
+/// What a measurement (or a part of one) found.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Responses {
+    /// The supercell's stretches `M`.
+    pub cells: usize,
+    /// Rails in the model.
+    pub rails: usize,
+    /// The classes measured.
+    pub classes: Vec<Class>,
+    /// Each class's perturbations ([`bloch::slots`]).
+    pub plan: Vec<Vec<Slot>>,
+    /// `columns[class][slot]`: the response to the slot's perturbation on
+    /// the class's basis (share-weighted over the traffic classes), empty
+    /// where this part did not measure it.
+    pub columns: Vec<Vec<Vec<Complex64>>>,
+    /// The smooth rail's contact-filtered wear on each rail, the stretch's
+    /// harmonics n = 1 .. N/2 (complex amplitudes, m per wheel passage).
+    pub forced: Vec<Vec<Complex64>>,
+    /// The base rail's, the same way.
+    pub base: Vec<Vec<Complex64>>,
+    /// The smooth rail's mean wear per wheel passage on each rail (m).
+    pub mean_wear: Vec<f64>,
+    /// Whether the passages took the linear profile contact.
+    pub linear_contact: bool,
+    /// Supercell passages run.
+    pub passages: usize,
+    /// CPU seconds.
+    pub cpu_seconds: f64,
+    /// Wall-clock seconds.
+    pub wall_seconds: f64,
+    /// What the user must know.
+    pub warnings: Vec<String>,
+}
+
+/// The classes and their perturbations of `params` on `scene` with
+/// `rails` rails: (classes, plan, rounds).
+pub fn layout(
+    scene: &Scene,
+    params: &SpectrumParams,
+    rails: usize,
+) -> Result<(Vec<Class>, Vec<Vec<Slot>>, Vec<Vec<Slot>>), SpectrumError> {
+    let cell = study_grid(scene);
+    let nodes = cell.nx * params.classes;
+    let length = nodes as f64 * cell.dx;
+    let (low, high) = band(params, nodes, length).ok_or(SpectrumError::EmptyBand {
+        min: params.wavelength_min,
+        max: params.wavelength_max,
+        length,
+        shortest: 2.0 * length / nodes as f64,
+    })?;
+    let classes = bloch::classes(params.classes, low, high, rails);
+    let plan = bloch::slots(&classes);
+    let rounds = bloch::rounds(&plan);
+    Ok((classes, plan, rounds))
+}
+
+/// A measurement of `params` on `scene` with `rails` rails that has
+/// measured nothing yet: its classes and plan, every column empty (what a
+/// part file's responses are read into).
+pub fn empty(scene: &Scene, params: &SpectrumParams, rails: usize) -> Result<Responses, SpectrumError> {
+    let (classes, plan, _) = layout(scene, params, rails)?;
+    Ok(Responses {
+        cells: params.classes,
+        rails,
+        columns: plan.iter().map(|s| vec![Vec::new(); s.len()]).collect(),
+        classes,
+        plan,
+        forced: Vec::new(),
+        base: Vec::new(),
+        mean_wear: Vec::new(),
+        linear_contact: false,
+        passages: 0,
+        cpu_seconds: 0.0,
+        wall_seconds: 0.0,
+        warnings: Vec::new(),
+    })
+}
+
+/// Measures the responses of `scene`'s passage about `base` (m, each
+/// rail's, on the study's grid) as `params` ask; with `part = Some((k,
+/// n))` only the rounds `t` with `t mod n = k` (and the base and smooth
+/// rails' passages, which every part runs).
+pub fn measure(
+    scene: &Scene,
+    base: &[Array2<f64>],
+    params: &SpectrumParams,
+    part: Option<(usize, usize)>,
+    progress: &mut dyn FnMut(Progress),
+) -> Result<Responses, SpectrumError> {
+    let clock = cpu_time::ProcessTime::now();
+    let wall = std::time::Instant::now();
+    let cell = study_grid(scene);
+    let cells = params.classes;
+    let big = supercell(scene, cells);
+    let traffic = scene.growth.as_ref().map(|g| g.classes.clone()).unwrap_or_default();
+    let mut map = WearMap::new(&big, &traffic)?;
+    let grid = map.grid().clone();
+    let nodes = grid.nx;
+    let rails = base.len();
+    let (classes, plan, rounds) = layout(scene, params, rails)?;
+    let mine = |t: usize| part.is_none_or(|(k, n)| t % n == k);
+    // The base rails over the supercell.
+    let tiled: Vec<Array2<f64>> =
+        base.iter().map(|b| Array2::from_shape_fn((grid.ny, nodes), |(j, i)| b[[j, i % cell.nx]])).collect();
+    let smooth = tiled.iter().all(|b| b.iter().all(|v| *v == 0.0));
+    let b = mean_patch(scene, &map.derived().shape).1;
+    let filtered = |w: &Array2<f64>| contact_filtered_line(w, &grid, b);
+    let fft = FftPlanner::new().plan_fft_forward(nodes);
+    let dft = |line: &[f64]| {
+        let mut buf: Vec<Complex64> = line.iter().map(|v| Complex64::new(*v, 0.0)).collect();
+        fft.process(&mut buf);
+        buf
+    };
+    let per_round = match params.difference {
+        Difference::Central => 2,
+        Difference::Forward => 1,
+    };
+    let shares: Vec<f64> = if traffic.is_empty() { vec![1.0] } else { traffic.iter().map(|c| c.share).collect() };
+    let measured = (0..rounds.len()).filter(|&t| mine(t)).count();
+    let total = shares.len() * (1 + usize::from(!smooth) + per_round * measured);
+    let mut done = 0;
+    let mut step = |done: &mut usize| {
+        *done += 1;
+        progress(Progress { done: *done, total });
+    };
+    let mut columns: Vec<Vec<Vec<Complex64>>> = plan.iter().map(|s| vec![Vec::new(); s.len()]).collect();
+    let cell_harmonics = cell.nx / 2;
+    let mut forced = vec![vec![Complex64::default(); cell_harmonics]; rails];
+    let mut base_wear = vec![vec![Complex64::default(); cell_harmonics]; rails];
+    let mut mean_wear = vec![0.0; rails];
+    let mut warnings = Vec::new();
+    let mut linear_contact = false;
+    let on_cell = |coefficients: &[Complex64], into: &mut [Complex64], share: f64| {
+        // The stretch's harmonic n is the supercell's n M.
+        for (n, v) in into.iter_mut().enumerate() {
+            *v += share * bloch::coefficient(coefficients, ((n + 1) * cells) as i64);
+        }
+    };
+    for (c, share) in shares.iter().enumerate() {
+        let fail = |what: String| move |source| SpectrumError::Passage { what, source };
+        let refs: Vec<&Array2<f64>> = tiled.iter().collect();
+        // The base passage: its wear, and which normal contact it took
+        // (every perturbed passage takes the same).
+        let g = map.passage(c, &refs, false, &mut |_, _| {}).map_err(fail("the base rail's passage".into()))?;
+        step(&mut done);
+        linear_contact = g.linear_contact;
+        map.pin_normal(g.linear_contact);
+        let base_lines: Vec<Vec<f64>> = g.rails.iter().map(|r| filtered(&r.wear)).collect();
+        for (r, line) in base_lines.iter().enumerate() {
+            on_cell(&dft(line), &mut base_wear[r], *share);
+        }
+        let smooth_lines = if smooth {
+            base_lines.clone()
+        } else {
+            let zero = Array2::zeros((grid.ny, nodes));
+            let z: Vec<&Array2<f64>> = vec![&zero; rails];
+            let g = map.passage(c, &z, false, &mut |_, _| {}).map_err(fail("the smooth rail's passage".into()))?;
+            step(&mut done);
+            g.rails.iter().map(|r| filtered(&r.wear)).collect()
+        };
+        for (r, line) in smooth_lines.iter().enumerate() {
+            let spectrum = dft(line);
+            on_cell(&spectrum, &mut forced[r], *share);
+            mean_wear[r] += share * bloch::coefficient(&spectrum, 0).re;
+        }
+        for (t, round) in rounds.iter().enumerate().filter(|(t, _)| mine(*t)) {
+            let perturbed = |sign: f64| -> Vec<Array2<f64>> {
+                tiled
+                    .iter()
+                    .enumerate()
+                    .map(|(r, b)| {
+                        let d = bloch::perturbation(round, r, nodes, sign * params.perturbation);
+                        Array2::from_shape_fn((grid.ny, nodes), |(j, i)| b[[j, i]] + d[i])
+                    })
+                    .collect()
+            };
+            let mut run = |profiles: Vec<Array2<f64>>, what: String| -> Result<Vec<Vec<f64>>, SpectrumError> {
+                let refs: Vec<&Array2<f64>> = profiles.iter().collect();
+                let g = map.passage(c, &refs, false, &mut |_, _| {}).map_err(fail(what.clone()))?;
+                step(&mut done);
+                if g.linear_contact != linear_contact || g.rerun.is_some() {
+                    warnings.push(format!("{what} took another normal contact than the base rail's"));
+                }
+                for (r, rail) in g.rails.iter().enumerate() {
+                    if rail.clipped_steps > 0 || rail.contact_loss_steps > 0 {
+                        warnings.push(format!(
+                            "{what}: rail {r} left the linear range ({} steps with the patch opened inside, {} without \
+                             contact): lower spectrum.perturbation",
+                            rail.clipped_steps, rail.contact_loss_steps
+                        ));
+                    }
+                }
+                Ok(g.rails.iter().map(|r| filtered(&r.wear)).collect())
+            };
+            let plus = run(perturbed(1.0), format!("round {} of {}, +", t + 1, rounds.len()))?;
+            let lines: Vec<Vec<f64>> = match params.difference {
+                Difference::Central => {
+                    let minus = run(perturbed(-1.0), format!("round {} of {}, -", t + 1, rounds.len()))?;
+                    plus.iter()
+                        .zip(&minus)
+                        .map(|(p, m)| p.iter().zip(m).map(|(a, b)| 0.5 * (a - b)).collect())
+                        .collect()
+                }
+                Difference::Forward => {
+                    plus.iter().zip(&base_lines).map(|(p, m)| p.iter().zip(m).map(|(a, b)| a - b).collect()).collect()
+                }
+            };
+            let spectra: Vec<Vec<Complex64>> = lines.iter().map(|l| dft(l)).collect();
+            for slot in round {
+                let class = &classes[slot.class];
+                let response: Vec<Complex64> = class
+                    .basis
+                    .iter()
+                    .map(|h: &Harmonic| share * bloch::coefficient(&spectra[h.rail], h.index))
+                    .collect();
+                let column = &mut columns[slot.class][t];
+                if column.is_empty() {
+                    *column = response;
+                } else {
+                    column.iter_mut().zip(response).for_each(|(a, b)| *a += b);
+                }
+            }
+        }
+    }
+    Ok(Responses {
+        cells,
+        rails,
+        classes,
+        plan,
+        columns,
+        forced,
+        base: base_wear,
+        mean_wear,
+        linear_contact,
+        passages: done,
+        cpu_seconds: clock.elapsed().as_secs_f64(),
+        wall_seconds: wall.elapsed().as_secs_f64(),
+        warnings,
+    })
+}
+
+impl Responses {
+    /// The measurement of all `parts` (each a part of the same measurement:
+    /// the same classes, the smooth and base rails' passages, disjoint
+    /// rounds): their columns together, their passages and seconds summed.
+    pub fn merge(parts: Vec<Responses>) -> Result<Responses, SpectrumError> {
+        let mut iter = parts.into_iter();
+        let Some(mut all) = iter.next() else {
+            return Err(SpectrumError::Parts("no part to merge".into()));
+        };
+        for p in iter {
+            if p.classes != all.classes || p.plan != all.plan || p.cells != all.cells || p.rails != all.rails {
+                return Err(SpectrumError::Parts("the parts are of different measurements (classes, band)".into()));
+            }
+            if p.forced != all.forced || p.base != all.base {
+                return Err(SpectrumError::Parts(
+                    "the parts' smooth or base rail passages differ (another config or base rail)".into(),
+                ));
+            }
+            for (mine, theirs) in all.columns.iter_mut().zip(p.columns) {
+                for (a, b) in mine.iter_mut().zip(theirs) {
+                    match (a.is_empty(), b.is_empty()) {
+                        (true, false) => *a = b,
+                        (false, false) => {
+                            return Err(SpectrumError::Parts("two parts measured the same perturbation".into()));
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            all.passages += p.passages;
+            all.cpu_seconds += p.cpu_seconds;
+            all.wall_seconds = all.wall_seconds.max(p.wall_seconds);
+            all.warnings.extend(p.warnings);
+        }
+        Ok(all)
+    }
+}
