@@ -125,6 +125,25 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
                 "share of the mode's energy on the first rail",
             )?;
         }
+        // The dynamics' resonances, and the one each mode is near.
+        let freq: Vec<f64> = s.resonances.iter().map(|r| r.1).collect();
+        let labels: Vec<String> = s.resonances.iter().map(|r| r.0.clone()).collect();
+        g.coord_f64("resonance", &freq, "Hz", "a resonance of the dynamics (the track's, the wheelset's)", false)?;
+        g.var_str(
+            "resonance_label",
+            &["resonance"],
+            ndarray::Array1::from(labels).view().into_dyn(),
+            "",
+            "the body and motion of the resonance",
+        )?;
+        let near = (0..n).map(|k| s.near_resonance(k).map_or(-1, |i| i as i64)).collect::<Array1<i64>>();
+        g.var_i64(
+            "near_resonance",
+            &["mode"],
+            near.view().into_dyn(),
+            "1",
+            "the resonance within 10 % of the mode's frequency nearest it (index into resonance; -1: none)",
+        )?;
         g.coord_f64("position", &s.positions, "m", "position along the stretch from its start", false)?;
         let mut envelope = Array2::zeros((n, s.positions.len()));
         for (k, mut row) in envelope.rows_mut().into_iter().enumerate() {

@@ -32,6 +32,8 @@ pub fn write_part(path: &Path, r: &Responses, (k, n): (usize, usize), config: &s
         g.attr_f64("cpu_seconds", r.cpu_seconds)?;
         g.attr_f64("wall_seconds", r.wall_seconds)?;
         g.attr_str("warnings", &r.warnings.join("\n"))?;
+        let labels: Vec<String> = r.resonances.iter().map(|(l, f)| format!("{f:e} {l}")).collect();
+        g.attr_str("resonances", &labels.join("\n"))?;
         let (mut class, mut slot, mut start, mut values) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (c, slots) in r.columns.iter().enumerate() {
             for (t, column) in slots.iter().enumerate().filter(|(_, v)| !v.is_empty()) {
@@ -135,6 +137,11 @@ pub fn read_part(path: &Path, mut layout: Responses) -> Result<Part, NcError> {
     layout.wall_seconds = read_f64_attr(path, group, "wall_seconds")?;
     let warnings = a.str("warnings")?;
     layout.warnings = warnings.lines().filter(|l| !l.is_empty()).map(str::to_owned).collect();
+    layout.resonances = a
+        .str("resonances")?
+        .lines()
+        .filter_map(|l| l.split_once(' ').and_then(|(f, label)| Some((label.to_owned(), f.parse().ok()?))))
+        .collect();
     Ok(Part { config, part, responses: layout })
 }
 

@@ -47,6 +47,9 @@ pub struct Responses {
     pub wall_seconds: f64,
     /// What the user must know.
     pub warnings: Vec<String>,
+    /// The dynamics' resonances (label, Hz) of the first traffic class,
+    /// for naming the modes.
+    pub resonances: Vec<(String, f64)>,
 }
 
 /// The classes and their perturbations of `params` on `scene` with
@@ -90,6 +93,7 @@ pub fn empty(scene: &Scene, params: &SpectrumParams, rails: usize) -> Result<Res
         cpu_seconds: 0.0,
         wall_seconds: 0.0,
         warnings: Vec::new(),
+        resonances: Vec::new(),
     })
 }
 
@@ -115,6 +119,7 @@ pub fn measure(
     let nodes = grid.nx;
     let rails = base.len();
     let (classes, plan, rounds) = layout(scene, params, rails)?;
+    let resonances = map.dynamics(0).map(|d| d.describe_resonances()).unwrap_or_default();
     let mine = |t: usize| part.is_none_or(|(k, n)| t % n == k);
     // The base rails over the supercell.
     let tiled: Vec<Array2<f64>> =
@@ -253,6 +258,7 @@ pub fn measure(
         cpu_seconds: clock.elapsed().as_secs_f64(),
         wall_seconds: wall.elapsed().as_secs_f64(),
         warnings,
+        resonances,
     })
 }
 

@@ -196,6 +196,8 @@ pub struct Spectrum {
     pub wall_seconds: f64,
     /// What the user must know (passages that left the linear range).
     pub warnings: Vec<String>,
+    /// The dynamics' resonances (label, Hz), for naming the modes.
+    pub resonances: Vec<(String, f64)>,
 }
 
 /// The scene over a supercell of `cells` of its stretches: the rail grid
@@ -269,6 +271,10 @@ pub fn linear_spectrum(
     Spectrum::from_responses(scene, params, responses)
 }
 
+/// How near a resonance a mode's frequency must be to be named after it
+/// (relative).
+pub const RESONANCE_BAND: f64 = 0.1;
+
 /// Points along the stretch at which a mode's envelope is given.
 pub const ENVELOPE_POINTS: usize = 120;
 
@@ -310,6 +316,7 @@ impl Spectrum {
             cpu_seconds: r.cpu_seconds,
             wall_seconds: r.wall_seconds,
             warnings: r.warnings,
+            resonances: r.resonances,
         })
     }
 
@@ -332,5 +339,18 @@ impl Spectrum {
     /// Mode `k`'s frequency at the scene's speed (Hz).
     pub fn frequency(&self, k: usize) -> f64 {
         self.speed / self.wavelength(k)
+    }
+
+    /// The resonance nearest mode `k`'s frequency within `RESONANCE_BAND` of
+    /// it (index into `resonances`), if any: the body and direction it is
+    /// near (a frequency match, not a modal analysis of the coupled loop).
+    pub fn near_resonance(&self, k: usize) -> Option<usize> {
+        let f = self.frequency(k);
+        self.resonances
+            .iter()
+            .enumerate()
+            .filter(|(_, (_, r))| (f / r - 1.0).abs() <= RESONANCE_BAND)
+            .min_by(|a, b| (f / a.1.1).ln().abs().total_cmp(&(f / b.1.1).ln().abs()))
+            .map(|(i, _)| i)
     }
 }
