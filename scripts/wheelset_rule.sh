@@ -8,8 +8,10 @@
 #             at 60, 100 and 140 km/h
 #   braked    the same at 100 km/h braked (-20 kN)
 #   driven    configs/tangent_driven.toml (creepage control) at 140 km/h
+#             (torsion and modal: the rigid wheel under creepage control
+#             leaves out the driven wheelset's own torsion)
 #   bogie     growth_discrete.toml with two wheels 2.5 m apart, 100 km/h
-#   low_rail  configs/curve_low_rail.toml (60 km/h)
+#   low_rail  configs/curve_low_rail.toml (60 km/h; torsion and modal)
 #   exact     configs/growth_exact.toml (continuous track, 100 km/h)
 # then scripts/spectrum_table.py: each run's fastest modes and the rate
 # at the leading wavelengths, as wheelset_rule.csv. Output in
@@ -46,9 +48,9 @@ for name in ${CASES:-force braked driven bogie low_rail exact}; do
         MODELS="rigid modal" models "force_v${v% *}" configs/growth_discrete.toml --set "rolling.speed=${v#* }"
       done ;;
     braked) MODELS="rigid modal" models braked configs/growth_discrete.toml --set load.longitudinal_force=-2e4 ;;
-    driven) models driven configs/tangent_driven.toml ;;
+    driven) MODELS=${MODELS:-"torsion modal"} models driven configs/tangent_driven.toml ;;
     bogie) MODELS="rigid modal" models bogie configs/growth_discrete.toml --set 'vehicle.wheels=[0.0, 2.5]' ;;
-    low_rail) models low_rail configs/curve_low_rail.toml ;;
+    low_rail) MODELS=${MODELS:-"torsion modal"} models low_rail configs/curve_low_rail.toml ;;
     exact) MODELS="rigid modal" models exact configs/growth_exact.toml ;;
     *) echo "unknown case $name" >&2; exit 2 ;;
   esac

@@ -67,7 +67,7 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
         g.dim("wavelength", s.wavelengths.len())?;
         let supercell = s.supercell();
         let per_mode = |f: &dyn Fn(usize) -> f64| (0..n).map(f).collect::<Array1<f64>>();
-        let columns: [(&str, Array1<f64>, &str, &str); 9] = [
+        let columns: [(&str, Array1<f64>, &str, &str); 10] = [
             (
                 "growth_rate",
                 per_mode(&|k| s.modes[k].growth_rate()),
@@ -76,6 +76,12 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
             ),
             ("wavelength", per_mode(&|k| s.wavelength(k)), "m", "wavelength of the mode's largest harmonic"),
             ("frequency", per_mode(&|k| s.frequency(k)), "Hz", "frequency of the mode's largest harmonic at the speed"),
+            (
+                "mean_frequency",
+                per_mode(&|k| s.mean_frequency(k)),
+                "Hz",
+                "the mode's harmonics' frequencies weighted by their shares of its energy",
+            ),
             (
                 "drift",
                 per_mode(&|k| s.modes[k].drift(s.class_of(k), supercell) * 1e5),
@@ -142,7 +148,7 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
             &["mode"],
             near.view().into_dyn(),
             "1",
-            "the resonance within 10 % of the mode's frequency nearest it (index into resonance; -1: none)",
+            "the resonance within 10 % of the mode's mean frequency nearest it (index into resonance; -1: none)",
         )?;
         g.coord_f64("position", &s.positions, "m", "position along the stretch from its start", false)?;
         let mut envelope = Array2::zeros((n, s.positions.len()));

@@ -52,13 +52,13 @@ pub struct Responses {
     pub resonances: Vec<(String, f64)>,
 }
 
+/// A measurement's classes, each class's perturbations ([`bloch::slots`])
+/// and the rounds they are run in ([`bloch::rounds`]).
+pub type Layout = (Vec<Class>, Vec<Vec<Slot>>, Vec<Vec<Slot>>);
+
 /// The classes and their perturbations of `params` on `scene` with
-/// `rails` rails: (classes, plan, rounds).
-pub fn layout(
-    scene: &Scene,
-    params: &SpectrumParams,
-    rails: usize,
-) -> Result<(Vec<Class>, Vec<Vec<Slot>>, Vec<Vec<Slot>>), SpectrumError> {
+/// `rails` rails.
+pub fn layout(scene: &Scene, params: &SpectrumParams, rails: usize) -> Result<Layout, SpectrumError> {
     let cell = study_grid(scene);
     let nodes = cell.nx * params.classes;
     let length = nodes as f64 * cell.dx;

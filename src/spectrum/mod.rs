@@ -99,9 +99,9 @@ impl Default for SpectrumParams {
 }
 
 /// Default `spectrum.perturbation` (m): 10 nm. On growth_exact.toml's
-/// chain the central differences at 1 and 10 nm agree within 0.003 dB per
+/// chain the central differences at 1 and 10 nm agree within 0.004 dB per
 /// 1e5 at 10-60 mm; at 0.1 um the contact's third-order response moves the
-/// 10 mm rate by 0.027 (docs/src/theory/growth-spectrum.md).
+/// 10 mm rate by 0.029 (docs/src/theory/growth-spectrum.md).
 pub const DEFAULT_PERTURBATION: f64 = 1e-8;
 
 /// Why the spectrum could not be measured.
@@ -341,11 +341,27 @@ impl Spectrum {
         self.speed / self.wavelength(k)
     }
 
-    /// The resonance nearest mode `k`'s frequency within `RESONANCE_BAND` of
-    /// it (index into `resonances`), if any: the body and direction it is
-    /// near (a frequency match, not a modal analysis of the coupled loop).
+    /// Mode `k`'s mean frequency at the scene's speed (Hz): its harmonics'
+    /// frequencies weighted by their shares of its energy (a mode the
+    /// sleepers couple holds several, `n V / L` apart).
+    pub fn mean_frequency(&self, k: usize) -> f64 {
+        let class = self.class_of(k);
+        let m = &self.modes[k];
+        let (mut weighted, mut total) = (0.0, 0.0);
+        for (b, v) in class.basis.iter().zip(&m.vector) {
+            let f = self.speed * b.index.unsigned_abs() as f64 / self.supercell();
+            weighted += v.norm_sqr() * f;
+            total += v.norm_sqr();
+        }
+        if total > 0.0 { weighted / total } else { self.frequency(k) }
+    }
+
+    /// The resonance nearest mode `k`'s mean frequency within
+    /// `RESONANCE_BAND` of it (index into `resonances`), if any: the body
+    /// and direction it is near (a frequency match, not a modal analysis of
+    /// the coupled loop).
     pub fn near_resonance(&self, k: usize) -> Option<usize> {
-        let f = self.frequency(k);
+        let f = self.mean_frequency(k);
         self.resonances
             .iter()
             .enumerate()
