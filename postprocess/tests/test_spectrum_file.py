@@ -61,6 +61,10 @@ def test_spectrum_file_reads_with_the_contract_names(spectrum_file):
     assert ds.jacobian_real.dims == ("harmonic", "source")
     diag = ds.diagonal_rate.values[ds.harmonic_wavenumber.values > 0]
     assert np.allclose(sorted(diag), sorted(rate), atol=1e-3)
+    # Each mode's dual picks it out of its eigenvector (biorthogonal).
+    v = ds.vector_real.values + 1j * ds.vector_imag.values
+    d = ds.dual_real.values + 1j * ds.dual_imag.values
+    assert np.allclose(d @ v.T, np.eye(ds.sizes["mode"]), atol=1e-9)
     # netCDF-C reads it too, with the modes' wavelength under its own name.
     import netCDF4
 

@@ -261,6 +261,45 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
                 ),
             )?;
         }
+        // Each mode's eigenvector and dual on the harmonics (zero off its
+        // class): the pattern, and the mode's amplitude in any roughness
+        // (sum over the harmonics of dual times the roughness's complex
+        // amplitude).
+        let offsets: Vec<usize> = s
+            .classes
+            .iter()
+            .scan(0, |o, c| {
+                let start = *o;
+                *o += c.basis.len();
+                Some(start)
+            })
+            .collect();
+        let fill = |f: &dyn Fn(&crate::spectrum::modes::Mode, usize) -> f64| {
+            let mut a = Array2::<f64>::zeros((n, total));
+            for (k, m) in s.modes.iter().enumerate() {
+                for r in 0..m.vector.len() {
+                    a[[k, offsets[m.class] + r]] = f(m, r);
+                }
+            }
+            a
+        };
+        for (name, long, f) in [
+            (
+                "vector_real",
+                "real part of the mode's eigenvector (unit norm)",
+                (|m: &crate::spectrum::modes::Mode, r: usize| m.vector[r].re)
+                    as fn(&crate::spectrum::modes::Mode, usize) -> f64,
+            ),
+            ("vector_imag", "imaginary part of the mode's eigenvector", |m, r| m.vector[r].im),
+            (
+                "dual_real",
+                "real part of the mode's dual vector (its amplitude in a roughness R: sum dual R)",
+                |m, r| m.dual[r].re,
+            ),
+            ("dual_imag", "imaginary part of the mode's dual vector", |m, r| m.dual[r].im),
+        ] {
+            g.var_f64(name, &["mode", "harmonic"], fill(&f).view().into_dyn(), "1", long)?;
+        }
         g.var_f64(
             "diagonal_drift",
             &["harmonic"],
