@@ -58,15 +58,34 @@ def test_levels_in_xarray_with_units(study):
         assert float(limit) == -5.6 and ps["limit_level"].attrs["limit_name"] == "ISO 3095"
         assert float(ps["limit_level"].sel(band=0.010, method="nearest")) == -8.0
         level, rate = ps["roughness_level"].values, ps["level_rate"].values
+        forced = ps["forced_band_wear"].values
+        assert ps["forced_band_wear"].dims == ("pass", "band") and np.all(forced >= 0)
         lim = ps["limit_level"].values
         n = ps["passages_to_limit"].values
-        # Consistent with the levels and rates: the level at the forecast is
-        # the limit; 0 above it; inf where the band does not grow.
-        grows = np.isfinite(n) & (n > 0)
         lim2 = np.broadcast_to(lim, n.shape)
-        np.testing.assert_allclose(level[grows] + rate[grows] * n[grows] / 1e5, lim2[grows], atol=1e-9)
+        # Consistent with the levels, rates and forced pattern (the forecast
+        # the book states): A(n)^2 = A0^2 e^(2 s n) + f^2 ((e^(s n) - 1)/s)^2
+        # reaches the limit's rms at n; a band held below -60 dB counts its
+        # change as a forcing. 0 above the limit.
+        held = level <= -60.0
+        a0 = 1e-6 * 10 ** (level / 20)
+        s_all = rate * np.log(10) / 20 / 1e5
+        f = np.where(held, np.hypot(forced, a0 * np.abs(s_all)), forced)
+        s = np.where(held, 0.0, s_all)
+        grows = np.isfinite(n) & (n > 0)
+        assert grows.any()
+        sn = s[grows] * n[grows]
+        safe = np.where(np.abs(sn) < 1e-8, 1.0, s[grows])
+        grown = np.where(np.abs(sn) < 1e-8, n[grows], np.expm1(sn) / safe)
+        amp = np.hypot(a0[grows] * np.exp(sn), f[grows] * grown)
+        at_n = 20 * np.log10(amp / 1e-6)
+        np.testing.assert_allclose(at_n, lim2[grows], atol=1e-6)
         assert np.all(n[level >= lim] == 0)
-        assert np.all(np.isinf(n[(level < lim) & (rate <= 0)]))
+        # Neither growing nor forced: never.
+        assert np.all(np.isinf(n[(level < lim) & (s <= 0) & (f == 0)]))
+        # Without a forced pattern the forecast is the straight line in dB.
+        plain = grows & (f == 0) & ~held
+        np.testing.assert_allclose(level[plain] + rate[plain] * n[plain] / 1e5, lim2[plain], atol=1e-9)
         # MGT and days: 22.5 t axles, 4000 a day.
         np.testing.assert_allclose(ps["traffic_mgt"].values, ps["traffic"].values * 22.5e-6, rtol=1e-12)
         np.testing.assert_allclose(ps["traffic_days"].values, ps["traffic"].values / 4000, rtol=1e-12)
