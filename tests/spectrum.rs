@@ -44,8 +44,8 @@ fn band() -> SpectrumParams {
     SpectrumParams { wavelength_min: 0.0099, wavelength_max: 0.061, ..SpectrumParams::default() }
 }
 
-/// The spectra two tests each share, measured once: the continuous
-/// track's and the coupled scene's at the default perturbation.
+/// The spectra the tests share, measured once per test process: the
+/// continuous track's and the coupled scene's at the default perturbation.
 fn shared(coupled: bool) -> &'static Spectrum {
     static CONTINUOUS: std::sync::OnceLock<Spectrum> = std::sync::OnceLock::new();
     static COUPLED_SPECTRUM: std::sync::OnceLock<Spectrum> = std::sync::OnceLock::new();
@@ -71,7 +71,7 @@ fn diagonal(s: &Spectrum, n: i64) -> (f64, f64) {
 }
 
 #[test]
-fn on_continuous_track_the_map_is_diagonal_and_its_diagonal_is_each_harmonics_study_rate() {
+fn on_continuous_track_the_map_is_diagonal_linear_and_its_diagonal_is_each_harmonics_study_rate() {
     // The continuous track and a uniform smooth rail are invariant under
     // any shift: J couples no two harmonics (measured: off-diagonal entries
     // below 8e-4 of the diagonal at the default 10 nm, the solvers'
@@ -113,9 +113,11 @@ fn on_continuous_track_the_map_is_diagonal_and_its_diagonal_is_each_harmonics_st
     let mean = s.mean_wear[0];
     assert!(mean > 1e-12, "a passage wears the rail: {mean}");
     assert!(s.forced_wear[0].iter().all(|f| *f < 1e-6 * mean), "{:?} vs {mean}", s.forced_wear[0]);
+    the_spectrum_is_linear_a_decade_either_side_of_the_default_perturbation();
 }
 
-#[test]
+/// Part of the continuous track's test (it shares that spectrum, measured
+/// once per test process).
 fn the_spectrum_is_linear_a_decade_either_side_of_the_default_perturbation() {
     // Central differences at 1 nm and 10 nm (the default) within 0.02 dB
     // per 1e5 at every wavelength (measured 0.004; at 0.1 um the 10 mm
@@ -151,7 +153,7 @@ fn rates(s: &Spectrum) -> Vec<(f64, f64)> {
 }
 
 #[test]
-fn bloch_classes_of_a_cell_are_the_stretch_of_two_cells_own_and_do_not_couple() {
+fn bloch_classes_of_a_cell_are_the_stretch_of_two_cells_own_and_its_leading_mode_grows_at_its_eigenvalue() {
     // On the 60 mm stretch (one class) the map couples the harmonics of
     // each class of the 30 mm cell only: the entries between n even and n
     // odd vanish (below 2e-3 of the diagonal, the solvers' tolerance),
@@ -202,9 +204,11 @@ fn bloch_classes_of_a_cell_are_the_stretch_of_two_cells_own_and_do_not_couple() 
             forced[[0, n]]
         );
     }
+    a_study_started_from_the_leading_mode_grows_at_its_eigenvalue();
 }
 
-#[test]
+/// Part of the Bloch classes' test (it shares the coupled scene's
+/// spectrum, measured once per test process).
 fn a_study_started_from_the_leading_mode_grows_at_its_eigenvalue() {
     // The leading mode of the coupled scene (its harmonics locked together
     // by the imposed load's modulation, 60 mm with 20 and 12 mm) as the
@@ -294,7 +298,9 @@ fn a_measurement_in_parts_merges_into_the_one_piece_spectrum_bit_for_bit() {
     // refused.
     use corrugation::spectrum::measure::{Responses, empty, measure};
     let r = scene(&[]);
-    let params = SpectrumParams { wavelength_min: 0.019, ..band() };
+    // (Forward differences: the merge is bookkeeping, half the passages.)
+    let params =
+        SpectrumParams { wavelength_min: 0.019, difference: corrugation::spectrum::Difference::Forward, ..band() };
     let state = initial_state(&r.scene);
     let base = vec![ndarray::Array2::zeros(state.profile.raw_dim())];
     let whole = linear_spectrum(&r.scene, &base, &params, &mut |_| {}).unwrap();
