@@ -74,15 +74,16 @@ fn levels_limit_and_traffic_in_operator_units() {
     // exponential one.)
     let forced = table(&out, "forced_band_wear");
     assert!(forced.iter().all(|f| *f == 0.0), "{forced:?}");
+    let (initial, scale) = (column(&out, "initial_level"), column(&out, "traffic_scale"));
     for ((p, k), n) in to_limit.indexed_iter() {
-        let (r, f) = driven(level[[p, k]], rate[[p, k]], 0.0);
+        let before = if p == 0 { initial[k] } else { level[[p - 1, k]] };
+        let (r, f) = driven(before, level[[p, k]], rate[[p, k]], scale[p], 0.0);
         assert_eq!(*n, passages_to_limit(level[[p, k]], r, f, limit[k]));
         if n.is_finite() && *n > 0.0 && f == 0.0 {
             assert!((level[[p, k]] + rate[[p, k]] * n / 1e5 - limit[k]).abs() < 1e-9);
         }
     }
     // The rates are the level changes over the passages' traffic.
-    let (initial, scale) = (column(&out, "initial_level"), column(&out, "traffic_scale"));
     // (A band at the floor, -120 dB, has no rate: 0.)
     let floor = corrugation::levels::LEVEL_FLOOR;
     for k in 0..nominal.len() {

@@ -65,13 +65,18 @@ def test_levels_in_xarray_with_units(study):
         lim2 = np.broadcast_to(lim, n.shape)
         # Consistent with the levels, rates and forced pattern (the forecast
         # the book states): A(n)^2 = A0^2 e^(2 s n) + f^2 ((e^(s n) - 1)/s)^2
-        # reaches the limit's rms at n; a band held below -60 dB counts its
-        # change as a forcing. 0 above the limit.
-        held = level <= -60.0
-        a0 = 1e-6 * 10 ** (level / 20)
-        s_all = rate * np.log(10) / 20 / 1e5
-        f = np.where(held, np.hypot(forced, a0 * np.abs(s_all)), forced)
-        s = np.where(held, 0.0, s_all)
+        # reaches the limit's rms at n; a band that held no roughness of its
+        # own before the passage (-60 dB) and that the wear raised counts
+        # its rise per wheel passage as a forcing. 0 above the limit.
+        amp = lambda lv: 1e-6 * 10 ** (lv / 20)  # noqa: E731
+        before = np.vstack([ps["initial_level"].values[None, :], level[:-1]])
+        scale = ps["traffic_scale"].values[:, None]
+        held = (before <= -60.0) & (rate >= 0)
+        rise = np.where(before <= -120.0, np.sqrt(np.maximum(amp(level) ** 2 - (scale * forced) ** 2, 0.0)),
+                        amp(before) * (10 ** (rate * scale / 20 / 1e5) - 1))
+        a0 = amp(level)
+        f = np.where(held, np.hypot(forced, rise / scale), forced)
+        s = np.where(held, 0.0, rate * np.log(10) / 20 / 1e5)
         grows = np.isfinite(n) & (n > 0)
         assert grows.any()
         sn = s[grows] * n[grows]

@@ -45,6 +45,8 @@ pub struct WearMap {
     deposit: Box<dyn WearKernel>,
     grid: RailGrid,
     normal: NormalContact,
+    /// The normal contact as built (`normal` until pinned).
+    configured: NormalContact,
     models: Vec<ClassModel>,
     /// Whether the scene has a second rail.
     two_rails: bool,
@@ -87,6 +89,7 @@ impl WearMap {
             second_solver,
             deposit,
             normal,
+            configured: normal,
             models,
             two_rails: scene.second_rail.is_some(),
         })
@@ -119,10 +122,16 @@ impl WearMap {
     /// (`linear`) or the nonlinear one, on the same solver (a
     /// linearisation's perturbed passages take the base rail's contact).
     pub fn pin_normal(&mut self, linear: bool) {
-        if let NormalContact::Auto { grid_scale } = self.normal {
+        if let NormalContact::Auto { grid_scale } = self.configured {
             self.normal =
                 if linear { NormalContact::Linear { grid_scale } } else { NormalContact::Profile { grid_scale } };
         }
+    }
+
+    /// Gives the passages the normal contact back as configured (`auto`
+    /// chooses per passage again), after [`WearMap::pin_normal`].
+    pub fn unpin_normal(&mut self) {
+        self.normal = self.configured;
     }
 
     /// Class `class`'s track dynamics (None: imposed loads only).

@@ -79,18 +79,30 @@ pub fn passages_to_limit(level: f64, rate: f64, forced: f64, limit: f64) -> f64 
     f64::INFINITY
 }
 
-/// A band's roughness-driven rate and forcing for the forecast: a band at
-/// `level` (dB re 1 um) below [`HELD_LEVEL`] holds no roughness of its
-/// own, so the change `rate` (dB per 1e5 wheel passages) the others' wear
-/// drives in it counts as a forcing added to `forced` (m rms per wheel
-/// passage), and its exponential rate as 0 (see the module doc).
-pub fn driven(level: f64, rate: f64, forced: f64) -> (f64, f64) {
-    if level > HELD_LEVEL {
+/// A band's roughness-driven rate and forcing for the forecast, from its
+/// levels `before` and `after` a passage of `scale` wheel passages (dB re
+/// 1 um), the passage's roughness-driven `rate` (dB per 1e5 wheel
+/// passages) and forced pattern `forced` (m rms per wheel passage). A band
+/// that held no roughness of its own before the passage (at or below
+/// [`HELD_LEVEL`]) and that the others' wear raised is driven rather than
+/// grown from itself: the rise per wheel passage counts as a forcing
+/// (added to `forced` in mean square) and its exponential rate as 0. The
+/// rise is `A_before (10^(rate scale / 20 1e5) - 1)`, or, from the floor
+/// (no rate: an empty band), what of `A_after` the forced pattern does
+/// not explain, `sqrt(A_after^2 - (scale forced)^2)`. A held band that
+/// the wear lowers keeps its (decaying) rate (see the module doc).
+pub fn driven(before: f64, after: f64, rate: f64, scale: f64, forced: f64) -> (f64, f64) {
+    if before > HELD_LEVEL || rate < 0.0 || !(scale > 0.0) {
         return (rate, forced);
     }
-    let a = super::R0 * 10f64.powf(level / 20.0);
-    let change = a * (rate * std::f64::consts::LN_10 / 20.0 / 1e5).abs();
-    (0.0, (forced * forced + change * change).sqrt())
+    let amplitude = |l: f64| super::R0 * 10f64.powf(l / 20.0);
+    let rise = if before <= super::LEVEL_FLOOR {
+        let new = amplitude(after);
+        (new * new - (scale * forced).powi(2)).max(0.0).sqrt()
+    } else {
+        amplitude(before) * (10f64.powf(rate * scale / 20.0 / 1e5) - 1.0)
+    };
+    (0.0, forced.hypot(rise / scale))
 }
 
 /// The bands that reached their limit between the levels `before` and
@@ -231,7 +243,11 @@ pub fn outlook(s: &Standing) -> Vec<String> {
     }
     let pass = s.levels.len();
     let forced = s.forced.last().map_or(&[][..], Vec::as_slice);
-    let model = |k: usize| driven(last[k], rates[k], forced.get(k).copied().unwrap_or(0.0));
+    let (first, scale) = match pass {
+        1 => (s.initial, so_far),
+        _ => (s.levels[pass - 2].as_slice(), so_far - s.traffic[pass - 2]),
+    };
+    let model = |k: usize| driven(first[k], last[k], rates[k], scale, forced.get(k).copied().unwrap_or(0.0));
     let to_limit: Vec<f64> = (0..s.bands.len())
         .map(|k| {
             let (rate, f) = model(k);
@@ -352,12 +368,22 @@ mod tests {
         assert_eq!(passages_to_limit(-6.0, -0.5, 0.5 * rms(0.0) * s.abs(), 0.0), f64::INFINITY);
         let n = passages_to_limit(-6.0, -0.5, 2.0 * rms(0.0) * s.abs(), 0.0);
         assert!(n.is_finite() && n > 0.0, "{n}");
-        // A band holding no roughness of its own: its driven change is a
-        // forcing, not an exponential rate from 1 nm.
-        let (rate, forced) = driven(-80.0, 200.0, 0.0);
+        // A band holding no roughness of its own: its driven rise is a
+        // forcing, not an exponential rate from 1 nm. 30 dB over a passage
+        // of 1e3 wheel passages from -90 dB: A_before (10^1.5 - 1) / 1e3.
+        let (rate, forced) = driven(-90.0, -60.0, 30.0 * 1e5 / 1e3, 1e3, 0.0);
         assert_eq!(rate, 0.0);
-        assert!((forced - rms(-80.0) * 200.0 * std::f64::consts::LN_10 / 20.0 / 1e5).abs() < 1e-24);
-        assert_eq!(driven(-20.0, 2.0, 1e-12), (2.0, 1e-12));
+        assert!((forced / (rms(-90.0) * (10f64.powf(1.5) - 1.0) / 1e3) - 1.0).abs() < 1e-12, "{forced}");
+        // Its own roughness grows exponentially; a held band the wear
+        // lowers decays at its rate.
+        assert_eq!(driven(-20.0, -19.0, 2.0, 1e3, 1e-12), (2.0, 1e-12));
+        assert_eq!(driven(-80.0, -81.0, -2.0, 1e3, 1e-12), (-2.0, 1e-12));
+        // From the floor: what the forced pattern does not explain of the
+        // new amplitude (3-4-5: the forced part 0.6 of it).
+        let new = rms(-70.0);
+        let (rate, forced) = driven(-120.0, -70.0, 0.0, 1e3, 0.6 * new / 1e3);
+        assert_eq!(rate, 0.0);
+        assert!((forced / (new / 1e3) - 1.0).abs() < 1e-12, "{forced}");
     }
 
     #[test]

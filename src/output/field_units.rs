@@ -122,8 +122,9 @@ pub fn write_passes(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
         "rms in the band of the wear one wheel passage of the class leaves on the smooth rail (the forced pattern, \
          per wheel passage; the running band's lines as roughness_level)",
     )?;
-    let to_limit = table(&|_, row, k| {
-        let (rate, f) = driven(row.roughness_level[k], row.level_rate[k], forced_of(row, k));
+    let to_limit = table(&|p, row, k| {
+        let before = if p == 0 { r.state.initial_level[k] } else { rows[p - 1].roughness_level[k] };
+        let (rate, f) = driven(before, row.roughness_level[k], row.level_rate[k], row.traffic_scale, forced_of(row, k));
         passages_to_limit(row.roughness_level[k], rate, f, r.limit[k])
     });
     g.var_f64(

@@ -117,6 +117,7 @@ pub fn measure(
     let mut map = WearMap::new(&big, &traffic)?;
     let grid = map.grid().clone();
     let nodes = grid.nx;
+    assert_eq!(nodes, cell.nx * cells, "the supercell's grid is {cells} copies of the stretch's");
     let rails = base.len();
     let (classes, plan, rounds) = layout(scene, params, rails)?;
     let resonances = map.dynamics(0).map(|d| d.describe_resonances()).unwrap_or_default();
@@ -162,11 +163,12 @@ pub fn measure(
         let fail = |what: String| move |source| SpectrumError::Passage { what, source };
         let refs: Vec<&Array2<f64>> = tiled.iter().collect();
         // The base passage: its wear, and which normal contact it took
-        // (every perturbed passage takes the same).
+        // (every perturbed passage of the class takes the same; the smooth
+        // rail's passage chooses its own, as the study's does).
+        map.unpin_normal();
         let g = map.passage(c, &refs, false, &mut |_, _| {}).map_err(fail("the base rail's passage".into()))?;
         step(&mut done);
         linear_contact = g.linear_contact;
-        map.pin_normal(g.linear_contact);
         let base_lines: Vec<Vec<f64>> = g.rails.iter().map(|r| filtered(&r.wear)).collect();
         for (r, line) in base_lines.iter().enumerate() {
             on_cell(&dft(line), &mut base_wear[r], *share);
@@ -185,13 +187,19 @@ pub fn measure(
             on_cell(&spectrum, &mut forced[r], *share);
             mean_wear[r] += share * bloch::coefficient(&spectrum, 0).re;
         }
+        map.pin_normal(linear_contact);
         for (t, round) in rounds.iter().enumerate().filter(|(t, _)| mine(*t)) {
+            // A round carries one perturbation of each of its K classes:
+            // each of amplitude eps / sqrt(K), so that the passage's
+            // perturbation is the size of one harmonic of amplitude eps
+            // however many classes it measures (its responses scaled back).
+            let spread = if round.len() > 1 { (round.len() as f64).sqrt() } else { 1.0 };
             let perturbed = |sign: f64| -> Vec<Array2<f64>> {
                 tiled
                     .iter()
                     .enumerate()
                     .map(|(r, b)| {
-                        let d = bloch::perturbation(round, r, nodes, sign * params.perturbation);
+                        let d = bloch::perturbation(round, r, nodes, sign * params.perturbation / spread);
                         Array2::from_shape_fn((grid.ny, nodes), |(j, i)| b[[j, i]] + d[i])
                     })
                     .collect()
@@ -233,7 +241,7 @@ pub fn measure(
                 let response: Vec<Complex64> = class
                     .basis
                     .iter()
-                    .map(|h: &Harmonic| share * bloch::coefficient(&spectra[h.rail], h.index))
+                    .map(|h: &Harmonic| share * spread * bloch::coefficient(&spectra[h.rail], h.index))
                     .collect();
                 let column = &mut columns[slot.class][t];
                 if column.is_empty() {

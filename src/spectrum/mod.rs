@@ -77,7 +77,9 @@ pub struct SpectrumParams {
     /// Bloch classes `M`: the supercell's stretches (1: the stretch's own
     /// harmonics).
     pub classes: usize,
-    /// Amplitude of each perturbation (m).
+    /// Amplitude of a passage's perturbation (m): of its one harmonic
+    /// with one class; a passage that measures `K` classes at once
+    /// perturbs each by `perturbation / sqrt(K)`.
     pub perturbation: f64,
     /// The differences.
     pub difference: Difference,
@@ -202,11 +204,17 @@ pub struct Spectrum {
 
 /// The scene over a supercell of `cells` of its stretches: the rail grid
 /// and the passage `cells - 1` stretches longer, everything else the same
-/// (the stretch repeats, so its dynamics and contact do).
+/// (the stretch repeats, so its dynamics and contact do). The supercell's
+/// grid is `cells` copies of the stretch's (its spacing the stretch's
+/// own, `L / nx`, also where `rail.dx` does not divide `L`), so that a
+/// shift by the stretch is a whole number of nodes.
 pub fn supercell(scene: &Scene, cells: usize) -> Scene {
     let mut s = scene.clone();
     let length = scene.rail.x_max - scene.rail.x_min;
     s.rail.x_max = scene.rail.x_min + cells as f64 * length;
+    if cells > 1 {
+        s.rail.dx = study_grid(scene).dx;
+    }
     s.end = scene.end + (cells - 1) as f64 * length;
     s
 }
