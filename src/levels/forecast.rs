@@ -92,7 +92,7 @@ pub fn passages_to_limit(level: f64, rate: f64, forced: f64, limit: f64) -> f64 
 /// not explain, `sqrt(A_after^2 - (scale forced)^2)`. A held band that
 /// the wear lowers keeps its (decaying) rate (see the module doc).
 pub fn driven(before: f64, after: f64, rate: f64, scale: f64, forced: f64) -> (f64, f64) {
-    if before > HELD_LEVEL || rate < 0.0 || !(scale > 0.0) {
+    if before > HELD_LEVEL || rate < 0.0 || scale.is_nan() || scale <= 0.0 {
         return (rate, forced);
     }
     let amplitude = |l: f64| super::R0 * 10f64.powf(l / 20.0);
