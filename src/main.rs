@@ -118,6 +118,12 @@ enum Command {
         /// With --slurm: write the scripts, do not submit them.
         #[arg(long, requires = "slurm")]
         no_submit: bool,
+        /// Threads measuring the passages side by side, each with its own
+        /// passage model (its memory once per thread); the result is the
+        /// same whatever their number (default: the cores this process may
+        /// use).
+        #[arg(short = 'j', long = "jobs", value_parser = clap::value_parser!(u32).range(1..=256))]
+        jobs: Option<u32>,
         /// Output file (default: the config's name with _spectrum.h5).
         #[arg(short, long)]
         output: Option<PathBuf>,
@@ -217,6 +223,7 @@ fn main() -> ExitCode {
             cpus_per_task,
             sbatch_arg,
             no_submit,
+            jobs,
             output,
             set,
             overwrite,
@@ -267,7 +274,8 @@ fn main() -> ExitCode {
                 }
                 None => None,
             };
-            spectrum_cli::spectrum(&resolved, stored, part.map(|(k, n)| (k - 1, n)), &out)
+            let jobs = jobs.map_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()), |j| j as usize);
+            spectrum_cli::spectrum(&resolved, stored, part.map(|(k, n)| (k - 1, n)), jobs, &out)
         }
         Command::Track { config, output, set, overwrite } => {
             let resolved = match load(&config, &set) {

@@ -36,11 +36,12 @@ pub fn stored_rail(file: &Path, resolved: &Resolved, pass: Option<usize>) -> Res
 /// Measures and writes the spectrum of `resolved` to `out`, about `stored`
 /// (a run file's rail) or the config's `spectrum.base`; with `part = (k,
 /// n)` only its rounds `t mod n = k`, written as a part file for
-/// `corrugation spectrum-merge`.
+/// `corrugation spectrum-merge`; the passages on `jobs` threads.
 pub fn spectrum(
     resolved: &Resolved,
     stored: Option<Vec<ndarray::Array2<f64>>>,
     part: Option<(usize, usize)>,
+    jobs: usize,
     out: &Path,
 ) -> ExitCode {
     let scene = &resolved.scene;
@@ -87,7 +88,7 @@ pub fn spectrum(
         None => {}
     };
     if let Some((k, n)) = part {
-        let result = corrugation::spectrum::measure::measure(scene, &base, &params, part, &mut report);
+        let result = corrugation::spectrum::measure::measure(scene, &base, &params, part, jobs, &mut report);
         if let Some(b) = &bar {
             b.finish_and_clear();
         }
@@ -115,7 +116,7 @@ pub fn spectrum(
             }
         };
     }
-    let result = linear_spectrum(scene, &base, &params, &mut report);
+    let result = linear_spectrum(scene, &base, &params, jobs, &mut report);
     if let Some(b) = &bar {
         b.finish_and_clear();
     }

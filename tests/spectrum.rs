@@ -36,7 +36,7 @@ fn scene(set: &[&str]) -> Resolved {
 fn spectrum_of(r: &Resolved, params: &SpectrumParams) -> Spectrum {
     let state = initial_state(&r.scene);
     let base = vec![ndarray::Array2::zeros(state.profile.raw_dim())];
-    linear_spectrum(&r.scene, &base, params, &mut |_| {}).unwrap()
+    linear_spectrum(&r.scene, &base, params, 1, &mut |_| {}).unwrap()
 }
 
 /// The band of every test: the 60 mm stretch's harmonics 60 to 10 mm.
@@ -294,7 +294,7 @@ fn where_the_wear_does_not_see_the_profile_the_map_is_zero_and_the_wear_all_forc
 fn a_measurement_in_parts_merges_into_the_one_piece_spectrum_bit_for_bit() {
     // Three parts (rounds t mod 3), each written to a part file and read
     // back, merged: the same J, modes and forced pattern as the one-piece
-    // measurement, bit for bit; a missing part or one measured twice is
+    // measurement, bit for bit, also where a part ran on two threads; a missing part or one measured twice is
     // refused.
     use corrugation::spectrum::measure::{Responses, empty, measure};
     let r = scene(&[]);
@@ -303,11 +303,14 @@ fn a_measurement_in_parts_merges_into_the_one_piece_spectrum_bit_for_bit() {
         SpectrumParams { wavelength_min: 0.019, difference: corrugation::spectrum::Difference::Forward, ..band() };
     let state = initial_state(&r.scene);
     let base = vec![ndarray::Array2::zeros(state.profile.raw_dim())];
-    let whole = linear_spectrum(&r.scene, &base, &params, &mut |_| {}).unwrap();
+    let whole = linear_spectrum(&r.scene, &base, &params, 1, &mut |_| {}).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let parts: Vec<Responses> = (0..3)
         .map(|k| {
-            let part = measure(&r.scene, &base, &params, Some((k, 3)), &mut |_| {}).unwrap();
+            // (Part 1 on two threads, each with its own passage model: the
+            // same responses bit for bit.)
+            let jobs = if k == 0 { 2 } else { 1 };
+            let part = measure(&r.scene, &base, &params, Some((k, 3)), jobs, &mut |_| {}).unwrap();
             let path = dir.path().join(format!("part_{k}.h5"));
             corrugation::output::spectrum_part::write_part(&path, &part, (k, 3), &r.toml).unwrap();
             let read = corrugation::output::spectrum_part::read_part(&path, empty(&r.scene, &params, 1).unwrap());

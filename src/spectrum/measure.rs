@@ -100,12 +100,16 @@ pub fn empty(scene: &Scene, params: &SpectrumParams, rails: usize) -> Result<Res
 /// Measures the responses of `scene`'s passage about `base` (m, each
 /// rail's, on the study's grid) as `params` ask; with `part = Some((k,
 /// n))` only the rounds `t` with `t mod n = k` (and the base and smooth
-/// rails' passages, which every part runs).
+/// rails' passages, which every part runs). With `jobs` > 1 the rounds run
+/// on that many threads, each with its own passage model (its own solver
+/// and dynamics, built once per thread): the passages are independent, so
+/// the responses are the same bit for bit whatever `jobs`.
 pub fn measure(
     scene: &Scene,
     base: &[Array2<f64>],
     params: &SpectrumParams,
     part: Option<(usize, usize)>,
+    jobs: usize,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Responses, SpectrumError> {
     let clock = cpu_time::ProcessTime::now();
@@ -121,26 +125,20 @@ pub fn measure(
     let rails = base.len();
     let (classes, plan, rounds) = layout(scene, params, rails)?;
     let resonances = map.dynamics(0).map(|d| d.describe_resonances()).unwrap_or_default();
-    let mine = |t: usize| part.is_none_or(|(k, n)| t % n == k);
+    let mine: Vec<usize> = (0..rounds.len()).filter(|t| part.is_none_or(|(k, n)| t % n == k)).collect();
     // The base rails over the supercell.
     let tiled: Vec<Array2<f64>> =
         base.iter().map(|b| Array2::from_shape_fn((grid.ny, nodes), |(j, i)| b[[j, i % cell.nx]])).collect();
     let smooth = tiled.iter().all(|b| b.iter().all(|v| *v == 0.0));
     let b = mean_patch(scene, &map.derived().shape).1;
-    let filtered = |w: &Array2<f64>| contact_filtered_line(w, &grid, b);
     let fft = FftPlanner::new().plan_fft_forward(nodes);
-    let dft = |line: &[f64]| {
-        let mut buf: Vec<Complex64> = line.iter().map(|v| Complex64::new(*v, 0.0)).collect();
-        fft.process(&mut buf);
-        buf
-    };
+    let lines = Lines { grid: &grid, half_width: b, fft: fft.as_ref() };
     let per_round = match params.difference {
         Difference::Central => 2,
         Difference::Forward => 1,
     };
     let shares: Vec<f64> = if traffic.is_empty() { vec![1.0] } else { traffic.iter().map(|c| c.share).collect() };
-    let measured = (0..rounds.len()).filter(|&t| mine(t)).count();
-    let total = shares.len() * (1 + usize::from(!smooth) + per_round * measured);
+    let total = shares.len() * (1 + usize::from(!smooth) + per_round * mine.len());
     let mut done = 0;
     let mut step = |done: &mut usize| {
         *done += 1;
@@ -152,15 +150,17 @@ pub fn measure(
     let mut base_wear = vec![vec![Complex64::default(); cell_harmonics]; rails];
     let mut mean_wear = vec![0.0; rails];
     let mut warnings = Vec::new();
-    let mut linear_contact = false;
+    // Per traffic class: whether its base passage took the linear contact,
+    // and its base wear's lines (forward differences subtract them).
+    let mut bases: Vec<(bool, Vec<Vec<f64>>)> = Vec::new();
     let on_cell = |coefficients: &[Complex64], into: &mut [Complex64], share: f64| {
         // The stretch's harmonic n is the supercell's n M.
         for (n, v) in into.iter_mut().enumerate() {
             *v += share * bloch::coefficient(coefficients, ((n + 1) * cells) as i64);
         }
     };
+    let fail = |what: String| move |source| SpectrumError::Passage { what, source };
     for (c, share) in shares.iter().enumerate() {
-        let fail = |what: String| move |source| SpectrumError::Passage { what, source };
         let refs: Vec<&Array2<f64>> = tiled.iter().collect();
         // The base passage: its wear, and which normal contact it took
         // (every perturbed passage of the class takes the same; the smooth
@@ -168,10 +168,9 @@ pub fn measure(
         map.unpin_normal();
         let g = map.passage(c, &refs, false, &mut |_, _| {}).map_err(fail("the base rail's passage".into()))?;
         step(&mut done);
-        linear_contact = g.linear_contact;
-        let base_lines: Vec<Vec<f64>> = g.rails.iter().map(|r| filtered(&r.wear)).collect();
+        let base_lines: Vec<Vec<f64>> = g.rails.iter().map(|r| lines.filtered(&r.wear)).collect();
         for (r, line) in base_lines.iter().enumerate() {
-            on_cell(&dft(line), &mut base_wear[r], *share);
+            on_cell(&lines.dft(line), &mut base_wear[r], *share);
         }
         let smooth_lines = if smooth {
             base_lines.clone()
@@ -180,74 +179,108 @@ pub fn measure(
             let z: Vec<&Array2<f64>> = vec![&zero; rails];
             let g = map.passage(c, &z, false, &mut |_, _| {}).map_err(fail("the smooth rail's passage".into()))?;
             step(&mut done);
-            g.rails.iter().map(|r| filtered(&r.wear)).collect()
+            g.rails.iter().map(|r| lines.filtered(&r.wear)).collect()
         };
         for (r, line) in smooth_lines.iter().enumerate() {
-            let spectrum = dft(line);
+            let spectrum = lines.dft(line);
             on_cell(&spectrum, &mut forced[r], *share);
             mean_wear[r] += share * bloch::coefficient(&spectrum, 0).re;
         }
-        map.pin_normal(linear_contact);
-        for (t, round) in rounds.iter().enumerate().filter(|(t, _)| mine(*t)) {
-            // A round carries one perturbation of each of its K classes:
-            // each of amplitude eps / sqrt(K), so that the passage's
-            // perturbation is the size of one harmonic of amplitude eps
-            // however many classes it measures (its responses scaled back).
-            let spread = if round.len() > 1 { (round.len() as f64).sqrt() } else { 1.0 };
-            let perturbed = |sign: f64| -> Vec<Array2<f64>> {
-                tiled
-                    .iter()
-                    .enumerate()
-                    .map(|(r, b)| {
-                        let d = bloch::perturbation(round, r, nodes, sign * params.perturbation / spread);
-                        Array2::from_shape_fn((grid.ny, nodes), |(j, i)| b[[j, i]] + d[i])
-                    })
-                    .collect()
-            };
-            let mut run = |profiles: Vec<Array2<f64>>, what: String| -> Result<Vec<Vec<f64>>, SpectrumError> {
-                let refs: Vec<&Array2<f64>> = profiles.iter().collect();
-                let g = map.passage(c, &refs, false, &mut |_, _| {}).map_err(fail(what.clone()))?;
-                step(&mut done);
-                if g.linear_contact != linear_contact || g.rerun.is_some() {
-                    warnings.push(format!("{what} took another normal contact than the base rail's"));
-                }
-                for (r, rail) in g.rails.iter().enumerate() {
-                    if rail.clipped_steps > 0 || rail.contact_loss_steps > 0 {
-                        warnings.push(format!(
-                            "{what}: rail {r} left the linear range ({} steps with the patch opened inside, {} without \
-                             contact): lower spectrum.perturbation",
-                            rail.clipped_steps, rail.contact_loss_steps
-                        ));
+        bases.push((g.linear_contact, base_lines));
+    }
+    let linear_contact = bases[0].0;
+    let rounds_of = Rounds { classes: &classes, rounds: &rounds, tiled: &tiled, params, lines: &lines, bases: &bases };
+    // Each traffic class's responses of the rounds, in round order.
+    let measured: Vec<Vec<Measured>> = if jobs <= 1 || mine.len() <= 1 {
+        (0..shares.len())
+            .map(|c| {
+                mine.iter()
+                    .map(|&t| rounds_of.run(&mut map, c, t, &mut || step(&mut done)))
+                    .collect::<Result<Vec<_>, _>>()
+            })
+            .collect::<Result<_, _>>()?
+    } else {
+        // Worker 0 is this thread, on the model the base passages ran on
+        // (the others' progress reported between its passages); workers 1
+        // .. jobs - 1 build their own. A worker that fails stops the others
+        // at their next round.
+        let jobs = jobs.min(mine.len());
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let (tx, rx) = std::sync::mpsc::channel::<()>();
+        let work = |w: usize, map: &mut WearMap, tick: &mut dyn FnMut()| -> Result<WorkerRounds, SpectrumError> {
+            let mut out = Vec::new();
+            for c in 0..rounds_of.bases.len() {
+                let mut class = Vec::new();
+                for (i, &t) in mine.iter().enumerate().filter(|(i, _)| i % jobs == w) {
+                    if stop.load(std::sync::atomic::Ordering::Relaxed) {
+                        return Err(SpectrumError::Stopped);
                     }
+                    let m = rounds_of.run(map, c, t, tick);
+                    if m.is_err() {
+                        stop.store(true, std::sync::atomic::Ordering::Relaxed);
+                    }
+                    class.push((i, m?));
                 }
-                Ok(g.rails.iter().map(|r| filtered(&r.wear)).collect())
-            };
-            let plus = run(perturbed(1.0), format!("round {} of {}, +", t + 1, rounds.len()))?;
-            let lines: Vec<Vec<f64>> = match params.difference {
-                Difference::Central => {
-                    let minus = run(perturbed(-1.0), format!("round {} of {}, -", t + 1, rounds.len()))?;
-                    plus.iter()
-                        .zip(&minus)
-                        .map(|(p, m)| p.iter().zip(m).map(|(a, b)| 0.5 * (a - b)).collect())
-                        .collect()
+                out.push(class);
+            }
+            Ok(out)
+        };
+        let results: Vec<Result<WorkerRounds, SpectrumError>> = std::thread::scope(|s| {
+            let handles: Vec<_> = (1..jobs)
+                .map(|w| {
+                    let (tx, big, traffic, work, stop) = (tx.clone(), &big, &traffic, &work, &stop);
+                    s.spawn(move || {
+                        let mut map = WearMap::new(big, traffic).inspect_err(|_| {
+                            stop.store(true, std::sync::atomic::Ordering::Relaxed);
+                        })?;
+                        work(w, &mut map, &mut || {
+                            let _ = tx.send(());
+                        })
+                    })
+                })
+                .collect();
+            drop(tx);
+            let own = work(0, &mut map, &mut || {
+                step(&mut done);
+                for () in rx.try_iter() {
+                    step(&mut done);
                 }
-                Difference::Forward => {
-                    plus.iter().zip(&base_lines).map(|(p, m)| p.iter().zip(m).map(|(a, b)| a - b).collect()).collect()
+            });
+            for () in rx {
+                step(&mut done);
+            }
+            std::iter::once(own)
+                .chain(handles.into_iter().map(|h| h.join().expect("a spectrum worker panicked")))
+                .collect()
+        });
+        // The first failure that is not a stop (a passage's, a set-up's).
+        let failed =
+            |r: &Result<WorkerRounds, SpectrumError>| matches!(r, Err(e) if !matches!(e, SpectrumError::Parts(_)));
+        if let Some(i) = results.iter().position(failed) {
+            return Err(results.into_iter().nth(i).expect("found").expect_err("failed"));
+        }
+        let mut per_class: Vec<Vec<Option<Measured>>> = vec![vec![None; mine.len()]; shares.len()];
+        for worker in results {
+            for (c, class) in worker?.into_iter().enumerate() {
+                for (i, m) in class {
+                    per_class[c][i] = Some(m);
                 }
-            };
-            let spectra: Vec<Vec<Complex64>> = lines.iter().map(|l| dft(l)).collect();
-            for slot in round {
-                let class = &classes[slot.class];
-                let response: Vec<Complex64> = class
-                    .basis
-                    .iter()
-                    .map(|h: &Harmonic| share * spread * bloch::coefficient(&spectra[h.rail], h.index))
-                    .collect();
+            }
+        }
+        per_class.into_iter().map(|c| c.into_iter().map(|m| m.expect("every round measured")).collect()).collect()
+    };
+    // Accumulated in the traffic classes' order, round by round: the same
+    // sums whatever the threads.
+    for (c, share) in shares.iter().enumerate() {
+        for (&t, m) in mine.iter().zip(&measured[c]) {
+            warnings.extend(m.warnings.iter().cloned());
+            for (slot, response) in rounds[t].iter().zip(&m.responses) {
                 let column = &mut columns[slot.class][t];
+                let weighted = response.iter().map(|v| share * *v);
                 if column.is_empty() {
-                    *column = response;
+                    *column = weighted.collect();
                 } else {
-                    column.iter_mut().zip(response).for_each(|(a, b)| *a += b);
+                    column.iter_mut().zip(weighted).for_each(|(a, b)| *a += b);
                 }
             }
         }
@@ -268,6 +301,120 @@ pub fn measure(
         warnings,
         resonances,
     })
+}
+
+/// The contact-filtered line of a passage's wear and its spectrum.
+struct Lines<'a> {
+    grid: &'a crate::rail_grid::RailGrid,
+    /// Half-width of the mean patch (m), the filter's.
+    half_width: f64,
+    fft: &'a dyn rustfft::Fft<f64>,
+}
+
+impl Lines<'_> {
+    fn filtered(&self, w: &Array2<f64>) -> Vec<f64> {
+        contact_filtered_line(w, self.grid, self.half_width)
+    }
+
+    fn dft(&self, line: &[f64]) -> Vec<Complex64> {
+        let mut buf: Vec<Complex64> = line.iter().map(|v| Complex64::new(*v, 0.0)).collect();
+        self.fft.process(&mut buf);
+        buf
+    }
+}
+
+/// One round's responses of one traffic class: per slot of the round, on
+/// its class's basis (before the class's share), and what to warn of.
+#[derive(Debug, Clone)]
+struct Measured {
+    responses: Vec<Vec<Complex64>>,
+    warnings: Vec<String>,
+}
+
+/// A worker thread's rounds: per traffic class, (the round's place among
+/// those measured, its responses).
+type WorkerRounds = Vec<Vec<(usize, Measured)>>;
+
+/// What a round's passages need.
+struct Rounds<'a> {
+    classes: &'a [Class],
+    rounds: &'a [Vec<Slot>],
+    tiled: &'a [Array2<f64>],
+    params: &'a SpectrumParams,
+    lines: &'a Lines<'a>,
+    /// Per traffic class: its base passage's normal contact (linear or
+    /// not) and wear lines.
+    bases: &'a [(bool, Vec<Vec<f64>>)],
+}
+
+impl Rounds<'_> {
+    /// Round `t`'s perturbed passages of traffic class `c` on `map`
+    /// (`tick` after each passage) and their responses.
+    fn run(&self, map: &mut WearMap, c: usize, t: usize, tick: &mut dyn FnMut()) -> Result<Measured, SpectrumError> {
+        let round = &self.rounds[t];
+        let (linear_contact, base_lines) = &self.bases[c];
+        map.pin_normal(*linear_contact);
+        let (ny, nodes) = self.tiled[0].dim();
+        // A round carries one perturbation of each of its K classes: each
+        // of amplitude eps / sqrt(K), so that the passage's perturbation is
+        // the size of one harmonic of amplitude eps however many classes it
+        // measures (its responses scaled back).
+        let spread = if round.len() > 1 { (round.len() as f64).sqrt() } else { 1.0 };
+        let perturbed = |sign: f64| -> Vec<Array2<f64>> {
+            self.tiled
+                .iter()
+                .enumerate()
+                .map(|(r, b)| {
+                    let d = bloch::perturbation(round, r, nodes, sign * self.params.perturbation / spread);
+                    Array2::from_shape_fn((ny, nodes), |(j, i)| b[[j, i]] + d[i])
+                })
+                .collect()
+        };
+        let mut warnings = Vec::new();
+        let mut run = |profiles: Vec<Array2<f64>>, what: String| -> Result<Vec<Vec<f64>>, SpectrumError> {
+            let refs: Vec<&Array2<f64>> = profiles.iter().collect();
+            let g = map
+                .passage(c, &refs, false, &mut |_, _| {})
+                .map_err(|source| SpectrumError::Passage { what: what.clone(), source })?;
+            tick();
+            if g.linear_contact != *linear_contact || g.rerun.is_some() {
+                warnings.push(format!("{what} took another normal contact than the base rail's"));
+            }
+            for (r, rail) in g.rails.iter().enumerate() {
+                if rail.clipped_steps > 0 || rail.contact_loss_steps > 0 {
+                    warnings.push(format!(
+                        "{what}: rail {r} left the linear range ({} steps with the patch opened inside, {} without \
+                         contact): lower spectrum.perturbation",
+                        rail.clipped_steps, rail.contact_loss_steps
+                    ));
+                }
+            }
+            Ok(g.rails.iter().map(|r| self.lines.filtered(&r.wear)).collect())
+        };
+        let count = self.rounds.len();
+        let plus = run(perturbed(1.0), format!("round {} of {count}, +", t + 1))?;
+        let lines: Vec<Vec<f64>> = match self.params.difference {
+            Difference::Central => {
+                let minus = run(perturbed(-1.0), format!("round {} of {count}, -", t + 1))?;
+                plus.iter().zip(&minus).map(|(p, m)| p.iter().zip(m).map(|(a, b)| 0.5 * (a - b)).collect()).collect()
+            }
+            Difference::Forward => {
+                plus.iter().zip(base_lines).map(|(p, m)| p.iter().zip(m).map(|(a, b)| a - b).collect()).collect()
+            }
+        };
+        let spectra: Vec<Vec<Complex64>> = lines.iter().map(|l| self.lines.dft(l)).collect();
+        let responses = round
+            .iter()
+            .map(|slot| {
+                self.classes[slot.class]
+                    .basis
+                    .iter()
+                    .map(|h: &Harmonic| spread * bloch::coefficient(&spectra[h.rail], h.index))
+                    .collect()
+            })
+            .collect();
+        Ok(Measured { responses, warnings })
+    }
 }
 
 impl Responses {

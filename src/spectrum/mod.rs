@@ -126,6 +126,10 @@ pub enum SpectrumError {
     /// The parts of a measurement do not make one.
     #[error("{0}")]
     Parts(String),
+    /// A thread stopped because another thread's passage failed (that
+    /// failure is the one reported).
+    #[error("stopped: another thread's passage failed")]
+    Stopped,
     /// The band holds no harmonic of the supercell.
     #[error(
         "spectrum.wavelength_min = {min} m to spectrum.wavelength_max = {max} m holds no harmonic of the {length} m \
@@ -267,15 +271,16 @@ pub fn plan(scene: &Scene, params: &SpectrumParams, rails: usize) -> Option<Plan
 /// The growth spectrum of `scene` (a growth study's scene: its contact,
 /// dynamics, traffic) about the rails `base` (m, on the study's grid; the
 /// first rail's, then the second's), as `params` ask: every round measured
-/// ([`measure::measure`]) and the classes' matrices assembled and solved
-/// ([`Spectrum::from_responses`]).
+/// ([`measure::measure`], on `jobs` threads) and the classes' matrices
+/// assembled and solved ([`Spectrum::from_responses`]).
 pub fn linear_spectrum(
     scene: &Scene,
     base: &[Array2<f64>],
     params: &SpectrumParams,
+    jobs: usize,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Spectrum, SpectrumError> {
-    let responses = measure::measure(scene, base, params, None, progress)?;
+    let responses = measure::measure(scene, base, params, None, jobs, progress)?;
     Spectrum::from_responses(scene, params, responses)
 }
 
