@@ -10,8 +10,9 @@
 # then scripts/spectrum_compare.py: the largest difference of the modes'
 # and of the harmonics' diagonal rates between 1 and 10 nm and between 10
 # nm and 0.1 um, as spectrum_linearity.csv. Existing spectra are kept
-# (FORCE=1 computes them again); CASES="discrete" picks cases; OUT=DIR
-# writes elsewhere. About 10 minutes a spectrum on 2 cores: an hour.
+# (FORCE=1 computes them again); CASES="discrete" picks cases,
+# PERTURBATIONS="1e-9 1e-8" sizes (the pairs a decade apart compared);
+# OUT=DIR writes elsewhere. About 10 minutes a spectrum on 2 cores: an hour.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${OUT:-out/spectrum_linearity}
@@ -28,7 +29,7 @@ for name in ${CASES:-discrete curve}; do
     curve) config=configs/curve_low_rail.toml; extra=("${curve[@]}") ;;
     *) echo "unknown case $name" >&2; exit 2 ;;
   esac
-  for p in 1e-9 1e-8 1e-7; do
+  for p in ${PERTURBATIONS:-1e-9 1e-8 1e-7}; do
     f="$out/${name}_$p.h5"
     if [ -e "$f" ] && [ "${FORCE:-0}" != 1 ]; then echo "kept $f"; continue; fi
     echo "spectrum $name at $p m"
@@ -40,8 +41,11 @@ done
 {
   echo "a,b,perturbation_a,perturbation_b,modes,mode_rate_max_diff,at_mm,diagonal_rate_max_diff,at_mm,lead_a,lead_b,lead_mm"
   for name in ${CASES:-discrete curve}; do
-    .venv/bin/python scripts/spectrum_compare.py "$out/${name}_1e-9.h5" "$out/${name}_1e-8.h5" --csv
-    .venv/bin/python scripts/spectrum_compare.py "$out/${name}_1e-8.h5" "$out/${name}_1e-7.h5" --csv
+    for pair in "1e-9 1e-8" "1e-8 1e-7"; do
+      read -r a b <<< "$pair"
+      [ -e "$out/${name}_$a.h5" ] && [ -e "$out/${name}_$b.h5" ] || continue
+      .venv/bin/python scripts/spectrum_compare.py "$out/${name}_$a.h5" "$out/${name}_$b.h5" --csv
+    done
   done
 } > "$out/spectrum_linearity.csv"
 cat "$out/spectrum_linearity.csv"

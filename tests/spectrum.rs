@@ -85,6 +85,10 @@ fn on_continuous_track_the_map_is_diagonal_linear_and_its_diagonal_is_each_harmo
     for n in 1..=6i64 {
         let (rate, off) = diagonal(s, n);
         assert!(off < 2e-3, "harmonic {n}: off-diagonal {off:.2e} of the diagonal");
+        // (The study's rate at the band's ends and its middle.)
+        if ![1, 3, 6].contains(&n) {
+            continue;
+        }
         let wavelength = 0.06 / n as f64;
         let study = scene(&[
             "growth.passes=1",
@@ -124,15 +128,16 @@ fn the_spectrum_is_linear_a_decade_either_side_of_the_default_perturbation() {
     // harmonic's rate moves by 0.029, the linear regime's end for a single
     // harmonic: docs/src/theory/growth-spectrum.md). Forward differences at
     // 10 nm within 0.02 of central ones (measured 0.001).
+    // (The two spectra on 60-15 mm, four harmonics, to save passages.)
     let r = scene(&[]);
     let at = |perturbation: f64, difference| {
-        let s = spectrum_of(&r, &SpectrumParams { perturbation, difference, ..band() });
-        (1..=6).map(|n| diagonal(&s, n).0).collect::<Vec<f64>>()
+        let s = spectrum_of(&r, &SpectrumParams { perturbation, difference, wavelength_min: 0.0149, ..band() });
+        (1..=4).map(|n| diagonal(&s, n).0).collect::<Vec<f64>>()
     };
     use corrugation::spectrum::Difference::{Central, Forward};
-    let default: Vec<f64> = (1..=6).map(|n| diagonal(shared(false), n).0).collect();
+    let default: Vec<f64> = (1..=4).map(|n| diagonal(shared(false), n).0).collect();
     let (small, forward) = (at(1e-9, Central), at(1e-8, Forward));
-    for n in 0..6 {
+    for n in 0..4 {
         assert!((small[n] - default[n]).abs() < 0.02, "{}: {} vs {}", n + 1, small[n], default[n]);
         assert!((forward[n] - default[n]).abs() < 0.02, "{}: forward {} vs {}", n + 1, forward[n], default[n]);
     }
@@ -180,7 +185,13 @@ fn bloch_classes_of_a_cell_are_the_stretch_of_two_cells_own_and_its_leading_mode
     }
     assert!(across < 2e-3, "between the classes: {across:.2e}");
     assert!(within > 1e-2, "within a class the load couples the harmonics: {within:.2e}");
-    let cell = spectrum_of(&scene(&[&COUPLED[..], &period[..]].concat()), &SpectrumParams { classes: 2, ..band() });
+    // (The cell's spectrum by forward differences, half the passages:
+    // within 1e-3 dB per 1e5 of central ones on these scenes.)
+    let forward = corrugation::spectrum::Difference::Forward;
+    let cell = spectrum_of(
+        &scene(&[&COUPLED[..], &period[..]].concat()),
+        &SpectrumParams { classes: 2, difference: forward, ..band() },
+    );
     assert_eq!(cell.classes.len(), 2, "kappa = 0 and pi / (30 mm)");
     assert_eq!(cell.supercell(), two.stretch);
     let (a, b) = (rates(two), rates(&cell));
@@ -300,7 +311,7 @@ fn a_measurement_in_parts_merges_into_the_one_piece_spectrum_bit_for_bit() {
     let r = scene(&[]);
     // (Forward differences: the merge is bookkeeping, half the passages.)
     let params =
-        SpectrumParams { wavelength_min: 0.019, difference: corrugation::spectrum::Difference::Forward, ..band() };
+        SpectrumParams { wavelength_min: 0.029, difference: corrugation::spectrum::Difference::Forward, ..band() };
     let state = initial_state(&r.scene);
     let base = vec![ndarray::Array2::zeros(state.profile.raw_dim())];
     let whole = linear_spectrum(&r.scene, &base, &params, 1, &mut |_| {}).unwrap();
