@@ -267,8 +267,7 @@ fn a_study_started_from_the_leading_mode_grows_at_its_eigenvalue() {
     let b = corrugation::growth::mean_patch(&study.scene, &corrugation::build::derive(&study.scene).shape).1;
     let amplitude = |profile: &ndarray::Array2<f64>| {
         let line = corrugation::growth::contact_filtered_line(profile, &grid, b);
-        let mut buf: Vec<num_complex::Complex64> = line.iter().map(|v| num_complex::Complex64::new(*v, 0.0)).collect();
-        rustfft::FftPlanner::new().plan_fft_forward(buf.len()).process(&mut buf);
+        let buf = corrugation::spectrum::bloch::dft(&line);
         let roughness: Vec<_> =
             class.basis.iter().map(|h| corrugation::spectrum::bloch::coefficient(&buf, h.index)).collect();
         mode.amplitude(&roughness)

@@ -157,6 +157,15 @@ pub fn perturbation(round: &[Slot], rail: usize, nodes: usize, eps: f64) -> Vec<
     line
 }
 
+/// The discrete Fourier transform of a real line of samples,
+/// `sum_j line_j exp(-2 pi i j k / n)` for `k = 0 .. n - 1` (unnormalised,
+/// as [`coefficient`] reads it).
+pub fn dft(line: &[f64]) -> Vec<Complex64> {
+    let mut buf: Vec<Complex64> = line.iter().map(|v| Complex64::new(*v, 0.0)).collect();
+    rustfft::FftPlanner::new().plan_fft_forward(buf.len()).process(&mut buf);
+    buf
+}
+
 /// The coefficient of the signed index `s` of a line whose forward DFT is
 /// `dft` (rustfft's unnormalised transform of `nodes` samples): the line is
 /// `sum_s c_s exp(2 pi i s X / L_s)`, `c_s = dft[s mod nodes] / nodes`.
@@ -229,12 +238,6 @@ fn class_of(class: &Class, h: i64) -> bool {
 mod tests {
     use super::*;
     use rustfft::FftPlanner;
-
-    fn dft(line: &[f64]) -> Vec<Complex64> {
-        let mut buf: Vec<Complex64> = line.iter().map(|v| Complex64::new(*v, 0.0)).collect();
-        FftPlanner::new().plan_fft_forward(line.len()).process(&mut buf);
-        buf
-    }
 
     #[test]
     fn the_classes_hold_every_harmonic_of_the_band_once_with_its_conjugate() {
