@@ -6,7 +6,7 @@
 # beyond), the same study with the nonlinear profile contact throughout
 # ("profile"), and with the Hertz contact (capped at 300 passages); then rms
 # and the dominant harmonic against traffic (corrugation-post growth). Run
-# files and figures in out/saturation/. About 10 minutes on 2 cores.
+# files and figures in out/saturation/. About 2 minutes on 2 cores.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -21,4 +21,4 @@ run auto
 run profile --set contact.normal=profile
 run hertz --set contact.normal=hertz --set growth.passes=300
 .venv/bin/corrugation-post growth "$out/auto.h5" "$out/profile.h5" "$out/hertz.h5" \
-  --out "$out" --wavelength 0.0171
+  --out "$out" --wavelength 0.0109
