@@ -4,7 +4,7 @@
 //! src/dynamics/vehicle.rs) with the head's vertical receptances; wheels
 //! far apart are each the single wheel; a bogie study in every direction
 //! runs and resumes bit for bit.
-mod common;
+use crate::common;
 use corrugation::config::load_str;
 use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};

@@ -8,7 +8,7 @@
 //! linear (halving the amplitude); FASTSIM's is flat and its slopes those
 //! the torsional loop uses today; symmetry zeros; bad input is refused.
 //! Set `CREEP_RESPONSE_PRINT=1` to print the numbers.
-mod common;
+use crate::common;
 
 use common::{STEEL, paper_coefficients, paper_shape};
 use corrugation::contact::friction::FrictionLaw;

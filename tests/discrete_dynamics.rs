@@ -2,7 +2,7 @@
 //! the sleeper-passing force of a smooth rail against a direct estimate,
 //! the pinned-pinned band in the force transfer, sleeper-bay stretches, and
 //! bit-for-bit resume.
-mod common;
+use crate::common;
 use corrugation::config::load_str;
 use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::discrete::DiscreteTrack;

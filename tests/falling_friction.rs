@@ -4,7 +4,7 @@
 //! meet (the linear theory at vanishing creepage, `mu(V |xi|) N` in full
 //! sliding, Polach's closed-form creep curve), the law on every element, the fall beyond saturation, and the
 //! constant characteristic bit for bit.
-mod common;
+use crate::common;
 use common::{STEEL, paper_coefficients, paper_shape, rel};
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::friction::Characteristic;

@@ -1,6 +1,6 @@
 //! FASTSIM against Kalker's linear theory, the friction limit, and CONTACT's
 //! FASTSIM creepages for the paper's patch (scenes a and b of the reference).
-mod common;
+use crate::common;
 use common::{STEEL, paper_coefficients, paper_shape, rel, table};
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::{ContactError, Creepage, PressureShape, StepInput};

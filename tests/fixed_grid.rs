@@ -3,7 +3,7 @@
 //! classic case, exact Coulomb as the limit of the regularised law, and its
 //! invariants: the earlier displacement by shifting, force balance, the
 //! friction bound, wear volume.
-mod common;
+use crate::common;
 use common::{STEEL, paper_shape, peak, rel};
 use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;

@@ -4,7 +4,7 @@
 //! very long one keeps the static coefficient: the constant law), its
 //! monotone effect in between, agreement of solvers, and the roll-slip of
 //! a falling law settled by it on the fixed grid.
-mod common;
+use crate::common;
 use common::{STEEL, paper_coefficients, paper_shape, rel};
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::friction::{Characteristic, FrictionMemory};

@@ -2,7 +2,7 @@
 //! Gauss-Seidel solver: both solve the same discrete equations to the same
 //! tolerance, so they must give the same steps (contact::grid::cg).
 
-mod common;
+use crate::common;
 
 use common::{STEEL, fixed_grid, paper_shape, rel};
 use corrugation::contact::friction::FrictionLaw;

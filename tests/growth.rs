@@ -1,5 +1,5 @@
 //! The growth loop's passage over the periodic stretch.
-mod common;
+use crate::common;
 use common::{STEEL, paper_coefficients, paper_shape, rel};
 use corrugation::contact::PressureShape;
 use corrugation::contact::fastsim::Fastsim;

@@ -1,5 +1,5 @@
 //! Hertz solution against the closed-form patches of the paper's scene (Baeza et al. 2008) and CONTACT's printed patches.
-mod common;
+use crate::common;
 use common::{STEEL, paper_shape, rel};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 

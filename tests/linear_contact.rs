@@ -16,7 +16,7 @@
 //! - a passage over a corrugated rail balances the forces at every step;
 //! - `auto` takes the linear contact while the corrugation is shallow and
 //!   the nonlinear one beyond.
-mod common;
+use crate::common;
 use common::{STEEL, paper_fixed_grid, paper_shape, rel};
 use corrugation::config::load_str;
 use corrugation::contact::grid::{FixedGrid, RailSurface};

@@ -15,7 +15,7 @@
 //!   uniform across the rail;
 //! - force balance and complementarity at every step of a passage over a
 //!   corrugated rail.
-mod common;
+use crate::common;
 use common::{STEEL, paper_fixed_grid, paper_shape, rel};
 use corrugation::build::{build_deposit, build_solver, derive};
 use corrugation::config::load_str;

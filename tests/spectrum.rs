@@ -5,7 +5,6 @@
 //! passage is cheap. (A coarse FASTSIM mesh is no test scene: its cells
 //! switch between adhesion and slip, a piecewise-linear map whose finite
 //! differences move by 0.03 dB per 1e5 with the perturbation.)
-mod common;
 use corrugation::config::{Resolved, load_str};
 use corrugation::growth::study::initial_state;
 use corrugation::output::netcdf::read_f64;

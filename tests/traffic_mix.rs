@@ -2,7 +2,7 @@
 //! growth, the interleaving by share, the traffic-scaling bound per class
 //! on the discrete track, determinism and bit-for-bit resume, and the
 //! config's errors.
-mod common;
+use crate::common;
 use corrugation::config::load_str;
 use corrugation::output::netcdf::{read_f64, read_i64};
 use corrugation::run::{resume, run_scene};

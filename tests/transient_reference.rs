@@ -1,7 +1,7 @@
 //! The transient (non-stationary) contact model against Cattaneo-Mindlin,
 //! Kalker's linear theory, Kalker's "from Cattaneo to Carter", and CONTACT's
 //! exact-theory solutions for the paper's patch (shared reference, scene c).
-mod common;
+use crate::common;
 use common::{STEEL, paper_coefficients, paper_shape, peak, rel};
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::transient::elastic::{ExactElastic, WinklerElastic};

@@ -5,7 +5,7 @@
 //! reaches the first rail's contact through the wheelset; a two-rail study
 //! resumes bit for bit, both rails; a second rail the scene cannot carry is
 //! refused naming the key.
-mod common;
+use crate::common;
 use common::{largest, worst_scaled};
 use corrugation::build::wheelset_model;
 use corrugation::config::load_str;

@@ -3,7 +3,6 @@
 //! track, the discrete track's receptance matrices against its transfer
 //! receptances, one wheel as the single-wheel model, far-apart wheels as
 //! single wheels in the growth loop, and resume bit for bit.
-mod common;
 use corrugation::config::load_str;
 use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::discrete::DiscreteTrack;

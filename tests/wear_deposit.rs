@@ -1,6 +1,6 @@
 //! The wear kernel: analytic depth of a uniform rate, volume conservation,
 //! and convergence of the interpolated sub-steps (issue "Must show: Wear").
-mod common;
+use crate::common;
 use common::{STEEL, paper_coefficients, paper_shape, rel};
 use corrugation::contact::fastsim::Fastsim;
 use corrugation::contact::{EllipseMesh, PressureShape, StepInput};
