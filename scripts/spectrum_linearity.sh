@@ -11,7 +11,8 @@
 # and of the harmonics' diagonal rates between 1 and 10 nm and between 10
 # nm and 0.1 um, as spectrum_linearity.csv. Existing spectra are kept
 # (FORCE=1 computes them again); CASES="discrete" picks cases,
-# PERTURBATIONS="1e-9 1e-8" sizes (the pairs a decade apart compared);
+# PERTURBATIONS="1e-9 1e-8" sizes (of the pairs 1e-9 / 1e-8 and 1e-8 /
+# 1e-7, those whose two spectra exist are compared);
 # OUT=DIR writes elsewhere. About 10 minutes a spectrum on 2 cores: an hour.
 set -euo pipefail
 cd "$(dirname "$0")/.."

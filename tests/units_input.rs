@@ -134,6 +134,9 @@ fn an_unknown_key_gets_the_nearest_known_one() {
     // A key read only for some choices is known too.
     let e = load_str(FASTSIM, "f", &["track.pad_stifness=1e8".into()]).unwrap_err().to_string();
     assert!(e.contains("did you mean `pad_stiffness`?"), "{e}");
+    // A key of another section: that section named.
+    let e = load_str(STEADY, "s", &["load.speed=20".into()]).unwrap_err().to_string();
+    assert!(e.contains("load.speed: unknown key here; did you mean `rolling.speed` (in [rolling])?"), "{e}");
     // Nothing near: the known keys are listed.
     let e = load_str(STEADY, "s", &["wear.colour=1".into()]).unwrap_err().to_string();
     assert!(e.contains("wear.colour: unknown key; known here: density, hardness, k_over_h, law, map_coefficients, map_speeds, substeps, work_coefficients"), "{e}");

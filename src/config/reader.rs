@@ -368,10 +368,31 @@ impl<'a> Section<'a> {
         }
         for (k, _) in self.table {
             let key = format!("{}.{k}", self.path);
-            self.errors.push(ConfigError::new(&key, unknown_key_message(&k, &known)));
+            let message = match elsewhere(&plain, &k) {
+                Some(full) if nearest(&k, known.iter().map(String::as_str)).is_none() => {
+                    format!("unknown key here; did you mean `{full}` (in [{}])?", section_of(&full))
+                }
+                _ => unknown_key_message(&k, &known),
+            };
+            self.errors.push(ConfigError::new(&key, message));
         }
         self.resolved
     }
+}
+
+/// The full name of a key called `key` in another section than `section`
+/// (a key of the unit table: every numeric key), for a key written in the
+/// wrong section; the first in the table where several sections have it.
+fn elsewhere(section: &str, key: &str) -> Option<String> {
+    super::units::all_keys()
+        .map(|(k, _)| k)
+        .find(|k| k.rsplit_once('.').is_some_and(|(s, name)| name == key && s != section && !s.contains('.')))
+        .map(str::to_string)
+}
+
+/// `rolling.speed` -> `rolling`.
+fn section_of(key: &str) -> &str {
+    key.rsplit_once('.').map_or(key, |(s, _)| s)
 }
 
 /// "unknown key" with the nearest of `known` where one is near (at most a
