@@ -95,6 +95,13 @@ fn every_bad_record_is_refused_with_its_file_and_line() {
         (with(&|d| d.truncate(20)), "", "bad.txt:22", "too short"),
         (with(&|_| {}), "wavelength_min = 0.0019", "bad.txt:4", "too coarse"),
         (with(&|d| d[3] = "0.003".into()), "", "bad.txt:6", "field"),
+        // Positions in millimetres read as metres: the unit key named.
+        (
+            with(&|d| d.iter_mut().enumerate().for_each(|(k, l)| *l = format!("{k} {}", k % 7))),
+            "",
+            "bad.txt:4",
+            "set roughness.position_unit = \"mm\"",
+        ),
     ];
     for (i, (text, extra, at, word)) in cases.iter().enumerate() {
         std::fs::write(dir.path().join("bad.txt"), text).unwrap();

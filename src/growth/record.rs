@@ -251,6 +251,10 @@ pub fn window_harmonics(h: &[f64], length: f64, x_min: f64, lo: f64, hi: f64) ->
     out
 }
 
+/// A record spacing (m) from which a file read in metres is taken to be
+/// likely in millimetres (10 mm: trolley records sample at 1-2 mm).
+const MM_READ_AS_M: f64 = 0.01;
+
 /// The rail's initial irregularity from `samples` on the periodic stretch
 /// `[x_min, x_min + length)`. Errors: (the config key to name, message).
 pub fn measured_roughness(
@@ -264,12 +268,23 @@ pub fn measured_roughness(
     let x0 = samples.positions[0];
     let last = samples.positions[n - 1];
     if 2.0 * d >= p.wavelength_min * (1.0 - 1e-9) {
+        // A spacing of centimetres or more in a file read in metres is most
+        // likely a record in millimetres (trolleys sample at 1-2 mm).
+        let unit_hint = if samples.position_unit == "m" && d >= MM_READ_AS_M {
+            format!(
+                " (a spacing of {:.0} mm: if the file's positions are in millimetres, set roughness.position_unit = \
+                 \"mm\"; they were read as metres)",
+                d * 1e3
+            )
+        } else {
+            String::new()
+        };
         return Err((
             "roughness.file",
             format!(
                 "{}: the record's spacing {:.4} mm resolves wavelengths down to {:.4} mm (two samples a wavelength); \
                  the study needs them down to roughness.wavelength_min = {:.4} mm: the sampling is too coarse. Use a \
-                 record sampled finer than {:.4} mm, or a larger roughness.wavelength_min",
+                 record sampled finer than {:.4} mm, or a larger roughness.wavelength_min{unit_hint}",
                 samples.at(1),
                 d * 1e3,
                 2.0 * d * 1e3,
