@@ -672,12 +672,12 @@ fn print_field_units(s: &corrugation::params::Scene, g: &corrugation::params::Gr
     let limit = s.levels.limit.on(&bands);
     match (bands.first(), bands.last()) {
         (Some(long), Some(short)) => println!(
-            "roughness levels   {} bands, {} to {} (a quarter of the stretch down to the grid), against the {} limit \
+            "roughness levels   {} bands, {} to {} (a quarter of the stretch down to the grid), against the {} \
              ({} of them with a value)",
             bands.len(),
             long.label(),
             short.label(),
-            s.levels.limit.name,
+            corrugation::levels::limit::limit_words(&s.levels.limit.name),
             limit.iter().filter(|l| l.is_finite()).count()
         ),
         _ => println!("roughness levels   no band resolved (a band needs a quarter of the stretch)"),

@@ -84,8 +84,9 @@ fn stop_reason(
             };
             let &k = crossed(before, &last.roughness_level, limit).first()?;
             Some(format!(
-                "limit: the {} band reached the {limit_name} limit ({:.1} dB re 1 um) in passage {}",
+                "limit: the {} band reached the {} ({:.1} dB re 1 um) in passage {}",
                 levels.bands()[k].label(),
+                crate::levels::limit::limit_words(limit_name),
                 limit[k],
                 rows.len()
             ))

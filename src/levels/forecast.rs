@@ -221,7 +221,7 @@ pub fn outlook(s: &Standing) -> Vec<String> {
             "no one-third-octave band is resolved on this stretch (a band needs a quarter of its length)".into(),
         ];
     }
-    let name = s.limit_name;
+    let name = crate::levels::limit::limit_words(s.limit_name);
     let finite = s.limit.iter().any(|l| l.is_finite());
     if !finite {
         return lines;
@@ -231,7 +231,7 @@ pub fn outlook(s: &Standing) -> Vec<String> {
     for (p, after) in s.levels.iter().enumerate() {
         if let Some(&k) = crossed(before, after, s.limit).first() {
             lines.push(format!(
-                "the {} band reached the {name} limit ({:.1} dB re 1 um) in passage {}, after {}",
+                "the {} band reached the {name} ({:.1} dB re 1 um) in passage {}, after {}",
                 s.bands[k].label(),
                 s.limit[k],
                 p + 1,
@@ -282,20 +282,20 @@ pub fn outlook(s: &Standing) -> Vec<String> {
                 _ => format!("{rate:+.2} dB per 1e5 wheel passages from {:.1} dB", last[k]),
             };
             lines.push(format!(
-                "the {} band reaches the {name} limit ({:.1} dB re 1 um) after {} from the start, at passage \
+                "the {} band reaches the {name} ({:.1} dB re 1 um) after {} from the start, at passage \
                  {pass}'s rates ({how}){slower}",
                 s.bands[k].label(),
                 s.limit[k],
                 s.units.describe(so_far + to_limit[k]),
             ))
         }
-        None => lines.push(format!("at passage {pass}'s rates no band below the {name} limit grows towards it")),
+        None => lines.push(format!("at passage {pass}'s rates no band below the {name} grows towards it")),
     }
     let above: Vec<usize> = (0..s.bands.len()).filter(|&k| to_limit[k] == 0.0).collect();
     if !above.is_empty() {
         let list: Vec<String> =
             above.iter().map(|&k| format!("{} (by {:.1} dB)", s.bands[k].label(), last[k] - s.limit[k])).collect();
-        lines.push(format!("above the {name} limit after passage {pass}: {}", list.join(", ")));
+        lines.push(format!("above the {name} after passage {pass}: {}", list.join(", ")));
     }
     if s.units.tonnes_per_passage.is_none() || s.units.axles_per_day.is_none() {
         lines.push("(traffic.axle_load and traffic.axles_per_day give these in million gross tonnes and days)".into());

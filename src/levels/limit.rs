@@ -189,9 +189,28 @@ pub fn set_name(set: BandSet) -> &'static str {
     }
 }
 
+/// A limit curve's name as words: "ISO 3095 limit", and a name that
+/// already ends in "limit" as it is ("network limit", not "network limit
+/// limit").
+pub fn limit_words(name: &str) -> String {
+    if name.trim_end().to_lowercase().ends_with("limit") {
+        name.trim_end().to_string()
+    } else {
+        format!("{name} limit")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_limit_name_is_said_once() {
+        assert_eq!(limit_words("ISO 3095"), "ISO 3095 limit");
+        assert_eq!(limit_words("network limit"), "network limit");
+        assert_eq!(limit_words("Grinding Limit "), "Grinding Limit");
+        assert_eq!(limit_words("limits.csv"), "limits.csv limit");
+    }
     use crate::levels::resolved_bands;
 
     #[test]
