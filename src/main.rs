@@ -46,7 +46,7 @@ enum Command {
     Run {
         /// Scene config (TOML).
         config: PathBuf,
-        /// Output file (default: the config's name with .h5, in the current directory).
+        /// Output file (default: out/ and the config's name with .h5).
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Override a config key, e.g. --set contact.elements_x=30 (repeatable).
@@ -78,7 +78,7 @@ enum Command {
     Track {
         /// Scene config (TOML) with a [track] section (or its defaults).
         config: PathBuf,
-        /// Output file (default: the config's name with _track.h5).
+        /// Output file (default: out/ and the config's name with _track.h5).
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Override a config key (repeatable).
@@ -124,7 +124,7 @@ enum Command {
         /// use).
         #[arg(short = 'j', long = "jobs", value_parser = clap::value_parser!(u32).range(1..=256))]
         jobs: Option<u32>,
-        /// Output file (default: the config's name with _spectrum.h5).
+        /// Output file (default: out/ and the config's name with _spectrum.h5).
         #[arg(short, long)]
         output: Option<PathBuf>,
         /// Override a config key (repeatable), e.g. --set spectrum.classes=4.
@@ -182,7 +182,7 @@ fn main() -> ExitCode {
                 Ok(r) => r,
                 Err(code) => return code,
             };
-            let out = output.unwrap_or_else(|| default_output(&config));
+            let out = output.unwrap_or_else(|| default_output(&config, "run", ""));
             if let Err(code) = new_output(&out, overwrite, true).and_then(|_| writable(&out)) {
                 return code;
             }
@@ -247,10 +247,7 @@ fn main() -> ExitCode {
                     Err(code) => return code,
                 }
             };
-            let out = output.unwrap_or_else(|| {
-                let stem = config.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or("run".into());
-                PathBuf::from(format!("{stem}_spectrum.h5"))
-            });
+            let out = output.unwrap_or_else(|| default_output(&config, "run", "_spectrum"));
             if let Err(code) = new_output(&out, overwrite, false).and_then(|_| writable(&out)) {
                 return code;
             }
@@ -282,10 +279,7 @@ fn main() -> ExitCode {
                 Ok(r) => r,
                 Err(code) => return code,
             };
-            let out = output.unwrap_or_else(|| {
-                let stem = config.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or("track".into());
-                PathBuf::from(format!("{stem}_track.h5"))
-            });
+            let out = output.unwrap_or_else(|| default_output(&config, "track", "_track"));
             if let Err(code) = new_output(&out, overwrite, false) {
                 return code;
             }
@@ -471,10 +465,19 @@ fn writable(out: &Path) -> Result<(), ExitCode> {
     })
 }
 
-fn default_output(config: &Path) -> PathBuf {
-    let stem = config.file_stem().map(|s| s.to_os_string()).unwrap_or_else(|| "run".into());
-    PathBuf::from(stem).with_extension("h5")
+/// The output a command writes without `-o`: `out/<config name><suffix>.h5`
+/// under the current directory (`out/` made where missing), so that a run
+/// never litters the folder it was started in.
+fn default_output(config: &Path, fallback: &str, suffix: &str) -> PathBuf {
+    let stem = config.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| fallback.into());
+    let dir = PathBuf::from(DEFAULT_OUTPUT_DIR);
+    // (A folder that cannot be made is reported by the writability check.)
+    let _ = std::fs::create_dir_all(&dir);
+    dir.join(format!("{stem}{suffix}.h5"))
 }
+
+/// The folder of the outputs written without `-o`.
+const DEFAULT_OUTPUT_DIR: &str = "out";
 
 fn run(resolved: &Resolved, out: &Path) -> ExitCode {
     let passes = resolved.scene.growth.as_ref().map_or(1, |g| g.passes);

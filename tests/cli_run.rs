@@ -264,3 +264,19 @@ fn auto_takes_the_cheaper_fixed_grid_solver() {
     assert_eq!(solver_of("paper_normal_30mm", &[&fixed[..], &["contact.friction_law=coulomb"]].concat()), "cg");
     assert_eq!(solver_of("growth_exact", &["contact.solver=gauss-seidel"]), "gauss-seidel");
 }
+
+#[test]
+fn without_an_output_a_run_writes_under_out() {
+    // `run` without `-o` writes out/<config name>.h5 in the folder it was
+    // started in (out/ made), nothing beside it.
+    let dir = tempfile::tempdir().unwrap();
+    let c = config("paper_normal_15mm");
+    let mut args = vec!["run", c.as_str()];
+    args.extend(FAST);
+    let o = Command::new(BIN).args(&args).current_dir(dir.path()).output().expect("binary runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(dir.path().join("out/paper_normal_15mm.h5").is_file());
+    let names: Vec<String> =
+        std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    assert_eq!(names, vec!["out".to_string()], "only out/ in the start folder");
+}
