@@ -14,8 +14,8 @@ if [[ $# -gt 0 && $1 != --* ]]; then
   shift
 fi
 bash scripts/setup.sh
-echo "building the release binary (a few minutes from a fresh clone, silent meanwhile)"
-cargo build --release --quiet
+echo "building the release binary (a few minutes from a fresh clone; cargo lists the crates as it compiles them)"
+cargo build --release
 mkdir -p "$out"
 ./target/release/corrugation run --overwrite "$config" -o "$out/$name.h5" "$@"
 .venv/bin/corrugation-post figures "$out/$name.h5" --out "$out" > /dev/null
