@@ -14,7 +14,7 @@
 //! a resumed run writes the same numbers.
 
 use super::netcdf::{NcError, NcGroup};
-use super::run_file::RunRecord;
+use super::run_record::RunRecord;
 use crate::growth::state::PassRow;
 use crate::levels::forecast::{Units, cumulative_mgt, driven, passages_to_limit};
 use ndarray::{Array1, Array2, ArrayView1};

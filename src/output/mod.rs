@@ -6,6 +6,7 @@ mod field_units;
 mod h5ds;
 pub mod netcdf;
 pub mod run_file;
+mod run_record;
 pub mod spectrum_file;
 pub mod spectrum_part;
 pub mod track_file;
