@@ -64,7 +64,7 @@ fn main() -> anyhow::Result<()> {
         ex.inputs = ['x', 'y', 's', 'n'].map(|c| v.contains(c));
     }
     let (clock, cpu) = (Instant::now(), cpu_time::ProcessTime::now());
-    let r = scene::response(&sc, &mean, &ex)?;
+    let r = scene::response(&sc, &mean, &ex, &|| corrugation::build::build_solver(&sc, &scene::shape(&sc)))?;
     let (wall, cpu) = (clock.elapsed().as_secs_f64(), cpu.elapsed().as_secs_f64());
     eprintln!(
         "wall {wall:.3} s, cpu {cpu:.3} s; a0 = {:.4e} m, xi_x0 = {:.6e}, F0 = ({:.6e}, {:.6e}) N, {} points to w a0/V = {:.3}",

@@ -52,14 +52,8 @@ pub struct Derived {
     pub grid: RailGrid,
 }
 
-/// The run-in of a growth passage under creepage control, in patch lengths
-/// `2 a` at the largest imposed load: from the Cattaneo start at a
-/// prescribed creepage the exact theory's force approaches its steady
-/// value exponentially over about 0.7 x 2a (tests/creepage_control.rs:
-/// 1.5e-2 of mu N short after 2.5 x 2a, 4.5e-5 after 6.7 x 2a), where at a
-/// prescribed force the creepage settles in about 2a; 7 x 2a leaves about
-/// 3e-5 of mu N.
-pub const CREEPAGE_RUN_IN: f64 = 7.0;
+/// (The creepage-control run-in is the contact's own: see its doc.)
+pub use crate::dynamics::creep_response::scene::CREEPAGE_RUN_IN;
 
 /// The run-in of a growth passage under force control, in patch lengths
 /// `2 a` at the largest imposed load: the material in the patch at the
@@ -472,8 +466,10 @@ fn contact_dynamics(
         let response = match creep_forces {
             CreepForces::Steady => None,
             CreepForces::Transient => Some(
-                creep_response::scene::default_response(scene, key.0, key.1, [true, true, spin, true])
-                    .map_err(|e| DynamicsError::CreepResponse(e.to_string()))?,
+                creep_response::scene::default_response(scene, key.0, key.1, [true, true, spin, true], &|| {
+                    build_solver(scene, &creep_response::scene::shape(scene))
+                })
+                .map_err(|e| DynamicsError::CreepResponse(e.to_string()))?,
             ),
         };
         laws.push((key, law, response));
@@ -530,8 +526,10 @@ fn contact_dynamics(
         let response = match creep_forces {
             CreepForces::Steady => None,
             CreepForces::Transient => Some(
-                creep_response::scene::default_response(&second, n0, fx, [true, true, spin, true])
-                    .map_err(|e| DynamicsError::CreepResponse(format!("second rail: {e}")))?,
+                creep_response::scene::default_response(&second, n0, fx, [true, true, spin, true], &|| {
+                    build_solver(&second, &creep_response::scene::shape(&second))
+                })
+                .map_err(|e| DynamicsError::CreepResponse(format!("second rail: {e}")))?,
             ),
         };
         for i in 0..v.wheels.len() {

@@ -36,14 +36,7 @@ pub struct BaseClass {
     pub unsprung_mass: Option<f64>,
 }
 
-/// Name of the one class of a study without `[traffic]`.
-pub const BASE_NAME: &str = "base";
-
-/// Whether `classes` are a mix from `[traffic]` rather than the one class
-/// of the base config.
-pub fn is_mix(classes: &[TrafficClass]) -> bool {
-    !matches!(classes, [c] if c.name == BASE_NAME)
-}
+pub use crate::params::{BASE_NAME, is_mix};
 
 /// The one class of a study without a mix: the base values.
 fn base_class(base: BaseClass) -> Option<TrafficClass> {

@@ -120,7 +120,7 @@ fn check_wheels(key: &str, wheels: &[f64], scene: &Scene, errors: &mut Vec<Confi
 /// force under creepage control.
 fn check_lists(scene: &Scene, errors: &mut Vec<ConfigError>) {
     let v = &scene.vehicle;
-    let mix = scene.growth.as_ref().is_some_and(|g| super::traffic::is_mix(&g.classes));
+    let mix = scene.growth.as_ref().is_some_and(|g| crate::params::is_mix(&g.classes));
     let lists = [
         ("unsprung_mass", v.unsprung_mass.is_some()),
         ("normal_force", v.normal_force.is_some()),

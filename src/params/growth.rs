@@ -184,6 +184,15 @@ pub enum TrafficScaling {
     },
 }
 
+/// Name of the one class of a study without `[traffic]`.
+pub const BASE_NAME: &str = "base";
+
+/// Whether `classes` are a mix from `[traffic]` rather than the one class
+/// of the base config.
+pub fn is_mix(classes: &[TrafficClass]) -> bool {
+    !matches!(classes, [c] if c.name == BASE_NAME)
+}
+
 /// One class of traffic (SI units).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrafficClass {

@@ -13,8 +13,8 @@ mod growth;
 
 pub use choice::{AutoChoice, Candidate};
 pub use growth::{
-    CreepForces, Directions, DynamicsKind, GrowthParams, LevelBand, Operation, ProfileHarmonic, Roughness, StopRule,
-    TrafficClass, TrafficScaling,
+    BASE_NAME, CreepForces, Directions, DynamicsKind, GrowthParams, LevelBand, Operation, ProfileHarmonic, Roughness,
+    StopRule, TrafficClass, TrafficScaling, is_mix,
 };
 
 /// Tangential contact model.

@@ -1,10 +1,10 @@
 //! The creep response of a scene's contact: its solver (the model and grid
-//! its passages use, [`crate::build::build_solver`]), its mean state per
-//! wheel, and the excitation whose accuracy and cost
-//! `docs/src/theory/creep-response.md` measures.
+//! its passages use, given by the caller: the assembly's
+//! `build_solver`), its mean state per wheel, and the
+//! excitation whose accuracy and cost `docs/src/theory/creep-response.md`
+//! measures.
 
 use super::{CreepResponse, CreepResponseError, Excitation, Longitudinal, MeanState, measure};
-use crate::build::build_solver;
 use crate::contact::TangentialSolver;
 use crate::hertz::HertzShape;
 use crate::params::Scene;
@@ -22,6 +22,15 @@ pub const PERIOD_PATCHES: f64 = 4.0;
 /// 2e-5 of that after 4 (1 % after 1), and the table within 2e-5 of
 /// |H(0)|.
 pub const RUN_IN_PATCHES: f64 = 2.0;
+
+/// The run-in of a growth passage under creepage control, in patch lengths
+/// `2 a` at the largest imposed load: from the Cattaneo start at a
+/// prescribed creepage the exact theory's force approaches its steady
+/// value exponentially over about 0.7 x 2a (tests/creepage_control.rs:
+/// 1.5e-2 of mu N short after 2.5 x 2a, 4.5e-5 after 6.7 x 2a), where at a
+/// prescribed force the creepage settles in about 2a; 7 x 2a leaves about
+/// 3e-5 of mu N.
+pub const CREEPAGE_RUN_IN: f64 = 7.0;
 
 /// Excitation before the measured period, in patch lengths `2 a0`: the
 /// response to the switched-on excitation decays by a factor of about 25
@@ -70,7 +79,7 @@ pub fn mean_state(scene: &Scene, normal_force: f64, longitudinal_force: f64) -> 
 
 /// The default excitation for `mean` on `scene` (all four inputs): the
 /// constants above in patch lengths of the mean patch; a run-in of
-/// [`crate::build::CREEPAGE_RUN_IN`] patch lengths where the creepage is
+/// [`CREEPAGE_RUN_IN`] patch lengths where the creepage is
 /// prescribed (the exact theory's force settles slowly at a prescribed
 /// creepage from the virgin start); the step of the scene's passage (the
 /// fixed grid's element on the fixed grid); the largest reduced frequency
@@ -84,7 +93,7 @@ pub fn default_excitation(
     let step = scene.contact.model.fixed_grid().map_or(scene.step_length, |f| f.dx);
     let run_in = match mean.longitudinal {
         Longitudinal::Force(_) => RUN_IN_PATCHES,
-        Longitudinal::Creepage(_) => crate::build::CREEPAGE_RUN_IN,
+        Longitudinal::Creepage(_) => CREEPAGE_RUN_IN,
     };
     Ok(Excitation {
         step,
@@ -102,12 +111,20 @@ pub fn shape(scene: &Scene) -> HertzShape {
     HertzShape::new(scene.geometry.curvatures(), scene.material.elastic).expect("validated geometry")
 }
 
-/// The response of `scene`'s contact about `mean`, measured with its own
-/// solver (one built per run) as `excitation` says.
-pub fn response(scene: &Scene, mean: &MeanState, excitation: &Excitation) -> Result<CreepResponse, CreepResponseError> {
-    let shape = shape(scene);
-    let make = || -> Box<dyn TangentialSolver> { build_solver(scene, &shape) };
-    measure(&make, &shape, mean, excitation)
+/// The scene's tangential solver, built afresh per call (for the
+/// measurement's runs).
+pub type SolverOf<'a> = &'a (dyn Fn() -> Box<dyn TangentialSolver> + Sync);
+
+/// The response of `scene`'s contact about `mean`, measured with the
+/// scene's own solver (`make` builds one, the passages' model and grid) as
+/// `excitation` says.
+pub fn response(
+    scene: &Scene,
+    mean: &MeanState,
+    excitation: &Excitation,
+    make: SolverOf,
+) -> Result<CreepResponse, CreepResponseError> {
+    measure(make, &shape(scene), mean, excitation)
 }
 
 /// The response of `scene`'s contact for a wheel of mean normal force
@@ -129,6 +146,7 @@ pub fn default_response(
     normal_force: f64,
     longitudinal_force: f64,
     inputs: [bool; 4],
+    make: SolverOf,
 ) -> Result<CreepResponse, CreepResponseError> {
     let mean = mean_state(scene, normal_force, longitudinal_force);
     let excitation = Excitation { inputs, ..default_excitation(scene, &shape(scene), &mean)? };
@@ -137,7 +155,7 @@ pub fn default_response(
     if let Some(r) = found {
         return Ok(r);
     }
-    let r = response(scene, &mean, &excitation)?;
+    let r = response(scene, &mean, &excitation, make)?;
     if let Ok(mut m) = MEASURED.lock() {
         if m.len() == MEASURED_KEPT {
             m.remove(0);
