@@ -15,6 +15,7 @@ pub mod cost;
 pub mod creep_coefficients;
 pub mod dynamics;
 pub mod growth;
+pub mod harmonics;
 pub mod hertz;
 pub mod levels;
 pub mod loads;

@@ -4,7 +4,7 @@
 
 use super::ConfigError;
 use crate::growth::roughness::profile_line;
-use crate::growth::spectrum::{amplitudes, wavelengths};
+use crate::harmonics::{amplitudes, wavelengths};
 use crate::hertz::HertzShape;
 use crate::loads::ImposedLoads;
 use crate::model_choice::hertz_validity::HertzValidity;

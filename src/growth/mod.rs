@@ -17,7 +17,6 @@ pub mod mix;
 pub mod record;
 pub mod roughness;
 mod row;
-pub mod spectrum;
 pub mod state;
 pub mod stop;
 pub mod study;

@@ -95,7 +95,7 @@ pub fn profile_line(r: &Roughness, x: &[f64], length: f64) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::growth::spectrum::amplitudes;
+    use crate::harmonics::amplitudes;
 
     #[test]
     fn level_spectrum_gives_each_band_its_rms() {

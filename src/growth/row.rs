@@ -4,8 +4,8 @@
 //! wheelset.
 
 use super::contact_filtered_line;
-use super::spectrum::{amplitudes, growth_rates};
 use super::state::{PassRow, RailSnapshot, RunState};
+use crate::harmonics::{amplitudes, growth_rates};
 use crate::levels::{BandLevels, LEVEL_FLOOR, R0, level_rates};
 use crate::metrics::rms_corrugation;
 use crate::passage::PatchHistory;

@@ -11,7 +11,7 @@
 //!
 //! `r_rms^2` the mean square of the roughness in the band. On the periodic
 //! stretch of length `L_s` a profile line is exactly a sum of harmonics of
-//! wavelength `L_s/n` (amplitudes `A_n`, [`crate::growth::spectrum`]), so by
+//! wavelength `L_s/n` (amplitudes `A_n`, [`crate::harmonics`]), so by
 //! Parseval a band's mean square is `sum A_n^2 / 2` over the harmonics whose
 //! wavelength lies in the band: no window, no leakage.
 //!
@@ -38,7 +38,7 @@
 pub mod forecast;
 pub mod limit;
 
-use crate::growth::spectrum::amplitudes;
+use crate::harmonics::amplitudes;
 use crate::rail_grid::RailGrid;
 use ndarray::Array2;
 

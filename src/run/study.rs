@@ -18,10 +18,10 @@
 
 use crate::build::study_grid;
 use crate::config::{ConfigErrors, RecordSource, Resolved, load_str_with};
-use crate::growth::spectrum::wavelengths;
 pub use crate::growth::state::RunState;
 pub use crate::growth::study::Event;
 use crate::growth::study::{PassageFailed, Study, initial_state};
+use crate::harmonics::wavelengths;
 use crate::output::checkpoint::{StateLayout, read_run_state};
 use crate::output::netcdf::{NcError, read_attr_str, read_f64};
 use crate::output::run_file::{RunRecord, read_record, write_run_file};

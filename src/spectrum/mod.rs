@@ -318,7 +318,7 @@ impl Spectrum {
             classes: r.classes,
             matrices,
             modes,
-            wavelengths: crate::growth::spectrum::wavelengths(cell.nx, cell.dx),
+            wavelengths: crate::harmonics::wavelengths(cell.nx, cell.dx),
             forced_wear: r.forced.iter().map(amplitude).collect(),
             base_wear: r.base.iter().map(amplitude).collect(),
             mean_wear: r.mean_wear,
