@@ -335,7 +335,7 @@ def rms_growth(run: Run, pass_index: int, out_dir: Path) -> Path | None:
         axes[0].legend(fontsize=8)
     if scaling:
         _scaling_panel(axes[1], found)
-    axes[-1].set_xlabel("traffic (passages)")
+    axes[-1].set_xlabel("traffic (wheel passages)")
     return _save(fig, out_dir, "rms_corrugation.png")
 
 
@@ -369,7 +369,7 @@ def wear_regimes(run: Run, pass_index: int, out_dir: Path) -> Path | None:
                title=f"Wear by regime{(' - ' + r.rail_name) if run.two_rails else ''}")
         ax.legend(fontsize=8, loc="upper right")
         ax.grid(alpha=0.3)
-    axes[-1].set_xlabel("traffic (passages)")
+    axes[-1].set_xlabel("traffic (wheel passages)")
     return _save(fig, out_dir, "wear_regimes.png")
 
 
@@ -377,12 +377,12 @@ def _scaling_panel(ax, found) -> None:
     """The traffic scale m (shared by the rails) and each rail's update ratio q."""
     first = found[0][1]
     ax.semilogy(first["traffic"], first["scale"], "o-", ms=3, label="traffic scale m (passages per update)")
-    ax.set_ylabel("m")
+    ax.set_ylabel("traffic scale m\n(wheel passages per simulated passage)")
     twin = ax.twinx()
     for (r, sr), line in zip(found, ("s-", "s--")):
         label = f"update ratio q ({r.rail_name})" if r.rail_name else "update ratio q"
         twin.plot(sr["traffic"], sr["ratio"], line, ms=2, color="tab:red", label=label)
-    twin.set_ylabel("update ratio q = m max|W_k|/|R_k|", color="tab:red")
+    twin.set_ylabel("update ratio q\n(largest wear step / roughness, per harmonic)", color="tab:red")
     ax.grid(alpha=0.3)
 
 
@@ -458,7 +458,7 @@ def _spectrogram_panel(fig, ax, d: dict, scale: dict) -> None:
     fig.colorbar(mesh, ax=ax, label=label)
     run = d["run"]
     what = "contact-filtered " if d["spec"].name == "filtered_spectrum" else ""
-    ax.set(yscale="log", xlabel="traffic (passages)", ylabel="wavelength (mm)",
+    ax.set(yscale="log", xlabel="traffic (wheel passages)", ylabel="wavelength (mm)",
            title=f"{_rail_prefix(run)}Corrugation {what}spectrum over traffic\ncontact model: {run.contact_model}")
 
 

@@ -137,7 +137,7 @@ def compare_growth(paths, out_dir, wavelength: float | None = None):
         t = np.r_[0.0, c.traffic]
         ax_amp.plot(t, np.r_[c.initial[k], c.spectrum[:, k]] * 1e6, "o-", ms=2, label=label)
     ax_rms.set(ylabel="rms corrugation (µm)", title="Growth studies compared")
-    ax_amp.set(xlabel="traffic (passages)", ylabel=f"amplitude at {wl * 1e3:.1f} mm (µm)")
+    ax_amp.set(xlabel="traffic (wheel passages)", ylabel=f"amplitude at {wl * 1e3:.1f} mm (µm)")
     for ax in (ax_rms, ax_amp):
         ax.grid(alpha=0.3)
     ax_rms.legend(fontsize=8)
