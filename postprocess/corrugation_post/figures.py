@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Callable
 
 import numpy as np
+from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 from matplotlib.tri import Triangulation
@@ -450,11 +451,26 @@ def _amplitude_map(d: dict) -> tuple[np.ndarray, np.ndarray, str]:
     return d["wl_mm"][keep], amp, label
 
 
+# The spectrogram's colour range: from this fraction of the largest
+# amplitude to it (three decades, 60 dB).
+SPECTROGRAM_DECADES = 1e-3
+
+
 def _spectrogram_panel(fig, ax, d: dict, scale: dict) -> None:
     """One rail's amplitude over wavelength and traffic (``scale``: the
     colour limits shared by the rails, empty with one rail)."""
     wl_mm, amp, label = _amplitude_map(d)
-    mesh = ax.pcolormesh(d["traffic"], wl_mm, amp, shading="nearest", cmap="magma", **scale)
+    # A log colour scale over three decades below the largest amplitude
+    # (shared by the rails): one strong line does not swamp the rest, and
+    # what lies below the decades is drawn as their floor.
+    top = scale.get("vmax", float(np.nanmax(amp)))
+    if top > 0:
+        norm = LogNorm(vmin=top * SPECTROGRAM_DECADES, vmax=top)
+        mesh = ax.pcolormesh(d["traffic"], wl_mm, np.clip(amp, top * SPECTROGRAM_DECADES, None), shading="nearest",
+                             cmap="magma", norm=norm)
+        label = f"{label}, log scale"
+    else:
+        mesh = ax.pcolormesh(d["traffic"], wl_mm, amp, shading="nearest", cmap="magma", **scale)
     fig.colorbar(mesh, ax=ax, label=label)
     run = d["run"]
     what = "contact-filtered " if d["spec"].name == "filtered_spectrum" else ""
