@@ -10,6 +10,7 @@ use crate::loads::ImposedLoads;
 
 mod choice;
 mod growth;
+pub mod spectrum;
 
 pub use choice::{AutoChoice, Candidate};
 pub use growth::{
@@ -487,7 +488,7 @@ pub struct Scene {
     pub second_rail: Option<SecondRail>,
     /// What `corrugation spectrum` measures (`[spectrum]`; None: absent,
     /// the command takes the defaults).
-    pub spectrum: Option<crate::spectrum::SpectrumParams>,
+    pub spectrum: Option<spectrum::SpectrumParams>,
 }
 
 /// The second rail of a wheelset (`[second_rail]`): its contact's steady
