@@ -24,11 +24,7 @@
 # on 2 cores (two_rails about four times that): two hours in all.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${OUT:-out/mechanism_spectra}
-bash scripts/setup.sh
-mkdir -p "$out"
-bin=${CORRUGATION_BIN:-./target/release/corrugation}
-[ -n "${CORRUGATION_BIN:-}" ] || cargo build --release --quiet
+source scripts/study_env.sh mechanism_spectra
 spectrum() {
   local name=$1 config=$2; shift 2
   local f="$out/$name.h5"

@@ -9,11 +9,7 @@
 # About 10 minutes on 2 cores. OUT=DIR writes elsewhere.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${OUT:-out/spectrum_bays}
-bash scripts/setup.sh
-mkdir -p "$out"
-bin=${CORRUGATION_BIN:-./target/release/corrugation}
-[ -n "${CORRUGATION_BIN:-}" ] || cargo build --release --quiet
+source scripts/study_env.sh spectrum_bays
 band=(--set spectrum.wavelength_min=0.0999 --set spectrum.wavelength_max=0.1501 --set spectrum.difference=forward)
 if [ ! -e "$out/bay_m4.h5" ] || [ "${FORCE:-0}" = 1 ]; then
   "$bin" spectrum --overwrite configs/growth_discrete.toml -o "$out/bay_m4.h5" "${band[@]}" \

@@ -16,11 +16,7 @@
 # OUT=DIR writes elsewhere. About 10 minutes a spectrum on 2 cores: an hour.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${OUT:-out/spectrum_linearity}
-bash scripts/setup.sh
-mkdir -p "$out"
-bin=${CORRUGATION_BIN:-./target/release/corrugation}
-[ -n "${CORRUGATION_BIN:-}" ] || cargo build --release --quiet
+source scripts/study_env.sh spectrum_linearity
 curve=(--set rolling.speed=8.333 --set load.normal_force=55e3 --set rolling.creepage_x=-1.5e-3
   --set rolling.creepage_y=8e-3 --set rolling.spin=0.3 --set material.friction_coefficient=0.45
   --set track.rail=54E1)

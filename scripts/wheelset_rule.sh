@@ -19,11 +19,7 @@
 # cases; OUT=DIR writes elsewhere.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${OUT:-out/wheelset_rule}
-bash scripts/setup.sh
-mkdir -p "$out"
-bin=${CORRUGATION_BIN:-./target/release/corrugation}
-[ -n "${CORRUGATION_BIN:-}" ] || cargo build --release --quiet
+source scripts/study_env.sh wheelset_rule
 spectrum() {
   local name=$1 config=$2; shift 2
   local f="$out/$name.h5"

@@ -255,7 +255,7 @@ pub fn measure(
         });
         // The first failure that is not a stop (a passage's, a set-up's).
         let failed =
-            |r: &Result<WorkerRounds, SpectrumError>| matches!(r, Err(e) if !matches!(e, SpectrumError::Parts(_)));
+            |r: &Result<WorkerRounds, SpectrumError>| matches!(r, Err(e) if !matches!(e, SpectrumError::Stopped));
         if let Some(i) = results.iter().position(failed) {
             return Err(results.into_iter().nth(i).expect("found").expect_err("failed"));
         }
