@@ -21,6 +21,7 @@ macro_rules! say_raw {
 }
 
 mod check;
+mod forecast_cli;
 mod interrupt;
 mod progress;
 mod spectrum_cli;

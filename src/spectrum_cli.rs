@@ -54,6 +54,9 @@ pub fn spectrum(
     }
     let params = scene.spectrum.unwrap_or_default();
     let state = initial_state(scene);
+    // About a run file's rail the roughness now is that rail, not the
+    // config's initial roughness: no forecast of the latter.
+    let forecast = stored.is_none();
     let base: Vec<ndarray::Array2<f64>> = match (stored, params.base) {
         (Some(rails), _) => rails,
         (None, Base::Smooth) => {
@@ -131,11 +134,29 @@ pub fn spectrum(
     for w in &s.warnings {
         say!("warning: {w}");
     }
-    if let Err(e) = corrugation::output::spectrum_file::write_spectrum_file(out, &s, &params, &resolved.toml) {
+    write(resolved, &s, out, forecast)
+}
+
+/// Writes the spectrum `s` of `resolved`, with its forecasts where
+/// `forecast`, to `out` and prints them.
+fn write(resolved: &Resolved, s: &Spectrum, out: &Path, forecast: bool) -> ExitCode {
+    let params = resolved.scene.spectrum.unwrap_or_default();
+    let forecasts = match if forecast { crate::forecast_cli::forecasts(resolved, s) } else { Ok(Vec::new()) } {
+        Ok(f) => f,
+        Err(e) => {
+            say!("warning: no forecast: {e}");
+            Vec::new()
+        }
+    };
+    // A forecast with no band is printed (what it left out, and why), not
+    // written: netCDF has no empty fixed dimension.
+    let groups: Vec<_> = forecasts.iter().filter(|f| !f.is_empty()).map(|f| f.group()).collect();
+    if let Err(e) = corrugation::output::spectrum_file::write_spectrum_file(out, s, &params, &resolved.toml, &groups) {
         say!("error: {e}");
         return ExitCode::from(1);
     }
-    summary(&s, out);
+    summary(s, out);
+    crate::forecast_cli::print(&forecasts);
     ExitCode::SUCCESS
 }
 
@@ -192,14 +213,7 @@ pub fn merge(parts: &[std::path::PathBuf], out: &Path) -> ExitCode {
     let spectrum = corrugation::spectrum::measure::Responses::merge(read)
         .and_then(|r| corrugation::spectrum::Spectrum::from_responses(scene, &params, r));
     match spectrum {
-        Ok(s) => {
-            if let Err(e) = corrugation::output::spectrum_file::write_spectrum_file(out, &s, &params, &resolved.toml) {
-                say!("error: {e}");
-                return ExitCode::from(1);
-            }
-            summary(&s, out);
-            ExitCode::SUCCESS
-        }
+        Ok(s) => write(&resolved, &s, out, true),
         Err(e) => fail(e.to_string()),
     }
 }

@@ -214,11 +214,14 @@ fn the_config_keys_and_their_refusals() {
     assert!(e.contains("traffic.mix[1].axle_load: missing"), "{e}");
     let r = load_str(&one, "m", &["traffic.axle_load=20e3".into()]).unwrap();
     assert_eq!(r.scene.growth.unwrap().operation.axle_loads, Some(vec![25e3, 20e3, 20e3]));
-    // [levels]: EN 13231-3's bands need their own limit.
+    // [levels]: EN 13231-3's bands need their own limit, the grinding
+    // limit by default; the grinding limit needs those bands.
     let e = errors(GROWTH, &["levels.bands=en13231-3", "levels.limit=iso3095"]);
     assert!(e.contains("levels.limit: = \"iso3095\" is a one-third-octave curve"), "{e}");
-    let e = errors(GROWTH, &["levels.bands=en13231-3"]);
-    assert!(e.contains("levels.limit: missing"), "{e}");
+    let r = load_str(GROWTH, "g", &["levels.bands=en13231-3".into()]).unwrap();
+    assert_eq!(r.scene.levels.limit, corrugation::levels::limit::LimitCurve::grinding());
+    let e = errors(GROWTH, &["levels.limit=grinding"]);
+    assert!(e.contains("levels.limit: = \"grinding\" is a limit in EN 13231-3's bands"), "{e}");
     let e = errors(GROWTH, &["levels.limit=table"]);
     assert!(e.contains("levels.limit_table: missing"), "{e}");
     let twice = "levels.limit_table=[{wavelength = 0.025, level = 3}, {wavelength = 0.026, level = 4}]";

@@ -338,3 +338,43 @@ fn a_measurement_in_parts_merges_into_the_one_piece_spectrum_bit_for_bit() {
     let rates = |s: &Spectrum| s.modes.iter().map(|m| m.growth_rate().to_bits()).collect::<Vec<_>>();
     assert_eq!(rates(&merged), rates(&whole));
 }
+
+#[test]
+fn the_forecast_deepens_the_forced_pattern_as_a_smooth_rails_study_does() {
+    // The imposed load's forced pattern on a smooth rail: a study's 15 mm
+    // harmonic of the contact-filtered line (the line the spectrum's
+    // forced pattern is of) after three passages of 1e4 wheel passages each
+    // against the
+    // forecast's forced part in a band around it (the pattern's complex
+    // coefficients carried by Phi(n)), within 3 % (the study updates the
+    // rail once per passage, the forecast integrates the update).
+    use corrugation::levels::density::RoughnessDensity;
+    use corrugation::levels::spectrum_outlook::{Inputs, outlook};
+    use corrugation::spectrum::forecast::BandGrowth;
+    let smooth = ["roughness.kind=none", "growth.traffic_scale=1e4", "growth.passes=3"];
+    let r = scene(&[&COUPLED[..], &smooth[..]].concat());
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("g.h5");
+    run_scene(&r, &out, &mut |_| {}).unwrap();
+    let amplitude = read_f64(&out, "passes", "filtered_spectrum").unwrap().into_dimensionality::<Ix2>().unwrap();
+    let wavelengths = read_f64(&out, "passes", "wavelength").unwrap();
+    let traffic = read_f64(&out, "passes", "traffic").unwrap();
+    let k = wavelengths.iter().position(|w| (w - 0.015).abs() < 1e-9).unwrap();
+    let s = shared(true);
+    let growth = BandGrowth::new(s).unwrap();
+    let band = corrugation::levels::Band { wavelength: 0.015, lower: 0.0145, upper: 0.0155 };
+    let n = traffic[traffic.len() - 1];
+    let o = outlook(&Inputs {
+        growth: &growth,
+        rail: 0,
+        density: &RoughnessDensity::none(),
+        record_length: None,
+        measured: (0.0099, 0.061),
+        bands: &[(band, f64::INFINITY)],
+        traffic: &[n],
+    });
+    let forecast = 1e-6 * 10f64.powf(o.rows[0].levels[0] / 20.0) * std::f64::consts::SQRT_2;
+    let study = amplitude[[amplitude.nrows() - 1, k]];
+    assert!((forecast / study - 1.0).abs() < 0.03, "15 mm after {n} wheel passages: {forecast:e} vs {study:e} m");
+    assert!(study > 1e-9, "the pattern deepened: {study:e} m");
+}

@@ -2,7 +2,8 @@
 spectrum): each mode's growth rate against its wavelength (wavelength
 decreasing along the axis, the field's convention), coloured by its purity,
 with the harmonics' rates alone beside; the forced pattern the smooth rail
-wears; and the fastest modes' envelopes along the stretch."""
+wears; the fastest modes' envelopes along the stretch; and the forecast of
+each band's level against traffic, where the file holds one."""
 
 from __future__ import annotations
 
@@ -114,6 +115,10 @@ def figure(path, out):
         plt.close(fig)
         targets.append(target)
 
+    target = forecast_figure(path, out)
+    if target is not None:
+        targets.append(target)
+
     rows = table(ds)
     target = out / "spectrum_modes.csv"
     with open(target, "w", newline="") as f:
@@ -122,3 +127,43 @@ def figure(path, out):
         w.writerows(rows)
     targets.append(target)
     return targets
+
+
+def forecast_figure(path, out):
+    """``spectrum_forecast.png``: each band's level against traffic from the
+    file's ``forecast`` group (the config's bands and limit), each band's
+    limit dashed in its colour and the linear horizon dotted; None where the
+    file has no forecast."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        if "forecast" not in f:
+            return None
+    fc = xr.open_dataset(path, engine="h5netcdf", group="forecast")
+    traffic = fc.traffic.values
+    mgt = float(fc.attrs["tonnes_per_passage"]) * 1e-6 if "tonnes_per_passage" in fc.attrs else None
+    x = traffic * mgt if mgt else traffic
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    for b in range(fc.sizes["band"]):
+        label = f"{fc.band.values[b] * 1e3:.3g} mm"
+        (line,) = ax.plot(x, fc.level_forecast.values[b], label=label)
+        limit = float(fc.limit_level.values[b])
+        if np.isfinite(limit):
+            ax.axhline(limit, color=line.get_color(), linestyle="--", linewidth=0.8)
+    horizon = float(fc.attrs.get("horizon", np.inf))
+    if np.isfinite(horizon):
+        ax.axvline(horizon * mgt if mgt else horizon, color="grey", linestyle=":", label="linear horizon")
+    ax.set_xscale("log")
+    ax.set_xlabel("traffic from now (MGT)" if mgt else "traffic from now (wheel passages)")
+    ax.set_ylabel("band level (dB re 1 um)")
+    ax.set_title(f"forecast from the spectrum; dashed: the {fc.attrs['limit_name']} limit of each band")
+    ax.legend(fontsize=7, ncol=2, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    fig.tight_layout()
+    target = out / "spectrum_forecast.png"
+    fig.savefig(target, dpi=120)
+    plt.close(fig)
+    return target

@@ -98,3 +98,37 @@ def test_spectrum_refuses_a_single_passage_and_keeps_an_existing_file(tmp_path):
     bad = subprocess.run([BIN, "spectrum", cfg, "-o", str(tmp_path / "y.h5"), "--set", "spectrum.classes=0"],
                          capture_output=True, text=True)
     assert bad.returncode == 2 and "spectrum.classes" in bad.stderr
+
+
+def test_the_forecast_group_reads_and_is_drawn(tmp_path):
+    """Two Bloch classes put the 40 mm harmonic of the 120 mm supercell in
+    the 40 mm one-third octave: its level now is the random roughness's own
+    (1 um rms flat in wavenumber over 10-60 mm), its traffic to the ISO 3095
+    limit where its level along the traffic axis crosses it, and the
+    operator's units ride along."""
+    if not BIN:
+        pytest.skip("CORRUGATION_BIN not set (scripts/test.sh sets it)")
+    out = tmp_path / "f.h5"
+    cfg = str(REPO / "configs" / "growth_exact.toml")
+    extra = ["--set", "spectrum.classes=2", "--set", "traffic.axle_load=20e3", "--set", "traffic.axles_per_day=5000"]
+    done = subprocess.run([BIN, "spectrum", cfg, "-o", str(out), *SHORT, *extra], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "forecast against the ISO 3095 limit" in done.stderr, done.stderr
+    fc = xr.open_dataset(out, engine="h5netcdf", group="forecast")
+    assert fc.level_forecast.dims == ("band", "traffic")
+    assert fc.level.attrs["units"] == "dB re 1 um"
+    assert float(fc.attrs["tonnes_per_passage"]) == 20.0 and float(fc.attrs["axles_per_day"]) == 5000.0
+    k = int(np.argmin(abs(fc.band.values - 0.04)))
+    assert abs(fc.band.values[k] - 0.04) < 1e-12 and fc.lines.values[k] == 1
+    width = 2 * np.pi / fc.band_lower.values[k] - 2 * np.pi / fc.band_upper.values[k]
+    own = 10 * np.log10(width / (2 * np.pi / 0.01 - 2 * np.pi / 0.06))
+    assert abs(fc.level.values[k] - own) < 1e-6, (fc.level.values[k], own)
+    p, limit = float(fc.passages_to_limit.values[k]), float(fc.limit_level.values[k])
+    levels = fc.level_forecast.values[k]
+    traffic = fc.traffic.values
+    if np.isfinite(p) and p > 0:
+        assert (levels[traffic > p * 1.01] >= limit - 1e-9).all() and (levels[traffic < p * 0.99] < limit).all()
+    else:
+        assert p == 0 or (levels < limit).all()
+    paths = [Path(p).name for p in figure(out, tmp_path / "figs")]
+    assert "spectrum_forecast.png" in paths

@@ -4,8 +4,9 @@
 //! ```toml
 //! [levels]
 //! bands = "third-octave"      # or "en13231-3" (10-30, 30-100, 100-300, 300-1000 mm)
-//! limit = "iso3095"           # ISO 3095's rail roughness limit (one-third octaves);
-//!                             # "file" (limit_file), "table" (limit_table) or "none"
+//! limit = "iso3095"           # ISO 3095's rail roughness limit (one-third octaves, the
+//!                             # default); "grinding" (EN 13231-3 bands, the default
+//!                             # there), "file" (limit_file), "table" (limit_table) or "none"
 //! limit_file = "limit.csv"    # limit = "file": CSV `wavelength, level`, relative to the config
 //! limit_name = "my limit"     # what the terminal calls the curve (default: ISO 3095 / the file name)
 //! [[levels.limit_table]]      # limit = "table": one entry per band
@@ -40,20 +41,28 @@ pub fn read(root: &mut Table, resolved: &mut Table, dir: &Path, errors: &mut Vec
         Some(_) => Some(BandSet::ThirdOctave),
         None => None,
     };
-    let default_limit = if bands == Some(BandSet::En13231) { None } else { Some("iso3095") };
-    let kind = s.choice("limit", default_limit, &["iso3095", "file", "table", "none"]);
+    let default_limit = if bands == Some(BandSet::En13231) { "grinding" } else { "iso3095" };
+    let kind = s.choice("limit", Some(default_limit), &["iso3095", "grinding", "file", "table", "none"]);
     let name = if s.has("limit_name") { s.string("limit_name", "") } else { None };
     let curve = match (kind.as_deref(), bands) {
         (Some("iso3095"), Some(BandSet::En13231)) => {
             s.error(
                 "limit",
-                "= \"iso3095\" is a one-third-octave curve; with levels.bands = \"en13231-3\" give the limit as \
-                 \"file\" or \"table\" (the acceptance values of EN 13231-3 for the class of work), or \"none\""
+                "= \"iso3095\" is a one-third-octave curve; with levels.bands = \"en13231-3\" use \"grinding\" \
+                 (the default), \"file\" or \"table\" (a network's values for its class of work), or \"none\""
                     .into(),
             );
             None
         }
         (Some("iso3095"), Some(_)) => Some(LimitCurve::iso3095()),
+        (Some("grinding"), Some(BandSet::ThirdOctave)) => {
+            s.error(
+                "limit",
+                "= \"grinding\" is a limit in EN 13231-3's bands: set levels.bands = \"en13231-3\" with it".into(),
+            );
+            None
+        }
+        (Some("grinding"), Some(_)) => Some(LimitCurve::grinding()),
         (Some("none"), Some(_)) => Some(LimitCurve::none()),
         (Some("file"), Some(set)) => read_file(&mut s, dir, set),
         (Some("table"), Some(set)) => read_table(&mut s, set),

@@ -255,6 +255,25 @@ pub fn window_harmonics(h: &[f64], length: f64, x_min: f64, lo: f64, hi: f64) ->
 /// likely in millimetres (10 mm: trolley records sample at 1-2 mm).
 const MM_READ_AS_M: f64 = 0.01;
 
+/// The whole record processed as the study's window is (spikes,
+/// curvature, and the detrend over the whole record rather than the
+/// window): the heights its band levels are taken from (EN 15610; book:
+/// docs/src/guide/when-to-grind.md).
+pub fn processed_record(samples: &RecordSamples, p: &Processing) -> Vec<f64> {
+    let d = samples.spacing();
+    let mut h = samples.heights.clone();
+    if let Some(k) = p.spike_threshold {
+        remove_spikes(&mut h, k);
+    }
+    if let Some(r) = p.curvature_radius {
+        h = curvature_process(&h, d, r);
+    }
+    if p.detrend {
+        detrend(&mut h, d);
+    }
+    h
+}
+
 /// The rail's initial irregularity from `samples` on the periodic stretch
 /// `[x_min, x_min + length)`. Errors: (the config key to name, message).
 pub fn measured_roughness(

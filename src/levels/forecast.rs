@@ -52,17 +52,23 @@ pub fn passages_to_limit(level: f64, rate: f64, forced: f64, limit: f64) -> f64 
         let grown = if (s * n).abs() < 1e-8 { n } else { (s * n).exp_m1() / s };
         ((a0 * (s * n).exp()).powi(2) + (forced * grown).powi(2)).sqrt()
     };
-    // The first crossing: the amplitude can fall first (a decaying band)
-    // and rise again, so a scan by factors of 1.1 from one passage to
-    // 1e15, then bisection in the first bracket.
+    // The amplitude can fall first (a decaying band) and rise again.
+    first_crossing(&amplitude, target)
+}
+
+/// The first traffic `n` (wheel passages, from 1 to 1e15) at which `value(n)`
+/// reaches `target`: a scan by factors of 1.1 from one passage, then
+/// bisection in the first bracket (a value that falls first and rises again
+/// is caught at its rise); inf where it never does.
+pub fn first_crossing(value: &dyn Fn(f64) -> f64, target: f64) -> f64 {
     let mut low = 0.0;
     let mut n = 1.0;
     while n <= 1e15 {
-        if amplitude(n) >= target {
+        if value(n) >= target {
             let mut high = n;
             for _ in 0..200 {
                 let mid = 0.5 * (low + high);
-                if amplitude(mid) >= target {
+                if value(mid) >= target {
                     high = mid
                 } else {
                     low = mid

@@ -35,8 +35,10 @@
 //! weighs the same; the grid's lines are evenly spaced). For a profile
 //! uniform across the head this is the centre line's level.
 
+pub mod density;
 pub mod forecast;
 pub mod limit;
+pub mod spectrum_outlook;
 
 use crate::harmonics::amplitudes;
 use crate::rail_grid::RailGrid;

@@ -3,6 +3,7 @@
 
 pub mod checkpoint;
 mod field_units;
+pub mod forecast_group;
 mod h5ds;
 pub mod netcdf;
 pub mod run_file;

@@ -33,6 +33,7 @@
 //! Attributes of the group: the stretch (m), the supercell's stretches, the
 //! perturbation (m), the difference scheme, the normal contact, the cost.
 
+use super::forecast_group::{ForecastGroup, write_forecast};
 use super::netcdf::{NcError, write_atomically};
 use crate::spectrum::modes::DB_PER_NEPER;
 use crate::spectrum::{Spectrum, SpectrumParams};
@@ -41,8 +42,14 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 /// Writes `s` (measured as `params` say) for the resolved `config` to
-/// `path` atomically.
-pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, config: &str) -> Result<(), NcError> {
+/// `path` atomically, with the `forecasts` made from it as groups.
+pub fn write_spectrum_file(
+    path: &Path,
+    s: &Spectrum,
+    params: &SpectrumParams,
+    config: &str,
+    forecasts: &[ForecastGroup],
+) -> Result<(), NcError> {
     write_atomically(path, |root| {
         root.attr_str("title", "linear growth spectrum")?;
         root.attr_str("program", "corrugation")?;
@@ -307,6 +314,9 @@ pub fn write_spectrum_file(path: &Path, s: &Spectrum, params: &SpectrumParams, c
             "m/1e5 passages",
             "drift of the harmonic alone (Im J(s, s) / q)",
         )?;
+        for f in forecasts {
+            write_forecast(root, f)?;
+        }
         Ok(())
     })
 }

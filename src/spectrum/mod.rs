@@ -35,6 +35,7 @@
 //! share-weighted sum, `J = sum_c s_c J_c`.
 
 pub mod bloch;
+pub mod forecast;
 pub mod measure;
 pub mod modes;
 
@@ -123,6 +124,10 @@ pub struct Spectrum {
     /// (m per wheel passage, share-weighted over the traffic), on
     /// `wavelengths`.
     pub forced_wear: Vec<Vec<f64>>,
+    /// The same as complex coefficients (m; amplitude `2 |c|`), per rail,
+    /// harmonics `n = 1 ..` of the stretch: the forcing of a forecast
+    /// ([`forecast`]).
+    pub forced_coefficients: Vec<Vec<Complex64>>,
     /// The wear of one wheel passage over the base rail, the same way (m).
     pub base_wear: Vec<Vec<f64>>,
     /// The mean depth of the smooth rail's contact-filtered wear per wheel
@@ -263,6 +268,7 @@ impl Spectrum {
             modes,
             wavelengths: crate::harmonics::wavelengths(cell.nx, cell.dx),
             forced_wear: r.forced.iter().map(amplitude).collect(),
+            forced_coefficients: r.forced.clone(),
             base_wear: r.base.iter().map(amplitude).collect(),
             mean_wear: r.mean_wear,
             positions: (0..points).map(|k| stretch * k as f64 / points as f64).collect(),
