@@ -115,7 +115,11 @@ pub fn print(forecasts: &[Forecast]) {
             let when = if r.passages == 0.0 {
                 format!("now ({:+.1} dB over it)", r.level - r.limit)
             } else if r.extrapolated(&f.outlook) {
-                format!("after {}: beyond the linear horizon, extrapolated", f.units.describe(r.passages))
+                format!(
+                    "after {}: {:.1} times the linear horizon, an extrapolation",
+                    f.units.describe(r.passages),
+                    r.passages / f.outlook.horizon
+                )
             } else if r.passages.is_finite() {
                 format!("after {} (+{:.1} dB from now)", f.units.describe(r.passages), r.limit - r.level)
             } else if r.limit.is_finite() {
@@ -129,7 +133,7 @@ pub fn print(forecasts: &[Forecast]) {
         let horizon = f.outlook.horizon;
         if horizon.is_finite() {
             say!(
-                "  linear horizon: {} (the bands' roughness grown tenfold in rms; the growth saturates after it)",
+                "  linear horizon: {} (the roughness grown tenfold in rms; beyond it the forecast extrapolates)",
                 f.units.describe(horizon)
             );
         }
