@@ -189,3 +189,26 @@ fn the_shipped_example_finds_the_spikes_it_was_made_with() {
     assert!(text.contains("record             spikes removed: 2 beyond 5"), "{text}");
     assert!(text.contains("= 100 km/h") && text.contains("= 210 GPa"), "{text}");
 }
+
+#[test]
+fn check_says_which_bands_of_the_record_the_stretch_misrepresents() {
+    // A 2 um, 12 mm wave on 0.3 m at 0.5 mm: on the 30 mm stretch it is no
+    // harmonic (30 / 12 = 2.5), its 12.5 mm band holds none of the
+    // stretch's; a 15 mm wave is a harmonic and nothing is said.
+    let dir = tempfile::tempdir().unwrap();
+    for (wavelength, said) in [(0.012, true), (0.015, false)] {
+        let record = dir.path().join("r.txt");
+        std::fs::write(&record, record_text(600, 5e-4, |x| 2e-6 * (2.0 * PI * x / wavelength).sin())).unwrap();
+        let cfg = dir.path().join("c.toml");
+        std::fs::write(&cfg, config("r.txt", 1, "")).unwrap();
+        let o = corrugation(&["check", cfg.to_str().unwrap()]);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let line = text.lines().find(|l| l.contains("misrepresents"));
+        assert_eq!(line.is_some(), said, "{wavelength}: {text}");
+        if let Some(line) = line {
+            // 2 um amplitude: 1.41 um rms, 3.0 dB re 1 um.
+            assert!(line.contains("12.5 mm 3.0 dB in the record, no harmonic on the stretch"), "{line}");
+        }
+    }
+}

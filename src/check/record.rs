@@ -70,7 +70,50 @@ pub fn record_lines(m: &MeasuredRoughness) -> Vec<String> {
         um(r.rms.0),
         um(r.rms.1)
     ));
+    out.extend(leaks(m));
     out
+}
+
+/// Bands the stretch's window holds more than 3 dB off the whole record's
+/// level (a wave that is not a harmonic of the stretch spreads onto its
+/// neighbours), among the record's bands within 20 dB of its strongest.
+fn leaks(m: &MeasuredRoughness) -> Option<String> {
+    use corrugation::levels::density::RoughnessDensity;
+    use corrugation::levels::{BandSet, all_bands, level};
+    let d = m.samples.spacing();
+    let record = RoughnessDensity::of(&corrugation::params::Roughness::Measured(Box::new(m.clone()))).0;
+    let (stretch, length) = (m.report.window.2 as f64 * d, m.samples.positions.len() as f64 * d);
+    let bands: Vec<_> = all_bands(BandSet::ThirdOctave)
+        .into_iter()
+        .filter(|b| b.lower >= m.processing.wavelength_min && b.upper <= stretch && b.wavelength <= length / 4.0)
+        .collect();
+    let own: Vec<f64> = bands.iter().map(|b| level(record.between_wavelengths(b.lower, b.upper))).collect();
+    let held: Vec<f64> = bands
+        .iter()
+        .map(|b| {
+            level(m.harmonics.iter().filter(|h| b.contains(h.wavelength)).map(|h| h.amplitude.powi(2) / 2.0).sum())
+        })
+        .collect();
+    let strongest = own.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let off: Vec<String> = (0..bands.len())
+        .filter(|&k| own[k] >= strongest - 20.0 && (held[k] - own[k]).abs() > 3.0)
+        .map(|k| {
+            let on = if held[k] <= corrugation::levels::LEVEL_FLOOR {
+                "no harmonic on the stretch".to_string()
+            } else {
+                format!("{:.1} dB on the stretch", held[k])
+            };
+            format!("{} {:.1} dB in the record, {on}", bands[k].label(), own[k])
+        })
+        .collect();
+    (!off.is_empty()).then(|| {
+        format!(
+            "the stretch misrepresents the record's bands: {} (a wave that is not a harmonic of the {} mm stretch \
+             spreads onto its neighbours; `corrugation spectrum` forecasts from the whole record)",
+            off.join("; "),
+            stretch * 1e3
+        )
+    })
 }
 
 /// Every physical input of the resolved config in SI and, where an
