@@ -214,6 +214,10 @@ pub struct Standing<'a> {
     pub units: Units,
 }
 
+/// Beyond this many times the traffic a study simulated, its forecast says
+/// that it extrapolates.
+const EXTRAPOLATION: f64 = 3.0;
+
 /// The run's last lines about the limit: where a band first reached it,
 /// which band reaches it next at the last passage's rates and when, and
 /// which bands are above it.
@@ -287,12 +291,18 @@ pub fn outlook(s: &Standing) -> Vec<String> {
                 ),
                 _ => format!("{rate:+.2} dB per 1e5 wheel passages from {:.1} dB", last[k]),
             };
+            let total = so_far + to_limit[k];
+            let far = if total > EXTRAPOLATION * so_far {
+                format!("; {:.0} times the traffic simulated: an extrapolation", total / so_far)
+            } else {
+                String::new()
+            };
             lines.push(format!(
                 "the {} band reaches the {name} ({:.1} dB re 1 um) after {} from the start, at passage \
-                 {pass}'s rates ({how}){slower}",
+                 {pass}'s rates ({how}){slower}{far}",
                 s.bands[k].label(),
                 s.limit[k],
-                s.units.describe(so_far + to_limit[k]),
+                s.units.describe(total),
             ))
         }
         None => lines.push(format!("at passage {pass}'s rates no band below the {name} grows towards it")),
@@ -453,6 +463,11 @@ mod tests {
             lines[1]
         );
         assert!(lines[2].contains("31.5 mm (by 0.5 dB)"));
+        // At 0.1 dB per 1e5 the 25 mm band needs 3e6 more: 16 times the
+        // traffic simulated, said so.
+        let slow = vec![vec![1.0, 0.5], vec![1.5, 0.1]];
+        let lines = outlook(&Standing { rates: &slow, ..s });
+        assert!(lines[1].ends_with("; 16 times the traffic simulated: an extrapolation"), "{}", lines[1]);
         // A band absent from the initial roughness that the forced pattern
         // wears in: forecast at the forced pattern's pace (no exponential
         // rate from nothing), and named first where it comes first.

@@ -109,7 +109,7 @@ pub struct Inputs<'a> {
 
 /// The forecast of each band (see the module doc).
 pub fn outlook(i: &Inputs) -> Outlook {
-    let (mut rows, mut left_out) = (Vec::new(), Vec::new());
+    let (mut rows, mut left_out, mut empty) = (Vec::new(), Vec::new(), Vec::new());
     for &(band, limit) in i.bands {
         let (k_low, k_high) = (2.0 * PI / band.upper, 2.0 * PI / band.lower);
         if band.lower < i.measured.0 * (1.0 - 1e-9) || band.upper > i.measured.1 * (1.0 + 1e-9) {
@@ -124,7 +124,7 @@ pub fn outlook(i: &Inputs) -> Outlook {
         }
         let lines = i.growth.lines(i.rail, k_low, k_high);
         if lines == 0.0 {
-            left_out.push((band, "no harmonic of the supercell in it (a finer spectrum.resolution)".into()));
+            empty.push((band, i.growth.classes_for(k_low, k_high)));
             continue;
         }
         let between = |a: f64, b: f64| i.density.between(a, b);
@@ -143,6 +143,10 @@ pub fn outlook(i: &Inputs) -> Outlook {
             levels: i.traffic.iter().map(|n| level.at(*n)).collect(),
         });
     }
+    // The bands without a harmonic: the classes that give each one.
+    let needed = empty.iter().map(|(_, m)| *m).max().unwrap_or(1);
+    let why = format!("no harmonic of the supercell in it (spectrum.classes = {needed} puts one in each)");
+    left_out.extend(empty.into_iter().map(|(band, _)| (band, why.clone())));
     // The horizon: over every harmonic the spectrum measured, whichever
     // bands are asked for.
     let between = |a: f64, b: f64| i.density.between(a, b);

@@ -90,6 +90,8 @@ pub struct BandGrowth {
     classes: Vec<ClassUpdate>,
     /// The wavenumber interval one harmonic stands for (1/m).
     spacing: f64,
+    /// The stretch `L` (m).
+    stretch: f64,
 }
 
 /// A band's mean square after some traffic, in its two parts (m^2).
@@ -149,7 +151,14 @@ impl BandGrowth {
                 diagonal: (0..n).map(|h| -j[h * n + h].re).collect(),
             });
         }
-        Ok(BandGrowth { classes, spacing: 2.0 * PI / supercell })
+        Ok(BandGrowth { classes, spacing: 2.0 * PI / supercell, stretch: spectrum.stretch })
+    }
+
+    /// The Bloch classes `M` that put a harmonic of the supercell `M L` in
+    /// every interval `(k_low, k_high]` (1/m): `2 pi / (M L) <= k_high -
+    /// k_low`.
+    pub fn classes_for(&self, k_low: f64, k_high: f64) -> usize {
+        (2.0 * PI / (self.stretch * (k_high - k_low))).ceil().max(1.0) as usize
     }
 
     /// The harmonics of rail `rail` in the wavenumber band `(k_low, k_high]`
