@@ -545,7 +545,11 @@ fn passage_with<'o>(
     };
     for (w, passage) in passages.into_iter().enumerate() {
         let r = rail_of[w];
-        wear[r] += &fold_periodic(&passage.wear, &ext, grid);
+        let mut folded = fold_periodic(&passage.wear, &ext, grid);
+        if let Some(pitch) = deposit.pitch().filter(|p| *p > grid.dx * (1.0 + 1e-9)) {
+            crate::wear::deposit::band_limit(&mut folded, grid.dx, pitch);
+        }
+        wear[r] += &folded;
         on_rail[r] += 1;
         let h = &passage.history;
         contact_loss_steps[r] +=

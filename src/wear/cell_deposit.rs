@@ -112,6 +112,11 @@ impl WearKernel for CellDeposit {
     fn integral(&self, rates: &[f64], _a: f64, _b: f64) -> f64 {
         rates.iter().sum::<f64>() * self.grid.area()
     }
+
+    /// The elements' length: one element per step.
+    fn pitch(&self) -> Option<f64> {
+        Some(self.grid.dx)
+    }
 }
 
 #[cfg(test)]
