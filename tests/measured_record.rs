@@ -212,3 +212,48 @@ fn check_says_which_bands_of_the_record_the_stretch_misrepresents() {
         }
     }
 }
+
+#[test]
+fn the_measured_rail_guide_reads_what_the_program_gives() {
+    // docs/src/guide/measured-rail.md (scripts/measured_windows.sh): the
+    // shipped example's rms from 1.277 um after the first passage to 1.052
+    // um after 4.5e5 wheel passages, and its 40 mm harmonic's mean rate
+    // -0.33 to -0.29 dB per 1e5 over the windows (window 0 inside).
+    let cfg = format!("{}/configs/measured_rail.toml", env!("CARGO_MANIFEST_DIR"));
+    let r = corrugation::config::load_file(Path::new(&cfg), &[]).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("m.h5");
+    corrugation::run::run_scene(&r, &out, &mut |_| {}).unwrap();
+    let rms = read_f64(&out, "passes", "rms_corrugation").unwrap();
+    let traffic = read_f64(&out, "passes", "traffic").unwrap();
+    let (first, last) = (rms[0] * 1e6, rms[rms.len() - 1] * 1e6);
+    assert!((first - 1.277).abs() < 6e-4 && (last - 1.052).abs() < 6e-4, "rms {first:.4} -> {last:.4} um");
+    let n = traffic[traffic.len() - 1];
+    assert!((n / 4.5e5 - 1.0).abs() < 0.02, "{n:e} wheel passages");
+    let w = read_f64(&out, "passes", "wavelength").unwrap();
+    let k = w.iter().position(|l| (l - 0.04).abs() < 1e-9).unwrap();
+    let rate = read_f64(&out, "passes", "growth_rate").unwrap();
+    let rate = rate.index_axis(ndarray::Axis(1), k).mean().unwrap();
+    assert!((-0.335..=-0.285).contains(&rate), "40 mm {rate:.3} dB per 1e5");
+}
+
+#[test]
+fn the_when_to_grind_guide_reads_what_the_spectrum_forecasts() {
+    // docs/src/guide/when-to-grind.md, section 2: `corrugation spectrum
+    // configs/measured_rail.toml`'s forecast, line by line where the guide
+    // draws its conclusions from it.
+    let cfg = format!("{}/configs/measured_rail.toml", env!("CARGO_MANIFEST_DIR"));
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("s.h5");
+    let o = corrugation(&["spectrum", &cfg, "-o", out.to_str().unwrap()]);
+    let text = stderr(&o);
+    assert!(o.status.success(), "{text}");
+    for line in [
+        "  40 mm         0.6  -0.303    -3.2  now (+3.8 dB over it)",
+        "  31.5 mm      -2.8  -0.560    -5.0  now (+2.2 dB over it)",
+        "  linear horizon: 391 MGT, 4076 days (11 years) at 6000 axles per day (2.45e7 wheel passages)",
+        "  54.8 mm       1.5  -0.344    16.9  after 408 MGT",
+    ] {
+        assert!(text.contains(line), "the guide's `{line}` is not in:\n{text}");
+    }
+}
