@@ -70,18 +70,32 @@ def _wear_title(run: Run, pass_index: int, note: str) -> str:
 
 
 def wear_map(run: Run, pass_index: int, out_dir: Path) -> Path:
-    """Wear depth of one passage over the rail stretch, colour in nm or µm (by its size)."""
+    """Wear depth of one passage over the rail stretch, colour in nm or µm (by
+    its size), and below it the variation along the rail that grows or
+    wears corrugation: each lateral row's depth minus its mean along x, on
+    its own diverging scale (a variation of a percent is invisible on the
+    depth's scale)."""
     with run.rail() as rail:
         wear = rail["wear"].sel({"pass": pass_index}).transpose("y", "x").load()
         x, y = values_in(rail["x"], "mm"), values_in(rail["y"], "mm")
         note = _traffic_note(rail, pass_index)
-    fig = Figure(figsize=(9, 4), layout="constrained")
-    ax = fig.add_subplot()
+    fig = Figure(figsize=(9, 6.5), layout="constrained")
+    top, bottom = fig.subplots(2, 1, sharex=True)
     unit, label = depth_unit(wear)
-    mesh = ax.pcolormesh(x, y, values_in(wear, unit), shading="auto", cmap="viridis")
-    fig.colorbar(mesh, ax=ax, label=f"wear depth ({label})")
-    ax.set(xlabel="x along rail (mm)", ylabel="y lateral (mm)",
-           title=_wear_title(run, pass_index, note))
+    mesh = top.pcolormesh(x, y, values_in(wear, unit), shading="auto", cmap="viridis")
+    fig.colorbar(mesh, ax=top, label=f"wear depth ({label})")
+    top.set(ylabel="y lateral (mm)", title=_wear_title(run, pass_index, note))
+    variation = (wear - wear.mean("x")).assign_attrs(units=wear.attrs["units"])
+    vunit, vlabel = depth_unit(variation)
+    v = values_in(variation, vunit)
+    peak = float(np.nanmax(np.abs(v))) if np.size(v) else 0.0
+    # Against the deepest row's mean depth (the centre of the running band).
+    deepest = float(np.nanmax(values_in(wear, vunit).mean(axis=1))) if np.size(v) else 0.0
+    share = peak / deepest * 100 if deepest > 0 else float("nan")
+    mesh = bottom.pcolormesh(x, y, v, shading="auto", cmap="RdBu_r", vmin=-peak or None, vmax=peak or None)
+    fig.colorbar(mesh, ax=bottom, label=f"depth minus its mean along x ({vlabel})")
+    bottom.set(xlabel="x along rail (mm)", ylabel="y lateral (mm)",
+               title=f"its variation along the rail, up to {share:.2g} % of the centre's mean depth")
     return _save(fig, out_dir, f"wear_map{run.suffix}.png")
 
 

@@ -143,3 +143,39 @@ def test_a_run_without_stored_fields_draws_the_rest_and_passes_the_check(tmp_pat
     _assert_png(out / "loads.png")
     assert not (out / "traction_snapshots.png").exists()
     assert main(["check", str(run)]) == 0
+
+
+def test_the_wear_map_shows_the_variation_along_the_rail(tmp_path, monkeypatch):
+    """A wear that varies by 1 % along the rail: the lower panel draws the
+    depth minus its mean along x on a symmetric scale and says the share."""
+    import numpy as np
+    from matplotlib.figure import Figure
+
+    from corrugation_post.io import Run
+
+    path = write_run(tmp_path / "w.h5", n_pass=1)
+    import h5py
+
+    with h5py.File(path, "a") as f:
+        w = f["rail/wear"]
+        x = f["rail/x"][:]
+        base = np.ones(w.shape[1:])
+        ripple = 1.0 + 0.01 * np.cos(2 * np.pi * x / (x[-1] - x[0] + (x[1] - x[0])) * 3)
+        w[0] = 1e-10 * base * ripple[np.newaxis, :]
+    saved = {}
+    save = Figure.savefig
+
+    def record(fig, fname, *args, **kwargs):
+        saved["fig"] = fig
+        return save(fig, fname, *args, **kwargs)
+
+    monkeypatch.setattr(Figure, "savefig", record)
+    run = Run.open(path)
+    figures.wear_map(run, run.passes()[0], tmp_path)
+    lower = [ax for ax in saved["fig"].axes if ax.get_title().startswith("its variation along the rail")]
+    assert len(lower) == 1
+    assert "up to 1 %" in lower[0].get_title(), lower[0].get_title()
+    # Symmetric about zero, at the variation's peak (1e-12 m = 1e-3 nm).
+    mesh = lower[0].collections[0]
+    assert mesh.norm.vmin == -mesh.norm.vmax
+    assert abs(mesh.norm.vmax - 1e-3) < 1e-6, mesh.norm.vmax
