@@ -3,7 +3,7 @@
 //! limit, from the linear growth spectrum
 //! ([`corrugation::levels::spectrum_outlook`]): against the config's
 //! `[levels]` limit, and, where those are one-third octaves, in EN
-//! 13231-3's bands against the grinding limit.
+//! 13231-3's bands against the grinding limit; each rail of the scene.
 
 use corrugation::config::Resolved;
 use corrugation::levels::density::RoughnessDensity;
@@ -19,7 +19,9 @@ use corrugation::spectrum::forecast::BandGrowth;
 /// A forecast against one limit.
 pub struct Forecast {
     /// Its group in the spectrum file.
-    group: &'static str,
+    group: String,
+    /// The rail, as the terminal names it.
+    rail: String,
     /// The limit.
     limit: LimitCurve,
     /// The bands' set.
@@ -39,7 +41,7 @@ impl Forecast {
     /// The forecast as the spectrum file's group.
     pub fn group(&self) -> ForecastGroup<'_> {
         ForecastGroup {
-            name: self.group,
+            name: &self.group,
             outlook: &self.outlook,
             limit_name: &self.limit.name,
             bands: set_name(self.set),
@@ -72,24 +74,44 @@ pub fn forecasts(resolved: &Resolved, s: &Spectrum) -> Result<Vec<Forecast>, Str
     if scene.levels.bands == BandSet::ThirdOctave {
         asked.push(("forecast_grinding", BandSet::En13231, LimitCurve::grinding()));
     }
-    Ok(asked
-        .into_iter()
-        .map(|(group, set, limit)| {
-            let bands: Vec<_> = all_bands(set).into_iter().collect();
+    // Each rail (a second rail's roughness is the first's kind, drawn with
+    // its own seed: the same density).
+    let rails: Vec<(String, &str)> = match &scene.second_rail {
+        Some(two) => {
+            vec![(rail_words(&two.names[0]), ""), (rail_words(&two.names[1]), "second_rail_")]
+        }
+        None => vec![("the rail".into(), "")],
+    };
+    let mut out = Vec::new();
+    for (rail, (name, prefix)) in rails.iter().enumerate() {
+        for (group, set, limit) in &asked {
+            let bands: Vec<_> = all_bands(*set).into_iter().collect();
             let limits = limit.on(&bands);
             let pairs: Vec<_> = bands.into_iter().zip(limits).collect();
             let outlook = outlook(&Inputs {
                 growth: &growth,
-                rail: 0,
+                rail,
                 density: &density,
                 record_length,
                 measured: (params.wavelength_min, params.wavelength_max),
                 bands: &pairs,
                 traffic: &traffic,
             });
-            Forecast { group, limit, set, outlook, units }
-        })
-        .collect())
+            let (group, rail, limit, set) = (format!("{prefix}{group}"), name.clone(), limit.clone(), *set);
+            out.push(Forecast { group, rail, limit, set, outlook, units });
+        }
+    }
+    Ok(out)
+}
+
+/// A rail's name as words: "the left rail", and a name that already ends
+/// in "rail" as it is ("the low rail", not "the low rail rail").
+fn rail_words(name: &str) -> String {
+    if name.trim_end().to_lowercase().ends_with("rail") {
+        format!("the {}", name.trim_end())
+    } else {
+        format!("the {name} rail")
+    }
 }
 
 /// Prints each forecast as a table.
@@ -103,10 +125,10 @@ pub fn print(forecasts: &[Forecast]) {
             }
             _ => "the config's [levels]",
         };
-        say!("forecast against the {words} ({question}), first rail, linear regime:");
+        say!("forecast against the {words} ({question}), {}, linear regime:", f.rail);
         let shown: Vec<_> = f.outlook.rows.iter().filter(|r| r.level > LEVEL_FLOOR).collect();
         if shown.is_empty() {
-            say!("  no band holds roughness the spectrum measured");
+            say!("  no band forecast:");
         } else {
             say!("  band       level  rate     limit   reaches the limit");
             say!("             dB     dB/1e5   dB");
@@ -131,7 +153,7 @@ pub fn print(forecasts: &[Forecast]) {
             say!("  {:<10} {:6.1} {rate}  {:6.1}  {when}", r.band.label(), r.level, r.limit);
         }
         let horizon = f.outlook.horizon;
-        if horizon.is_finite() {
+        if horizon.is_finite() && !f.is_empty() {
             say!(
                 "  linear horizon: {} (the roughness grown tenfold in rms; beyond it the forecast extrapolates)",
                 f.units.describe(horizon)
@@ -174,4 +196,16 @@ fn left_out_runs(f: &Forecast) -> Vec<(String, Vec<Vec<String>>)> {
         }
     }
     out.into_iter().map(|(w, r, _)| (w, r)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::rail_words;
+
+    #[test]
+    fn a_rail_is_named_once() {
+        assert_eq!(rail_words("left"), "the left rail");
+        assert_eq!(rail_words("low rail"), "the low rail");
+        assert_eq!(rail_words("High Rail "), "the High Rail");
+    }
 }
