@@ -127,8 +127,10 @@ pub fn print(forecasts: &[Forecast]) {
         };
         say!("forecast against the {words} ({question}), {}, linear regime:", f.rail);
         let shown: Vec<_> = f.outlook.rows.iter().filter(|r| r.level > LEVEL_FLOOR).collect();
-        if shown.is_empty() {
+        if f.is_empty() {
             say!("  no band forecast:");
+        } else if shown.is_empty() {
+            say!("  no band forecast holds roughness");
         } else {
             say!("  band       level  rate     limit   reaches the limit");
             say!("             dB     dB/1e5   dB");
