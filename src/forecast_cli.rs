@@ -6,7 +6,6 @@
 //! 13231-3's bands against the grinding limit; each rail of the scene.
 
 use corrugation::config::Resolved;
-use corrugation::levels::density::RoughnessDensity;
 use corrugation::levels::forecast::Units;
 use corrugation::levels::limit::{LimitCurve, limit_words, set_name};
 use corrugation::levels::spectrum_outlook::{Inputs, Outlook, outlook};
@@ -66,7 +65,7 @@ pub fn forecasts(resolved: &Resolved, s: &Spectrum) -> Result<Vec<Forecast>, Str
     }
     let params = scene.spectrum.unwrap_or_default();
     let growth = BandGrowth::new(s).map_err(|e| format!("the forecast: {e}"))?;
-    let (density, record_length) = RoughnessDensity::of(&g.roughness);
+    let (density, record_length) = corrugation::growth::roughness::density(&g.roughness);
     let shares: Vec<f64> = g.classes.iter().map(|c| c.share).collect();
     let units = Units::new(&g.operation, &shares);
     let traffic = traffic();

@@ -78,11 +78,9 @@ pub fn record_lines(m: &MeasuredRoughness) -> Vec<String> {
 /// level (a wave that is not a harmonic of the stretch spreads onto its
 /// neighbours), among the record's bands within 20 dB of its strongest.
 fn leaks(m: &MeasuredRoughness) -> Option<String> {
-    use corrugation::levels::density::RoughnessDensity;
     use corrugation::levels::{BandSet, all_bands, level};
-    let d = m.samples.spacing();
-    let record = RoughnessDensity::of(&corrugation::params::Roughness::Measured(Box::new(m.clone()))).0;
-    let (stretch, length) = (m.report.window.2 as f64 * d, m.samples.positions.len() as f64 * d);
+    let (record, length) = corrugation::growth::record::record_density(m);
+    let stretch = m.report.window.2 as f64 * m.samples.spacing();
     let bands: Vec<_> = all_bands(BandSet::ThirdOctave)
         .into_iter()
         .filter(|b| b.lower >= m.processing.wavelength_min && b.upper <= stretch && b.wavelength <= length / 4.0)

@@ -23,6 +23,7 @@
 //!   rail nodes for a record that holds only those harmonics. The mean
 //!   (n = 0) is dropped, as for every other roughness kind.
 
+use crate::levels::density::RoughnessDensity;
 use crate::params::ProfileHarmonic;
 use std::f64::consts::PI;
 use std::path::PathBuf;
@@ -272,6 +273,17 @@ pub fn processed_record(samples: &RecordSamples, p: &Processing) -> Vec<f64> {
         detrend(&mut h, d);
     }
     h
+}
+
+/// A measured record's roughness density from its whole processed record
+/// ([`processed_record`]), its wavelengths from `roughness.wavelength_min`
+/// to the record's length (the stretch bounds the study's wavelengths, not
+/// the record's), and the record's length (m).
+pub fn record_density(m: &MeasuredRoughness) -> (RoughnessDensity, f64) {
+    let h = processed_record(&m.samples, &m.processing);
+    let d = m.samples.spacing();
+    let length = h.len() as f64 * d;
+    (RoughnessDensity::from_record(&h, d, m.processing.wavelength_min, length), length)
 }
 
 /// The rail's initial irregularity from `samples` on the periodic stretch

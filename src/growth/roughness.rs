@@ -17,6 +17,7 @@
 //! share its rms equally, `A = rms sqrt(2 / K)`, with seeded random phases.
 //! The irregularity is uniform across the rail head.
 
+use crate::levels::density::RoughnessDensity;
 use crate::params::{LevelBand, ProfileHarmonic, Roughness};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -49,6 +50,31 @@ pub fn band(length: f64, wavelength_min: f64, wavelength_max: f64) -> std::ops::
     let lo = (length / wavelength_max - 1e-9).ceil().max(1.0) as usize;
     let hi = (length / wavelength_min + 1e-9).floor() as usize;
     lo..=hi
+}
+
+/// The density of a study's initial roughness, with the record's length (m)
+/// where it is measured ([`crate::levels::density`]): a measured record's
+/// whole record ([`super::record::record_density`]); explicit harmonics as
+/// lines (their phases set aside: a forecast takes every harmonic's phase
+/// as unrelated to the others'); random roughness flat over its band; a
+/// level spectrum band by band.
+pub fn density(r: &Roughness) -> (RoughnessDensity, Option<f64>) {
+    match r {
+        Roughness::None => (RoughnessDensity::none(), None),
+        Roughness::Harmonics(h) => {
+            let lines: Vec<(f64, f64)> =
+                h.iter().map(|h| (2.0 * PI / h.wavelength, h.amplitude.powi(2) / 2.0)).collect();
+            (RoughnessDensity::from_lines(&lines), None)
+        }
+        Roughness::Random { rms, wavelength_min, wavelength_max, .. } => {
+            (RoughnessDensity::flat(rms * rms, *wavelength_min, *wavelength_max), None)
+        }
+        Roughness::Levels { bands, .. } => (RoughnessDensity::from_levels(bands), None),
+        Roughness::Measured(m) => {
+            let (d, length) = super::record::record_density(m);
+            (d, Some(length))
+        }
+    }
 }
 
 /// Height of the irregularity at the nodes `x` (m) of a stretch of length

@@ -22,7 +22,7 @@
 //! * Random roughness: its mean square spread evenly in wavenumber over its
 //!   band (the generator's equal amplitudes on evenly spaced harmonics).
 
-use crate::params::{LevelBand, Roughness};
+use crate::params::LevelBand;
 use realfft::RealFftPlanner;
 use std::f64::consts::PI;
 
@@ -97,7 +97,7 @@ impl RoughnessDensity {
         let mut spectrum = fft.make_output_vec();
         fft.process(&mut input, &mut spectrum).expect("the buffers fit the plan");
         let step = 2.0 * PI / (n as f64 * spacing);
-        let intervals: Vec<(f64, f64, f64)> = spectrum
+        let lines: Vec<(f64, f64)> = spectrum
             .iter()
             .enumerate()
             .skip(1)
@@ -107,39 +107,18 @@ impl RoughnessDensity {
                 let sides = if 2 * k == n { 1.0 } else { 2.0 };
                 let ms = sides * c.norm_sqr() / (n as f64).powi(2) / w2;
                 (lambda >= lambda_min * (1.0 - 1e-9) && lambda <= lambda_max * (1.0 + 1e-9))
-                    .then(|| line(k as f64 * step, ms))
+                    .then_some((k as f64 * step, ms))
             })
             .collect();
-        Self::from_intervals(&intervals)
+        Self::from_lines(&lines)
     }
 
-    /// The density of a study's initial roughness, with the record's
-    /// length (m) where it is measured: a measured record's whole processed
-    /// record, its wavelengths from `roughness.wavelength_min` to the
-    /// record's length; explicit harmonics as lines (their phases set aside: the
-    /// forecast takes every harmonic's phase as unrelated to the others').
-    pub fn of(roughness: &Roughness) -> (Self, Option<f64>) {
-        match roughness {
-            Roughness::None => (Self::none(), None),
-            Roughness::Harmonics(h) => {
-                let lines: Vec<(f64, f64, f64)> =
-                    h.iter().map(|h| line(2.0 * PI / h.wavelength, h.amplitude.powi(2) / 2.0)).collect();
-                (Self::from_intervals(&lines), None)
-            }
-            Roughness::Random { rms, wavelength_min, wavelength_max, .. } => {
-                (Self::flat(rms * rms, *wavelength_min, *wavelength_max), None)
-            }
-            Roughness::Levels { bands, .. } => (Self::from_levels(bands), None),
-            Roughness::Measured(m) => {
-                let h = crate::growth::record::processed_record(&m.samples, &m.processing);
-                let d = m.samples.spacing();
-                // From the study's shortest wavelength to the record's
-                // length: the stretch bounds the study's wavelengths, not
-                // the record's.
-                let length = h.len() as f64 * d;
-                (Self::from_record(&h, d, m.processing.wavelength_min, length), Some(length))
-            }
-        }
+    /// Spectral lines `(wavenumber (1/m), mean square (m^2))`, each as an
+    /// interval a billionth of its wavenumber wide.
+    pub fn from_lines(lines: &[(f64, f64)]) -> Self {
+        let intervals: Vec<(f64, f64, f64)> =
+            lines.iter().map(|&(k, ms)| (k * (1.0 - 1e-9), k * (1.0 + 1e-9), ms)).collect();
+        Self::from_intervals(&intervals)
     }
 
     /// The mean square below wavenumber `k` (m^2).
@@ -171,12 +150,6 @@ impl RoughnessDensity {
     pub fn total(&self) -> f64 {
         self.cumulative.last().copied().unwrap_or(0.0)
     }
-}
-
-/// A spectral line of mean square `ms` (m^2) at wavenumber `k` (1/m), as an
-/// interval a billionth of `k` wide.
-fn line(k: f64, ms: f64) -> (f64, f64, f64) {
-    (k * (1.0 - 1e-9), k * (1.0 + 1e-9), ms)
 }
 
 #[cfg(test)]

@@ -130,14 +130,19 @@ pub fn outlook(i: &Inputs) -> Outlook {
         let between = |a: f64, b: f64| i.density.between(a, b);
         let series = i.growth.band(i.rail, &between, k_low, k_high);
         let level = Level::new(series, i.density.between(k_low, k_high));
-        let rate = level.rate();
-        let passages = if limit.is_finite() { first_crossing(&|n| level.at(n), limit) } else { f64::INFINITY };
-        let passages = if level.at(0.0) >= limit { 0.0 } else { passages };
+        let now = level.at(0.0);
+        let passages = if now >= limit {
+            0.0
+        } else if limit.is_finite() {
+            first_crossing(&|n| level.at(n), limit)
+        } else {
+            f64::INFINITY
+        };
         rows.push(BandOutlook {
             band,
             lines,
-            level: level.at(0.0),
-            rate,
+            level: now,
+            rate: level.rate(),
             limit,
             passages,
             levels: i.traffic.iter().map(|n| level.at(*n)).collect(),

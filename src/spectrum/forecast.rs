@@ -327,11 +327,6 @@ pub struct BandSeries {
 }
 
 impl BandSeries {
-    /// Whether the band holds no harmonic of the spectrum.
-    pub fn is_empty(&self) -> bool {
-        self.parts.is_empty()
-    }
-
     /// The band's mean square after `n` wheel passages (m^2).
     pub fn at(&self, n: f64) -> BandMeanSquare {
         let mut out = BandMeanSquare { roughness: 0.0, forced: 0.0 };
