@@ -65,7 +65,7 @@ fn levels_limit_and_traffic_in_operator_units() {
         assert_eq!(limit[k], want, "{n} mm");
     }
     // passages_to_limit is the level's distance to the limit at its rate
-    // (a band below 1 nm, which holds no roughness of its own, at the pace
+    // (a band below 1 nm at the start, which holds no roughness of its own, at the pace
     // of its driven change: levels::forecast::driven).
     let (level, rate, to_limit) =
         (table(&out, "roughness_level"), table(&out, "level_rate"), table(&out, "passages_to_limit"));
@@ -77,7 +77,7 @@ fn levels_limit_and_traffic_in_operator_units() {
     let (initial, scale) = (column(&out, "initial_level"), column(&out, "traffic_scale"));
     for ((p, k), n) in to_limit.indexed_iter() {
         let before = if p == 0 { initial[k] } else { level[[p - 1, k]] };
-        let (r, f) = driven(before, level[[p, k]], rate[[p, k]], scale[p], 0.0);
+        let (r, f) = driven(initial[k], before, level[[p, k]], rate[[p, k]], scale[p], 0.0);
         assert_eq!(*n, passages_to_limit(level[[p, k]], r, f, limit[k]));
         if n.is_finite() && *n > 0.0 && f == 0.0 {
             assert!((level[[p, k]] + rate[[p, k]] * n / 1e5 - limit[k]).abs() < 1e-9);

@@ -148,15 +148,27 @@ def forecast_figure(path, out):
     mgt = float(fc.attrs["tonnes_per_passage"]) * 1e-6 if "tonnes_per_passage" in fc.attrs else None
     x = traffic * mgt if mgt else traffic
     fig, ax = plt.subplots(figsize=(8, 4.5))
+    # One colour per band, long to short (ten colours would repeat).
+    colours = plt.cm.viridis(np.linspace(0.0, 0.9, max(fc.sizes["band"], 1)))
     for b in range(fc.sizes["band"]):
         label = f"{fc.band.values[b] * 1e3:.3g} mm"
-        (line,) = ax.plot(x, fc.level_forecast.values[b], label=label)
+        (line,) = ax.plot(x, fc.level_forecast.values[b], label=label, color=colours[b])
         limit = float(fc.limit_level.values[b])
         if np.isfinite(limit):
             ax.axhline(limit, color=line.get_color(), linestyle="--", linewidth=0.8)
     horizon = float(fc.attrs.get("horizon", np.inf))
     if np.isfinite(horizon):
         ax.axvline(horizon * mgt if mgt else horizon, color="grey", linestyle=":", label="linear horizon")
+    # The levels up to 20 dB above the highest limit: the crossings, not
+    # the linear regime's climb past any real roughness.
+    levels = fc.level_forecast.values[np.isfinite(fc.level_forecast.values)]
+    limits = fc.limit_level.values[np.isfinite(fc.limit_level.values)]
+    if levels.size:
+        top = float(levels.max())
+        if limits.size:
+            top = min(top, float(limits.max()) + 20.0)
+        bottom = min(float(levels.min()), float(limits.min()) if limits.size else np.inf)
+        ax.set_ylim(bottom - 3.0, top + 3.0)
     ax.set_xscale("log")
     ax.set_xlabel("traffic from now (MGT)" if mgt else "traffic from now (wheel passages)")
     ax.set_ylabel("band level (dB re 1 um)")

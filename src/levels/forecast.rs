@@ -20,10 +20,11 @@
 //! at which `A(n)` reaches the limit's rms: `(L_lim - L) / r 1e5` where
 //! there is no forced pattern; 0 for a band at or above it; inf where the
 //! band never reaches it (a decaying band whose forced pattern settles
-//! below the limit, at `f / |s|`). A band that holds no roughness of its
-//! own (below [`HELD_LEVEL`]) is driven by the others' wear rather than
-//! grown from itself: its roughness-driven change per passage counts as a
-//! forcing, not as an exponential rate.
+//! below the limit, at `f / |s|`). A band that held no roughness of its
+//! own at the start (below [`HELD_LEVEL`]) is driven by the others' wear
+//! rather than grown from itself, however far they have raised it: its
+//! roughness-driven change per passage counts as a forcing, not as an
+//! exponential rate.
 //!
 //! This is the linear regime's forecast; a saturating band reaches its
 //! limit later than it says.
@@ -86,19 +87,23 @@ pub fn first_crossing(value: &dyn Fn(f64) -> f64, target: f64) -> f64 {
 }
 
 /// A band's roughness-driven rate and forcing for the forecast, from its
-/// levels `before` and `after` a passage of `scale` wheel passages (dB re
-/// 1 um), the passage's roughness-driven `rate` (dB per 1e5 wheel
-/// passages) and forced pattern `forced` (m rms per wheel passage). A band
-/// that held no roughness of its own before the passage (at or below
-/// [`HELD_LEVEL`]) and that the others' wear raised is driven rather than
-/// grown from itself: the rise per wheel passage counts as a forcing
-/// (added to `forced` in mean square) and its exponential rate as 0. The
+/// level `initial` before the study's first passage and its levels
+/// `before` and `after` a passage of `scale` wheel passages (dB re 1 um),
+/// the passage's roughness-driven `rate` (dB per 1e5 wheel passages) and
+/// forced pattern `forced` (m rms per wheel passage). A band that held no
+/// roughness of its own at the start (at or below [`HELD_LEVEL`]) and that
+/// the others' wear raised is driven rather than grown from itself,
+/// however high the others have raised it since (a band fed by its
+/// neighbours through the sleepers rises at a rate that falls as its
+/// level rises, and extrapolated as exponential growth it would cross any
+/// limit): the rise per wheel passage counts as a forcing (added to
+/// `forced` in mean square) and its exponential rate as 0. The
 /// rise is `A_before (10^(rate scale / 20 1e5) - 1)`, or, from the floor
 /// (no rate: an empty band), what of `A_after` the forced pattern does
 /// not explain, `sqrt(A_after^2 - (scale forced)^2)`. A held band that
 /// the wear lowers keeps its (decaying) rate (see the module doc).
-pub fn driven(before: f64, after: f64, rate: f64, scale: f64, forced: f64) -> (f64, f64) {
-    if before > HELD_LEVEL || rate < 0.0 || scale.is_nan() || scale <= 0.0 {
+pub fn driven(initial: f64, before: f64, after: f64, rate: f64, scale: f64, forced: f64) -> (f64, f64) {
+    if initial > HELD_LEVEL || rate < 0.0 || scale.is_nan() || scale <= 0.0 {
         return (rate, forced);
     }
     let amplitude = |l: f64| super::R0 * 10f64.powf(l / 20.0);
@@ -257,7 +262,8 @@ pub fn outlook(s: &Standing) -> Vec<String> {
         1 => (s.initial, so_far),
         _ => (s.levels[pass - 2].as_slice(), so_far - s.traffic[pass - 2]),
     };
-    let model = |k: usize| driven(first[k], last[k], rates[k], scale, forced.get(k).copied().unwrap_or(0.0));
+    let model =
+        |k: usize| driven(s.initial[k], first[k], last[k], rates[k], scale, forced.get(k).copied().unwrap_or(0.0));
     let to_limit: Vec<f64> = (0..s.bands.len())
         .map(|k| {
             let (rate, f) = model(k);
@@ -387,19 +393,33 @@ mod tests {
         // A band holding no roughness of its own: its driven rise is a
         // forcing, not an exponential rate from 1 nm. 30 dB over a passage
         // of 1e3 wheel passages from -90 dB: A_before (10^1.5 - 1) / 1e3.
-        let (rate, forced) = driven(-90.0, -60.0, 30.0 * 1e5 / 1e3, 1e3, 0.0);
+        let (rate, forced) = driven(-90.0, -90.0, -60.0, 30.0 * 1e5 / 1e3, 1e3, 0.0);
         assert_eq!(rate, 0.0);
         assert!((forced / (rms(-90.0) * (10f64.powf(1.5) - 1.0) / 1e3) - 1.0).abs() < 1e-12, "{forced}");
         // Its own roughness grows exponentially; a held band the wear
         // lowers decays at its rate.
-        assert_eq!(driven(-20.0, -19.0, 2.0, 1e3, 1e-12), (2.0, 1e-12));
-        assert_eq!(driven(-80.0, -81.0, -2.0, 1e3, 1e-12), (-2.0, 1e-12));
+        assert_eq!(driven(-20.0, -20.0, -19.0, 2.0, 1e3, 1e-12), (2.0, 1e-12));
+        assert_eq!(driven(-80.0, -80.0, -81.0, -2.0, 1e3, 1e-12), (-2.0, 1e-12));
         // From the floor: what the forced pattern does not explain of the
         // new amplitude (3-4-5: the forced part 0.6 of it).
         let new = rms(-70.0);
-        let (rate, forced) = driven(-120.0, -70.0, 0.0, 1e3, 0.6 * new / 1e3);
+        let (rate, forced) = driven(-120.0, -120.0, -70.0, 0.0, 1e3, 0.6 * new / 1e3);
         assert_eq!(rate, 0.0);
         assert!((forced / (new / 1e3) - 1.0).abs() < 1e-12, "{forced}");
+        // A band empty at the start stays driven once the others have
+        // raised it above the held level: its rise per passage is the
+        // forcing (-42 -> -40.6 dB over 3.3e4 wheel passages, rate
+        // +4 dB per 1e5), and it reaches -8.6 dB in proportion to the
+        // traffic, not exponentially.
+        let (b, a, scale) = (-42.0, -40.6, 3.3e4);
+        let rate = (a - b) / scale * 1e5;
+        let (r, f) = driven(-120.0, b, a, rate, scale, 0.0);
+        assert_eq!(r, 0.0);
+        assert!((f * scale / (rms(a) - rms(b)) - 1.0).abs() < 1e-12, "{f}");
+        let n = passages_to_limit(a, r, f, -8.6);
+        let want = (rms(-8.6).powi(2) - rms(a).powi(2)).sqrt() / f;
+        assert!((n / want - 1.0).abs() < 1e-9, "{n} vs {want}");
+        assert!(n > 10.0 * passages_to_limit(a, rate, 0.0, -8.6), "{n}");
     }
 
     #[test]

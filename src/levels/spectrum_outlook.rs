@@ -47,6 +47,10 @@ const RATE_STEP: f64 = 1e3;
 /// +20 dB).
 const HORIZON_GROWTH: f64 = 100.0;
 
+/// The levels against traffic are given up to this many times the linear
+/// horizon.
+const REACH: f64 = 10.0;
+
 /// One band's forecast.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BandOutlook {
@@ -75,7 +79,8 @@ pub struct Outlook {
     pub rows: Vec<BandOutlook>,
     /// The bands left out, with why.
     pub left_out: Vec<(Band, String)>,
-    /// The traffic the levels are given at (wheel passages).
+    /// The traffic the levels are given at (wheel passages): the asked
+    /// traffic up to ten times the horizon.
     pub traffic: Vec<f64>,
     /// The linear horizon (wheel passages; inf: none): where the bands'
     /// roughness has grown tenfold in rms (see the module doc).
@@ -109,6 +114,20 @@ pub struct Inputs<'a> {
 
 /// The forecast of each band (see the module doc).
 pub fn outlook(i: &Inputs) -> Outlook {
+    // The horizon: over every harmonic the spectrum measured, whichever
+    // bands are asked for.
+    let between = |a: f64, b: f64| i.density.between(a, b);
+    let (k_low, k_high) = (2.0 * PI / i.measured.1, 2.0 * PI / i.measured.0);
+    let all = i.growth.band(i.rail, &between, k_low * (1.0 - 1e-9), k_high * (1.0 + 1e-9));
+    let now = all.at(0.0).roughness;
+    let total = |n: f64| {
+        let ms = all.at(n);
+        ms.roughness + ms.forced
+    };
+    let horizon = if now > 0.0 { first_crossing(&total, HORIZON_GROWTH * now) } else { f64::INFINITY };
+    // The levels against traffic up to REACH times the horizon: beyond it
+    // the linear regime's levels are hundreds of dB past any roughness.
+    let traffic: Vec<f64> = i.traffic.iter().copied().filter(|n| *n <= REACH * horizon).collect();
     let (mut rows, mut left_out, mut empty) = (Vec::new(), Vec::new(), Vec::new());
     for &(band, limit) in i.bands {
         let (k_low, k_high) = (2.0 * PI / band.upper, 2.0 * PI / band.lower);
@@ -145,25 +164,14 @@ pub fn outlook(i: &Inputs) -> Outlook {
             rate: level.rate(),
             limit,
             passages,
-            levels: i.traffic.iter().map(|n| level.at(*n)).collect(),
+            levels: traffic.iter().map(|n| level.at(*n)).collect(),
         });
     }
     // The bands without a harmonic: the classes that give each one.
     let needed = empty.iter().map(|(_, m)| *m).max().unwrap_or(1);
     let why = format!("no harmonic of the supercell in it (spectrum.classes = {needed} puts one in each)");
     left_out.extend(empty.into_iter().map(|(band, _)| (band, why.clone())));
-    // The horizon: over every harmonic the spectrum measured, whichever
-    // bands are asked for.
-    let between = |a: f64, b: f64| i.density.between(a, b);
-    let (k_low, k_high) = (2.0 * PI / i.measured.1, 2.0 * PI / i.measured.0);
-    let all = i.growth.band(i.rail, &between, k_low * (1.0 - 1e-9), k_high * (1.0 + 1e-9));
-    let now = all.at(0.0).roughness;
-    let total = |n: f64| {
-        let ms = all.at(n);
-        ms.roughness + ms.forced
-    };
-    let horizon = if now > 0.0 { first_crossing(&total, HORIZON_GROWTH * now) } else { f64::INFINITY };
-    Outlook { rows, left_out, traffic: i.traffic.to_vec(), horizon }
+    Outlook { rows, left_out, traffic, horizon }
 }
 
 /// A band's level against traffic.
@@ -191,7 +199,7 @@ impl Level {
     /// The level after `n` wheel passages (dB re 1 um).
     fn at(&self, n: f64) -> f64 {
         let total = self.mean_square(n);
-        if total.is_infinite() {
+        if !total.is_finite() {
             return f64::INFINITY;
         }
         (10.0 * (total / (R0 * R0)).log10()).max(LEVEL_FLOOR)
@@ -284,7 +292,7 @@ mod tests {
             record_length: None,
             measured: (0.01, 0.48),
             bands: &[(band, limit)],
-            traffic: &[0.0],
+            traffic: &[0.0, 1e6, 1e7, 1e8, 1e9, 1e12],
         });
         let row = &o.rows[0];
         assert_eq!(row.lines, 2.0);
@@ -294,5 +302,12 @@ mod tests {
         // The horizon: the whole roughness grown tenfold, +20 dB.
         assert!((o.horizon / (2.0 * want) - 1.0).abs() < 1e-6, "{}", o.horizon);
         assert!(!row.extrapolated(&o));
+        // The levels against traffic: up to ten times the horizon (2.9e6
+        // passages here), each at the rate from the level now.
+        assert_eq!(o.traffic, [0.0, 1e6, 1e7]);
+        for (n, l) in o.traffic.iter().zip(&row.levels) {
+            let grown = row.level + 2e-6 * 20.0 / std::f64::consts::LN_10 * n;
+            assert!((l - grown).abs() < 1e-6, "{n}: {l} vs {grown}");
+        }
     }
 }

@@ -124,7 +124,14 @@ pub fn write_passes(g: &NcGroup, r: &RunRecord) -> Result<(), NcError> {
     )?;
     let to_limit = table(&|p, row, k| {
         let before = if p == 0 { r.state.initial_level[k] } else { rows[p - 1].roughness_level[k] };
-        let (rate, f) = driven(before, row.roughness_level[k], row.level_rate[k], row.traffic_scale, forced_of(row, k));
+        let (rate, f) = driven(
+            r.state.initial_level[k],
+            before,
+            row.roughness_level[k],
+            row.level_rate[k],
+            row.traffic_scale,
+            forced_of(row, k),
+        );
         passages_to_limit(row.roughness_level[k], rate, f, r.limit[k])
     });
     g.var_f64(
