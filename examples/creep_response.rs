@@ -11,7 +11,8 @@
 //! `longitudinal_force` (N, the mean state; default the scene's). The
 //! measurement's wall and CPU time go to stderr.
 
-use corrugation::dynamics::creep_response::{Input, scene};
+use corrugation::build::creep_response as scene;
+use corrugation::dynamics::creep_response::Input;
 use std::io::Write;
 use std::time::Instant;
 

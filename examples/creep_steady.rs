@@ -8,7 +8,8 @@
 //! Prints `offset F_x F_y` for offsets `k STEP_REL scale`, `|k| <= COUNT`,
 //! the scale that of `input_scale`.
 
-use corrugation::dynamics::creep_response::{Input, input_scale, scene, steady_forces};
+use corrugation::build::creep_response as scene;
+use corrugation::dynamics::creep_response::{Input, input_scale, steady_forces};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();

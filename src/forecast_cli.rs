@@ -1,19 +1,19 @@
 //! The forecast `corrugation spectrum` prints and writes beside the
 //! spectrum: when each band of the study's initial roughness reaches its
 //! limit, from the linear growth spectrum
-//! ([`corrugation::levels::spectrum_outlook`]): against the config's
+//! ([`corrugation::spectrum::outlook`]): against the config's
 //! `[levels]` limit, and, where those are one-third octaves, in EN
 //! 13231-3's bands against the grinding limit; each rail of the scene.
 
 use corrugation::config::Resolved;
 use corrugation::levels::forecast::Units;
 use corrugation::levels::limit::{LimitCurve, limit_words, set_name};
-use corrugation::levels::spectrum_outlook::{Inputs, Outlook, outlook};
 use corrugation::levels::{BandSet, LEVEL_FLOOR, all_bands};
 use corrugation::output::forecast_group::ForecastGroup;
 use corrugation::params::Roughness;
 use corrugation::spectrum::Spectrum;
 use corrugation::spectrum::forecast::BandGrowth;
+use corrugation::spectrum::outlook::{Inputs, Outlook, outlook};
 
 /// A forecast against one limit.
 pub struct Forecast {
@@ -67,7 +67,7 @@ pub fn forecasts(resolved: &Resolved, s: &Spectrum) -> Result<Vec<Forecast>, Str
     let growth = BandGrowth::new(s).map_err(|e| format!("the forecast: {e}"))?;
     let (density, record_length) = corrugation::growth::roughness::density(&g.roughness);
     let shares: Vec<f64> = g.classes.iter().map(|c| c.share).collect();
-    let units = Units::new(&g.operation, &shares);
+    let units = g.operation.units(&shares);
     let traffic = traffic();
     let mut asked = vec![("forecast", scene.levels.bands, scene.levels.limit.clone())];
     if scene.levels.bands == BandSet::ThirdOctave {

@@ -383,8 +383,8 @@ fn fastsim_is_flat_and_its_slopes_are_the_torsional_loops() {
         .map(String::from)
         .into();
     let scene = corrugation::config::load_str(&format!("{text}\n[wheelset]\n"), "g", &set).unwrap().scene;
-    let r = corrugation::dynamics::creep_response::scene::default_response(&scene, 1e5, 0.0, [true; 4], &|| {
-        corrugation::build::build_solver(&scene, &corrugation::dynamics::creep_response::scene::shape(&scene))
+    let r = corrugation::build::creep_response::default_response(&scene, 1e5, 0.0, [true; 4], &|| {
+        corrugation::build::build_solver(&scene, &corrugation::build::creep_response::shape(&scene))
     })
     .unwrap();
     let today = corrugation::build::derive(&scene).passage.torsion[0];

@@ -23,6 +23,7 @@ mod friction_memory;
 mod grid_cg;
 mod growth;
 mod hertz_reference;
+mod imports;
 mod linear_contact;
 mod measured_record;
 mod netcdf_writer;

@@ -349,8 +349,8 @@ fn the_forecast_deepens_the_forced_pattern_as_a_smooth_rails_study_does() {
     // coefficients carried by Phi(n)), within 3 % (the study updates the
     // rail once per passage, the forecast integrates the update).
     use corrugation::levels::density::RoughnessDensity;
-    use corrugation::levels::spectrum_outlook::{Inputs, outlook};
     use corrugation::spectrum::forecast::BandGrowth;
+    use corrugation::spectrum::outlook::{Inputs, outlook};
     let smooth = ["roughness.kind=none", "growth.traffic_scale=1e4", "growth.passes=3"];
     let r = scene(&[&COUPLED[..], &smooth[..]].concat());
     let dir = tempfile::tempdir().unwrap();

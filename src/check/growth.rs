@@ -160,7 +160,7 @@ pub(super) fn print_wheelset_modes(s: &corrugation::params::Scene) {
 /// The roughness levels' bands and limit, and the traffic in the operator's
 /// units (issue 35).
 pub(super) fn print_field_units(s: &corrugation::params::Scene, g: &corrugation::params::GrowthParams) {
-    use corrugation::levels::{forecast::Units, resolved_bands};
+    use corrugation::levels::resolved_bands;
     let grid = corrugation::build::study_grid(s);
     let bands = resolved_bands(s.levels.bands, grid.nx, grid.dx);
     let limit = s.levels.limit.on(&bands);
@@ -177,7 +177,7 @@ pub(super) fn print_field_units(s: &corrugation::params::Scene, g: &corrugation:
         _ => println!("roughness levels   no band resolved (a band needs a quarter of the stretch)"),
     }
     let shares: Vec<f64> = g.classes.iter().map(|c| c.share).collect();
-    let units = Units::new(&g.operation, &shares);
+    let units = g.operation.units(&shares);
     let mut parts = Vec::new();
     if let Some(t) = units.tonnes_per_passage {
         parts.push(format!("{t:.2} t per wheel passage (MGT)"));

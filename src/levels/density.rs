@@ -22,10 +22,17 @@
 //! * Random roughness: its mean square spread evenly in wavenumber over its
 //!   band (the generator's equal amplitudes on evenly spaced harmonics).
 
-use crate::params::LevelBand;
 use realfft::RealFftPlanner;
 use std::f64::consts::PI;
 
+/// One one-third-octave band of a roughness level spectrum.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LevelBand {
+    /// Centre wavelength (m).
+    pub wavelength: f64,
+    /// rms roughness in the band, dB re 1 um.
+    pub level: f64,
+}
 /// A roughness's cumulative mean square over wavenumber.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RoughnessDensity {

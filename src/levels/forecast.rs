@@ -34,7 +34,6 @@
 //! axles per day`.
 
 use super::Band;
-use crate::params::Operation;
 
 /// Wheel passages from a band at `level` (dB re 1 um) whose roughness
 /// grows at `rate` (dB per 1e5 wheel passages) and by the forced pattern
@@ -132,12 +131,13 @@ pub struct Units {
 }
 
 impl Units {
-    /// The units of `operation` with the traffic classes' `shares` (1,
-    /// summing to 1; the mean axle load weighs the classes by them).
-    pub fn new(operation: &Operation, shares: &[f64]) -> Self {
-        let tonnes =
-            operation.axle_loads.as_ref().map(|a| a.iter().zip(shares).map(|(m, s)| m * s).sum::<f64>() * 1e-3);
-        Units { tonnes_per_passage: tonnes, axles_per_day: operation.axles_per_day }
+    /// The units of traffic classes of gross masses per axle `axle_loads`
+    /// (kg, in class order; None: no tonnes) and `shares` (1, summing to 1;
+    /// the mean axle load weighs the classes by them), `axles_per_day` over
+    /// the rail (None: no days).
+    pub fn new(axle_loads: Option<&[f64]>, axles_per_day: Option<f64>, shares: &[f64]) -> Self {
+        let tonnes = axle_loads.map(|a| a.iter().zip(shares).map(|(m, s)| m * s).sum::<f64>() * 1e-3);
+        Units { tonnes_per_passage: tonnes, axles_per_day }
     }
 
     /// Million gross tonnes of `passages` wheel passages.
@@ -438,8 +438,7 @@ mod tests {
     #[test]
     fn traffic_in_tonnes_and_days() {
         // 22.5 t and 17.5 t axles, 3 : 1; 4000 axles a day.
-        let op = Operation { axle_loads: Some(vec![22.5e3, 17.5e3]), axles_per_day: Some(4000.0) };
-        let u = Units::new(&op, &[0.75, 0.25]);
+        let u = Units::new(Some(&[22.5e3, 17.5e3]), Some(4000.0), &[0.75, 0.25]);
         assert!((u.tonnes_per_passage.unwrap() - 21.25).abs() < 1e-12);
         assert!((u.mgt(1e5).unwrap() - 2.125).abs() < 1e-12);
         assert_eq!(u.days(1e5), Some(25.0));

@@ -38,7 +38,6 @@
 pub mod density;
 pub mod forecast;
 pub mod limit;
-pub mod spectrum_outlook;
 
 use crate::harmonics::amplitudes;
 use crate::rail_grid::RailGrid;

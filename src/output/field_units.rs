@@ -34,7 +34,7 @@ fn traffic_in_units(r: &RunRecord) -> (Option<Vec<f64>>, Option<Vec<f64>>) {
 /// The operator's units of the record's traffic.
 pub fn units(r: &RunRecord) -> Units {
     let shares: Vec<f64> = r.classes.iter().map(|c| c.share).collect();
-    r.operation.map_or_else(Units::default, |op| Units::new(op, &shares))
+    r.operation.map_or_else(Units::default, |op| op.units(&shares))
 }
 
 /// Writes the field-unit variables of group `passes`.

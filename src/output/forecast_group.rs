@@ -1,11 +1,11 @@
 //! A forecast's group in the spectrum file (book:
 //! docs/src/reference/spectrum-file.md): per band its level now, rate,
 //! limit and the traffic until it reaches it, and its level along a
-//! traffic axis ([`crate::levels::spectrum_outlook`]).
+//! traffic axis ([`crate::spectrum::outlook`]).
 
 use super::netcdf::{NcError, NcGroup};
 use crate::levels::forecast::Units;
-use crate::levels::spectrum_outlook::Outlook;
+use crate::spectrum::outlook::Outlook;
 use ndarray::{Array1, Array2};
 
 /// One forecast to write.

@@ -101,6 +101,13 @@ pub struct Operation {
     pub axles_per_day: Option<f64>,
 }
 
+impl Operation {
+    /// The traffic's units with the classes' `shares` (1, summing to 1).
+    pub fn units(&self, shares: &[f64]) -> crate::levels::forecast::Units {
+        crate::levels::forecast::Units::new(self.axle_loads.as_deref(), self.axles_per_day, shares)
+    }
+}
+
 /// The directions of a growth study's track dynamics (`dynamics.directions`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Directions {
@@ -258,7 +265,7 @@ pub enum Roughness {
         bands: Vec<LevelBand>,
     },
     /// A measured record, processed and resampled onto the stretch.
-    Measured(Box<crate::growth::record::MeasuredRoughness>),
+    Measured(Box<super::record::MeasuredRoughness>),
 }
 
 impl Roughness {
@@ -283,11 +290,4 @@ impl Roughness {
     }
 }
 
-/// One one-third-octave band of a roughness level spectrum.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LevelBand {
-    /// Centre wavelength (m).
-    pub wavelength: f64,
-    /// rms roughness in the band, dB re 1 um.
-    pub level: f64,
-}
+pub use crate::levels::density::LevelBand;

@@ -10,6 +10,7 @@ use crate::loads::ImposedLoads;
 
 mod choice;
 mod growth;
+pub mod record;
 pub mod spectrum;
 
 pub use choice::{AutoChoice, Candidate};

@@ -353,7 +353,7 @@ fn continue_run(
                 rates: &rates,
                 forced: &forced,
                 traffic: &traffic,
-                units: crate::levels::forecast::Units::new(&g.operation, &shares),
+                units: g.operation.units(&shares),
             })
         }
         None => Vec::new(),

@@ -38,6 +38,7 @@ pub mod bloch;
 pub mod forecast;
 pub mod measure;
 pub mod modes;
+pub mod outlook;
 
 use crate::build::{DynamicsError, study_grid};
 use crate::params::Scene;

@@ -57,7 +57,6 @@
 
 pub mod brush;
 mod measure;
-pub mod scene;
 
 pub use measure::{Excitation, input_scale, measure, steady_forces};
 

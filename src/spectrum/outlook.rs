@@ -34,10 +34,10 @@
 //! that band to its limit on the strength of a pattern a hundred times the
 //! roughness measured.)
 
-use super::density::RoughnessDensity;
-use super::forecast::first_crossing;
-use super::{Band, LEVEL_FLOOR, R0};
-use crate::spectrum::forecast::{BandGrowth, BandSeries};
+use super::forecast::{BandGrowth, BandSeries};
+use crate::levels::density::RoughnessDensity;
+use crate::levels::forecast::first_crossing;
+use crate::levels::{Band, LEVEL_FLOOR, R0};
 use std::f64::consts::PI;
 
 /// Traffic over which a band's initial rate is taken (wheel passages).

@@ -3,6 +3,8 @@
 //! solver, the wear deposit and the track dynamics. Used by the run, the
 //! growth loop, `check` and the cost model alike; knows nothing of files.
 
+pub mod creep_response;
+
 use crate::contact::Creepage;
 use crate::contact::fastsim::Fastsim;
 use crate::contact::grid::{Alignment, FixedGrid, spec::FixedGridSpec};
@@ -15,7 +17,6 @@ use crate::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSid
 use crate::dynamics::contact_point::ContactLaw;
 use crate::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
 use crate::dynamics::continuous3::Continuous3;
-use crate::dynamics::creep_response;
 use crate::dynamics::creep_response::CreepResponse;
 use crate::dynamics::discrete::DiscreteTrack;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
@@ -53,7 +54,7 @@ pub struct Derived {
 }
 
 /// (The creepage-control run-in is the contact's own: see its doc.)
-pub use crate::dynamics::creep_response::scene::CREEPAGE_RUN_IN;
+pub use creep_response::CREEPAGE_RUN_IN;
 
 /// The run-in of a growth passage under force control, in patch lengths
 /// `2 a` at the largest imposed load: the material in the patch at the
@@ -466,8 +467,8 @@ fn contact_dynamics(
         let response = match creep_forces {
             CreepForces::Steady => None,
             CreepForces::Transient => Some(
-                creep_response::scene::default_response(scene, key.0, key.1, [true, true, spin, true], &|| {
-                    build_solver(scene, &creep_response::scene::shape(scene))
+                creep_response::default_response(scene, key.0, key.1, [true, true, spin, true], &|| {
+                    build_solver(scene, &creep_response::shape(scene))
                 })
                 .map_err(|e| DynamicsError::CreepResponse(e.to_string()))?,
             ),
@@ -526,8 +527,8 @@ fn contact_dynamics(
         let response = match creep_forces {
             CreepForces::Steady => None,
             CreepForces::Transient => Some(
-                creep_response::scene::default_response(&second, n0, fx, [true, true, spin, true], &|| {
-                    build_solver(&second, &creep_response::scene::shape(&second))
+                creep_response::default_response(&second, n0, fx, [true, true, spin, true], &|| {
+                    build_solver(&second, &creep_response::shape(&second))
                 })
                 .map_err(|e| DynamicsError::CreepResponse(format!("second rail: {e}")))?,
             ),
