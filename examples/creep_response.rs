@@ -1,5 +1,5 @@
 //! The creep forces' frequency response of a scene's contact
-//! (`corrugation::dynamics::creep_response`), written as a CSV against the
+//! (`corrugation::dynamics::coupling::creep_response`), written as a CSV against the
 //! reduced frequency `w a0 / V`.
 //!
 //! `cargo run --release --example creep_response -- CONFIG OUT.csv [KEY=VALUE ...]`
@@ -12,7 +12,7 @@
 //! measurement's wall and CPU time go to stderr.
 
 use corrugation::build::creep_response as scene;
-use corrugation::dynamics::creep_response::Input;
+use corrugation::dynamics::coupling::creep_response::Input;
 use std::io::Write;
 use std::time::Instant;
 
@@ -77,7 +77,7 @@ fn main() -> anyhow::Result<()> {
         r.max_reduced()
     );
     let mut out = std::io::BufWriter::new(std::fs::File::create(&args[1])?);
-    writeln!(out, "# creep response of {} (corrugation::dynamics::creep_response)", args[0])?;
+    writeln!(out, "# creep response of {} (corrugation::dynamics::coupling::creep_response)", args[0])?;
     writeln!(
         out,
         "# N0 = {n0} N, mean longitudinal {:?}, xi_x0 = {:.8e}, V = {} m/s, a0 = {:.6e} m; H = dF/dq on the wheel, exp(+i w t)",

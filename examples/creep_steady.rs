@@ -1,5 +1,5 @@
 //! Steady forces of a scene's contact against one input's offset about the
-//! mean state (`corrugation::dynamics::creep_response::steady_forces`):
+//! mean state (`corrugation::dynamics::coupling::creep_response::steady_forces`):
 //! the steady creep curve that the creep response's zero-frequency limit
 //! is the slope of.
 //!
@@ -9,7 +9,7 @@
 //! the scale that of `input_scale`.
 
 use corrugation::build::creep_response as scene;
-use corrugation::dynamics::creep_response::{Input, input_scale, steady_forces};
+use corrugation::dynamics::coupling::creep_response::{Input, input_scale, steady_forces};
 
 fn main() -> anyhow::Result<()> {
     let args: Vec<String> = std::env::args().skip(1).collect();

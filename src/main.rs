@@ -307,7 +307,7 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
         _ => corrugation::dynamics::receptance::FREIGHT_UNSPRUNG_MASS,
     };
     let distances = s.vehicle.distances();
-    let r = corrugation::dynamics::track_response::track_response(
+    let r = corrugation::dynamics::track::response::track_response(
         &s.track,
         WheelParams { unsprung_mass: mass },
         k_h,
@@ -321,14 +321,7 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
         None => Some(0.0),
     };
     let head = match offset.map(|o| {
-        corrugation::dynamics::head_response::head_response(
-            &s.track,
-            o,
-            &r.frequency,
-            &r.position,
-            &r.source,
-            &distances,
-        )
+        corrugation::dynamics::track::head::head_response(&s.track, o, &r.frequency, &r.position, &r.source, &distances)
     }) {
         Some(Ok(h)) => Some(h),
         Some(Err(e)) => {

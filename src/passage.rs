@@ -9,7 +9,7 @@
 //! progress is reported through a callback.
 
 use crate::contact::{ContactError, Elements, PatchSolution, RailContact, StepInput, TangentialSolver};
-use crate::dynamics::torsion::TorsionFeedback;
+use crate::dynamics::wheelset::torsion::TorsionFeedback;
 use crate::hertz::{HertzError, HertzPatch, HertzShape};
 use crate::loads::ImposedLoads;
 use crate::rail_grid::RailGrid;
@@ -56,7 +56,7 @@ pub struct PassageSpec {
     pub dynamic_normal_force: Option<PeriodicSignal>,
     /// The wheelset's torsion, which turns the normal force's variation
     /// into a variation of the prescribed creepage (growth studies with
-    /// `[wheelset]`; [`crate::dynamics::torsion`]): one per wheel where the
+    /// `[wheelset]`; [`crate::dynamics::wheelset::torsion`]): one per wheel where the
     /// wheels' loads differ (`wheel_loads`), else one for every wheel;
     /// empty without.
     pub torsion: Vec<TorsionFeedback>,

@@ -2,7 +2,7 @@
 //! 15-point Kronrod pair of QUADPACK's QK15; Piessens, de Doncker-Kapenga,
 //! Überhuber, Kahaner, *QUADPACK*, Springer 1983) of complex matrix-valued
 //! integrands, for the Floquet integrals of the discrete track
-//! ([`crate::dynamics::discrete3`]), whose peaks at weakly damped waves a
+//! ([`crate::dynamics::track::discrete3`]), whose peaks at weakly damped waves a
 //! fixed rule does not resolve.
 //!
 //! The integrand returns several small matrices at once; the error of an

@@ -7,12 +7,12 @@
 //! the responses vary across the bay; a study with it resumes bit for bit.
 use corrugation::config::load_str;
 use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
-use corrugation::dynamics::contact_point::ContactLaw;
-use corrugation::dynamics::continuous3::Continuous3;
-use corrugation::dynamics::creep_response::CreepResponse;
-use corrugation::dynamics::discrete::DiscreteTrack;
-use corrugation::dynamics::discrete3::Discrete3;
+use corrugation::dynamics::coupling::contact_point::ContactLaw;
+use corrugation::dynamics::coupling::creep_response::CreepResponse;
 use corrugation::dynamics::track::TrackConfig;
+use corrugation::dynamics::track::continuous3::Continuous3;
+use corrugation::dynamics::track::discrete::DiscreteTrack;
+use corrugation::dynamics::track::discrete3::Discrete3;
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};
 use num_complex::Complex64;

@@ -1,4 +1,4 @@
-//! The creep forces' frequency response (`dynamics::creep_response`)
+//! The creep forces' frequency response (`dynamics::coupling::creep_response`)
 //! against physics: its zero-frequency limit is the steady creep curve's
 //! slope (central differences of steady solutions of the same solver, 1 %);
 //! the simplified-transient solver in full adhesion follows the brush's
@@ -17,7 +17,7 @@ use corrugation::contact::grid::{FixedGrid, GridScheme, GridSolver};
 use corrugation::contact::transient::elastic::{ExactElastic, WinklerElastic};
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{EllipseMesh, PressureShape, TangentialSolver};
-use corrugation::dynamics::creep_response::{
+use corrugation::dynamics::coupling::creep_response::{
     CreepResponse, Excitation, Input, Longitudinal, MeanState, brush, input_scale, measure, steady_forces,
 };
 use corrugation::hertz::{Curvatures, HertzShape};

@@ -5,10 +5,10 @@
 use crate::common;
 use corrugation::config::load_str;
 use corrugation::dynamics::TrackDynamics;
-use corrugation::dynamics::discrete::DiscreteTrack;
 use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
 use corrugation::dynamics::receptance::WheelParams;
 use corrugation::dynamics::track::TrackConfig;
+use corrugation::dynamics::track::discrete::DiscreteTrack;
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};
 use num_complex::Complex64;
@@ -176,7 +176,7 @@ fn forced_wear_is_left_out_of_the_update_bound() {
 #[test]
 fn transfer_receptances_are_reciprocal_periodic_and_carried_by_the_supports() {
     // The displacement at x0 + L under a unit force at x0 (eq. 4 of
-    // dynamics::discrete): the point receptance at L = 0, the same with
+    // dynamics::track::discrete): the point receptance at L = 0, the same with
     // force and watch point exchanged (Maxwell-Betti), the same one bay on,
     // and, where the rail's inertia is negligible (1 Hz), the supports'
     // reactions k_s w(x_n) add up to the load.
@@ -223,7 +223,7 @@ fn the_smeared_track_transfer_receptance_carries_the_load() {
 /// `EI kGA K^2 - (kGA rho I + m EI) w^2 K - m w^2 (kGA - rho I w^2) = 0`,
 /// `G(x) = i sum_j D(k_j) exp(i k_j |x|) / (EI kGA 2 k_j (K_j - K_other))`,
 /// `k_j = sqrt(K_j)` in the upper half plane, `D = EI k^2 + kGA - rho I w^2`
-/// (the inverse transform of dynamics::discrete's eq. 1 closed in the upper
+/// (the inverse transform of dynamics::track::discrete's eq. 1 closed in the upper
 /// half plane).
 fn free_rail(t: &DiscreteTrack, w: f64, x: f64) -> Complex64 {
     let loss = Complex64::new(1.0, t.rail_loss_factor);

@@ -1,11 +1,11 @@
-//! The Timoshenko rail on discrete supports (src/dynamics/discrete.rs)
+//! The Timoshenko rail on discrete supports (src/dynamics/track/discrete.rs)
 //! against closed forms: passivity, the pinned-pinned resonance of the
 //! simply supported span, the static deflection of a closely supported
 //! rail against the Winkler beam, and the continuous model when the
 //! supports are smeared.
-use corrugation::dynamics::discrete::DiscreteTrack;
 use corrugation::dynamics::receptance::winkler_point_receptance;
 use corrugation::dynamics::track::TrackConfig;
+use corrugation::dynamics::track::discrete::DiscreteTrack;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 

@@ -1,4 +1,4 @@
-//! The rail head's receptances in three directions (src/dynamics/section.rs,
+//! The rail head's receptances in three directions (src/dynamics/track/section.rs,
 //! continuous3.rs, discrete3.rs) against closed forms: where the directions
 //! uncouple (the foot at the neutral axis and the shear centre), the
 //! longitudinal receptance is the rod on an elastic foundation plus the
@@ -9,11 +9,11 @@
 //! continuous model; the vertical freedom against the vertical models; the
 //! head's rotation about the vertical (the 4 x 4 receptances) against the
 //! lateral beam's rotational receptance, reciprocal and passive.
-use corrugation::dynamics::continuous3::Continuous3;
-use corrugation::dynamics::discrete::DiscreteTrack;
-use corrugation::dynamics::discrete3::{Discrete3, ROTATION_ARM};
-use corrugation::dynamics::section::{Mat4, Mat6, Section, translations};
 use corrugation::dynamics::track::TrackConfig;
+use corrugation::dynamics::track::continuous3::Continuous3;
+use corrugation::dynamics::track::discrete::DiscreteTrack;
+use corrugation::dynamics::track::discrete3::{Discrete3, ROTATION_ARM};
+use corrugation::dynamics::track::section::{Mat4, Mat6, Section, translations};
 use nalgebra::SMatrix;
 use num_complex::Complex64;
 use std::f64::consts::PI;
@@ -291,7 +291,7 @@ fn coupled_receptances_are_reciprocal_and_passive() {
 #[test]
 fn discrete_head_against_a_long_finite_row_of_supports() {
     // An independent model: the free rail (its Green's matrix by residues,
-    // the waves of src/dynamics/waves.rs)
+    // the waves of src/dynamics/track/waves.rs)
     // loaded by the unit force and by the reactions K_s q_n of the 201
     // supports within +-60 m, q_m + sum_n G(x_m - x_n) K_s q_n = G(x_m - x0)
     // solved directly (1206 unknowns), the section at x1 then G(x1 - x0) -
@@ -390,7 +390,7 @@ fn close_supports_give_the_continuous_model() {
 fn vertical_freedom_of_the_discrete_head_is_the_vertical_models() {
     // Without the pitch restraint and with the longitudinal pads at the
     // neutral axis, a vertical force moves the section as in the vertical
-    // model (src/dynamics/discrete.rs): the same Floquet method, there with
+    // model (src/dynamics/track/discrete.rs): the same Floquet method, there with
     // 769 harmonics, a tail in closed form and a 768-point midpoint rule
     // over the zone, here with the lattice sums in closed form and an
     // adaptive rule; they differ by that model's truncation (measured

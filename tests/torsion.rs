@@ -3,7 +3,7 @@
 //! torque held far below the resonance, the creepage far above), the
 //! creepage it feeds into a growth study, and resume bit for bit.
 use corrugation::config::load_str;
-use corrugation::dynamics::torsion::{TorsionFeedback, WheelsetTorsion};
+use corrugation::dynamics::wheelset::torsion::{TorsionFeedback, WheelsetTorsion};
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};
 use std::f64::consts::PI;
@@ -74,7 +74,7 @@ fn scene(set: &[&str]) -> Result<corrugation::config::Resolved, corrugation::con
         .collect::<Vec<_>>()
         .join("\n");
     // The torsional feedback of the vertical dynamics (eq. 3 of
-    // dynamics::torsion); the dynamics in every direction has its own
+    // dynamics::wheelset::torsion); the dynamics in every direction has its own
     // tests (tests/contact_dynamics.rs).
     let mut all: Vec<String> = [
         "load.control=creepage",

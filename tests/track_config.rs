@@ -2,9 +2,9 @@
 //! bit, presets and overrides, the two forms of damping, the continuous
 //! model's response to the parameters engineers change, and bad input.
 use corrugation::config::load_str;
-use corrugation::dynamics::rail::RailSection;
 use corrugation::dynamics::receptance::TrackParams;
 use corrugation::dynamics::track::Damping;
+use corrugation::dynamics::track::rail::RailSection;
 use std::f64::consts::PI;
 
 const GROWTH: &str = include_str!("../configs/growth_fastsim.toml");
@@ -121,7 +121,7 @@ fn the_vehicle_section_places_the_wheels() {
 
 #[test]
 fn track_writes_the_transfer_between_the_wheels() {
-    use corrugation::dynamics::discrete::DiscreteTrack;
+    use corrugation::dynamics::track::discrete::DiscreteTrack;
     use corrugation::output::netcdf::read_f64;
     let dir = tempfile::tempdir().unwrap();
     let config = dir.path().join("bogie.toml");

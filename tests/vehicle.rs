@@ -5,10 +5,10 @@
 //! single wheels in the growth loop, and resume bit for bit.
 use corrugation::config::load_str;
 use corrugation::dynamics::TrackDynamics;
-use corrugation::dynamics::discrete::DiscreteTrack;
 use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
 use corrugation::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams};
 use corrugation::dynamics::track::TrackConfig;
+use corrugation::dynamics::track::discrete::DiscreteTrack;
 use corrugation::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};

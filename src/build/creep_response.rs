@@ -5,7 +5,7 @@
 //! measures.
 
 use crate::contact::TangentialSolver;
-use crate::dynamics::creep_response::{
+use crate::dynamics::coupling::creep_response::{
     CreepResponse, CreepResponseError, Excitation, Longitudinal, MeanState, measure,
 };
 use crate::hertz::HertzShape;
@@ -42,7 +42,7 @@ pub const CREEPAGE_RUN_IN: f64 = 7.0;
 pub const LEAD_PATCHES: f64 = 4.0;
 
 /// Root mean square of each input's multi-sine relative to the input's
-/// scale ([`crate::dynamics::creep_response::input_scale`]), per [`crate::dynamics::creep_response::Input`]: 3e-3 for the
+/// scale ([`crate::dynamics::coupling::creep_response::input_scale`]), per [`crate::dynamics::coupling::creep_response::Input`]: 3e-3 for the
 /// creepages and the spin (halving it moves the table by less than 7e-4
 /// of |H(0)| on the paper's scene); 5 % of the mean normal force for the
 /// normal force: on the fixed grid the steady force at a prescribed
@@ -132,11 +132,11 @@ pub fn response(
 /// The response of `scene`'s contact for a wheel of mean normal force
 /// `normal_force` and mean longitudinal force `longitudinal_force` (N;
 /// unused where the scene prescribes the creepage), with the default
-/// excitation, for the `inputs` asked (per [`crate::dynamics::creep_response::Input`]; the
+/// excitation, for the `inputs` asked (per [`crate::dynamics::coupling::creep_response::Input`]; the
 /// torsional loop needs the longitudinal creepage and the normal force,
 /// `[true, false, false, true]`, about a third of the cost of all four):
 /// what replaces the steady slopes of
-/// [`crate::dynamics::torsion::TorsionFeedback`].
+/// [`crate::dynamics::wheelset::torsion::TorsionFeedback`].
 ///
 /// A response is measured once per process for the same contact, mean
 /// state and excitation (the passage models a spectrum's threads build, a

@@ -14,18 +14,18 @@ use crate::contact::{Elements, EllipseMesh, PressureShape, StepInput, Tangential
 use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::TrackDynamics;
 use crate::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
-use crate::dynamics::contact_point::ContactLaw;
 use crate::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
-use crate::dynamics::continuous3::Continuous3;
-use crate::dynamics::creep_response::CreepResponse;
-use crate::dynamics::discrete::DiscreteTrack;
+use crate::dynamics::coupling::contact_point::ContactLaw;
+use crate::dynamics::coupling::creep_response::CreepResponse;
 use crate::dynamics::discrete_dynamics::DiscreteDynamics;
-use crate::dynamics::discrete3::Discrete3;
-use crate::dynamics::discrete3::Discrete3Error;
 use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
-use crate::dynamics::torsion::{TorsionFeedback, WHEEL_POLAR_INERTIA, WheelsetTorsion};
+use crate::dynamics::track::continuous3::Continuous3;
+use crate::dynamics::track::discrete::DiscreteTrack;
+use crate::dynamics::track::discrete3::Discrete3;
+use crate::dynamics::track::discrete3::Discrete3Error;
 use crate::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
 use crate::dynamics::wheelset::rigid::RigidWheelset;
+use crate::dynamics::wheelset::torsion::{TorsionFeedback, WHEEL_POLAR_INERTIA, WheelsetTorsion};
 use crate::dynamics::wheelset::{WheelsetModel, standard};
 use crate::hertz::{HertzPatch, HertzShape};
 use crate::params::{
@@ -304,7 +304,7 @@ pub fn periodic_grid(scene: &Scene) -> RailGrid {
 }
 
 /// The wheelset's torsional feedback (`[wheelset]` with the creepage
-/// prescribed): the torsion of [`crate::dynamics::torsion`] with the steady
+/// prescribed): the torsion of [`crate::dynamics::wheelset::torsion`] with the steady
 /// creep curve's slopes `dF/dN` and `dF/dxi` at the mean load and
 /// creepage, by central differences (1e-3 relative steps) of FASTSIM's
 /// steady solution on a 40 x 40 mesh with the Hertz pressure (Kalker,

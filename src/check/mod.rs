@@ -319,7 +319,7 @@ pub fn print_check(r: &Resolved) {
                 t.ballast_stiffness / 1e6,
                 damping(t.ballast_damping)
             );
-            let discrete = corrugation::dynamics::discrete::DiscreteTrack::new(t);
+            let discrete = corrugation::dynamics::track::discrete::DiscreteTrack::new(t);
             let used = if matches!(g.dynamics, DynamicsKind::Discrete { .. }) {
                 "in the growth loop's discrete model"
             } else {

@@ -4,11 +4,11 @@
 
 use super::ConfigError;
 use super::reader::{Range, Section};
-use crate::dynamics::rail::RailSection;
 use crate::dynamics::receptance::{
     BALLAST_LOSS_FACTOR, BALLAST_STIFFNESS_PER_HALF_SLEEPER, HALF_SLEEPER_MASS, PAD_LOSS_FACTOR, PAD_STIFFNESS_PER_PAD,
     SLEEPER_SPACING,
 };
+use crate::dynamics::track::rail::RailSection;
 use crate::dynamics::track::{Damping, RAIL_LOSS_FACTOR, Supports3, TrackConfig};
 use toml::{Table, Value};
 

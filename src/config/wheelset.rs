@@ -1,5 +1,5 @@
 //! The `[wheelset]` section: the rigid wheel, the wheelset's torsional
-//! mode ([`crate::dynamics::torsion`]) or the flexible rotating wheelset
+//! mode ([`crate::dynamics::wheelset::torsion`]) or the flexible rotating wheelset
 //! ([`crate::dynamics::wheelset`]), read into [`WheelsetParams`] (None: the
 //! rigid wheel). `model = "auto"`, the default (also without the section),
 //! takes the physics the scene needs ([`auto_model`]).
@@ -17,7 +17,7 @@
 
 use super::ConfigError;
 use super::reader::{Range, Section};
-use crate::dynamics::torsion::{AXLE_TORSIONAL_LOSS_FACTOR, AXLE_TORSIONAL_STIFFNESS, WHEEL_POLAR_INERTIA};
+use crate::dynamics::wheelset::torsion::{AXLE_TORSIONAL_LOSS_FACTOR, AXLE_TORSIONAL_STIFFNESS, WHEEL_POLAR_INERTIA};
 use crate::dynamics::wheelset::{standard as ws, table};
 use crate::params::{Directions, DynamicsKind, ModalWheelsetParams, Scene, WheelsetModes, WheelsetParams};
 use std::path::Path;

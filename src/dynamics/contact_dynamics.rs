@@ -1,14 +1,14 @@
 //! The growth loop's dynamics in every direction (`dynamics.directions =
 //! "all"`): the rail head's receptances in three directions (continuous,
-//! [`super::continuous3`], or discrete, [`super::discrete3`], depending on
+//! [`super::track::continuous3`], or discrete, [`super::track::discrete3`], depending on
 //! where the wheel is in the sleeper bay), the wheel's, the Hertz spring
 //! and the creep forces' slopes closed per harmonic
-//! ([`super::contact_point`]), so that a profile harmonic varies the
+//! ([`super::coupling::contact_point`]), so that a profile harmonic varies the
 //! normal force, the creep forces and the creepages at its own frequency.
 //!
 //! # Equations
 //! Per profile harmonic `r_n exp(i k_n X)` (`w_n = k_n V`) and place `x` in
-//! the bay, [`super::contact_point::respond`] gives the responses `H_c(w_n,
+//! the bay, [`super::coupling::contact_point::respond`] gives the responses `H_c(w_n,
 //! x)` of each channel `c` (normal force, longitudinal force, longitudinal
 //! and lateral creepage) per unit roughness, and
 //! ```text
@@ -29,11 +29,11 @@
 //! mass per wheel), and its rotation about the axle at the rim: the rigid
 //! wheelset's spin (`-r^2 / (2 J w^2)`, both wheels' inertia) or, with the
 //! torsional `[wheelset]`, the torsional model's `T(w) V / (i w)`
-//! ([`super::torsion`] eq. 2).
+//! ([`super::wheelset::torsion`] eq. 2).
 //!
 //! **The contact** at the mean state: the Hertz stiffness and the creep
 //! forces' frequency response measured on the passage's own transient
-//! solver ([`super::creep_response`], `dynamics.creep_forces =
+//! solver ([`super::coupling::creep_response`], `dynamics.creep_forces =
 //! "transient"`, at each harmonic's frequency), or the steady creep
 //! curve's slopes (FASTSIM's, as the torsional feedback's, `"steady"`).
 //!
@@ -43,7 +43,7 @@
 //! horizontal bending, the wheels' axial modes) vary the spin creepage at
 //! the harmonic's frequency, and the creep forces answer through the creep
 //! response's spin column (or FASTSIM's steady slope): eq. 1 of
-//! [`super::contact_point`] with its spin row. The rigid wheel does not
+//! [`super::coupling::contact_point`] with its spin row. The rigid wheel does not
 //! turn about the vertical (its rail head still does).
 //!
 //! What the passage receives: the normal force's variation, the lateral
@@ -52,14 +52,14 @@
 //! the creepage the passage's contact solver finds).
 
 use super::TrackDynamics;
-use super::contact_point::{ContactLaw, ContactResponse, respond};
-use super::continuous3::Continuous3;
-use super::creep_response::CreepResponse;
-use super::discrete::DiscreteTrack;
+use super::coupling::contact_point::{ContactLaw, ContactResponse, respond};
+use super::coupling::creep_response::CreepResponse;
 use super::discrete_dynamics::{harmonics, parametric_path};
-use super::discrete3::{Discrete3, Discrete3Error};
-use super::section::{Mat3, Mat4, pad};
-use super::torsion::WheelsetTorsion;
+use super::track::continuous3::Continuous3;
+use super::track::discrete::DiscreteTrack;
+use super::track::discrete3::{Discrete3, Discrete3Error};
+use super::track::section::{Mat3, Mat4, pad};
+use super::wheelset::torsion::WheelsetTorsion;
 use super::wheelset::{Dir, WheelsetModel, dof};
 use num_complex::Complex64;
 use rayon::prelude::*;

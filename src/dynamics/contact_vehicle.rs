@@ -1,7 +1,7 @@
 //! Several wheels of a vehicle on one rail in every direction
 //! (`vehicle.wheels` with `dynamics.directions = "all"`): each wheel's
 //! contact closed in three directions per harmonic as
-//! [`super::contact_point`], the wheels coupled through the rail head's
+//! [`super::coupling::contact_point`], the wheels coupled through the rail head's
 //! transfer receptances in three directions (the multiple-wheel
 //! moving-irregularity model of [`super::vehicle`], Wu and Thompson 2005,
 //! Nielsen 2003, extended to the tangential directions).
@@ -16,7 +16,7 @@
 //! `A_r(x_j; x_l)` the head's displacement at wheel `j`'s place per unit
 //! force at wheel `l`'s (the point receptance for `l = j`), `x_j = x - s_j`
 //! for the leading wheel at `x`. Each wheel's contact law
-//! ([`super::contact_point`] eq. 1, its own mean loads): `N_j = k_H,j (r_j +
+//! ([`super::coupling::contact_point`] eq. 1, its own mean loads): `N_j = k_H,j (r_j +
 //! d_j,z)`, `xi_j = (i w / V) d_j,xy`, `(F_x, F_y)_j = C_N,j N_j + C_xi,j
 //! xi_j`: a `3n x 3n` linear system per harmonic and place, solved for a
 //! unit input `r_j` at each wheel. A profile harmonic reaches wheel `j` as
@@ -32,11 +32,11 @@
 
 use super::TrackDynamics;
 use super::contact_dynamics::{ContactSignals, Rail3, WheelSide};
-use super::contact_point::ContactLaw;
-use super::creep_response::CreepResponse;
+use super::coupling::contact_point::ContactLaw;
+use super::coupling::creep_response::CreepResponse;
 use super::discrete_dynamics::harmonics;
-use super::discrete3::Discrete3Error;
-use super::section::Mat4;
+use super::track::discrete3::Discrete3Error;
+use super::track::section::Mat4;
 use super::vehicle::{BAY_PLACES, bay_place, inputs_as_met, parametric_paths, static_receptances};
 use nalgebra::DMatrix;
 use num_complex::Complex64;

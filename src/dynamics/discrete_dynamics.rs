@@ -1,5 +1,5 @@
 //! The dynamic contact force of a wheel rolling over the discretely
-//! supported rail ([`super::discrete`]), for the growth loop.
+//! supported rail ([`super::track::discrete`]), for the growth loop.
 //!
 //! A moving-irregularity model with a receptance that depends on where in
 //! the sleeper bay the wheel is (the "position-dependent" approximation of
@@ -24,8 +24,8 @@
 //! force.
 
 use super::TrackDynamics;
-use super::discrete::DiscreteTrack;
 use super::receptance::WheelParams;
+use super::track::discrete::DiscreteTrack;
 use num_complex::Complex64;
 use rayon::prelude::*;
 use rustfft::FftPlanner;

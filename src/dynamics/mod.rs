@@ -15,28 +15,31 @@
 //! - `r > 0`: the rail top is higher (a bump), which presses the wheel harder;
 //! - the force is the compressive contact force (N), positive = more load.
 //!
+//! Laid out by body: [`track`] the rail and its supports (the rail's
+//! sections, the continuous and discrete track, their receptances at the
+//! rail head in every direction), [`wheelset`] the wheelset (rigid,
+//! torsion, modal), [`coupling`] the contact between them (the contact
+//! point's closure, the creep forces' response); the vehicle-track models
+//! assembled from them sit here ([`receptance`], [`discrete_dynamics`],
+//! [`vehicle`]: vertical; [`contact_dynamics`], [`contact_vehicle`]: every
+//! direction).
+//!
 //! [`TrackDynamics`] is the interface the pass loop uses, so that a richer
 //! track model (discrete sleepers, Timoshenko rail, moving load) can replace
 //! the [`receptance`] model without touching the loop.
 
-pub mod contact_dynamics;
-pub mod contact_point;
-pub mod contact_vehicle;
-pub mod continuous3;
-pub mod creep_response;
-pub mod discrete;
-pub mod discrete3;
-pub mod discrete_dynamics;
-pub mod head_response;
-pub mod rail;
-pub mod receptance;
-pub mod section;
-pub mod torsion;
+// The bodies: the rail and its supports, the wheelset, the contact
+// coupling between them.
+pub mod coupling;
 pub mod track;
-pub mod track_response;
-pub mod vehicle;
-pub mod waves;
 pub mod wheelset;
+
+// The vehicle-track models assembled from them.
+pub mod contact_dynamics;
+pub mod contact_vehicle;
+pub mod discrete_dynamics;
+pub mod receptance;
+pub mod vehicle;
 
 pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,

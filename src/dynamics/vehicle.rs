@@ -38,9 +38,9 @@
 //! loads (the parametric excitation).
 
 use super::TrackDynamics;
-use super::discrete::DiscreteTrack;
 use super::discrete_dynamics::harmonics;
 use super::receptance::{ReceptanceModel, WheelParams};
+use super::track::discrete::DiscreteTrack;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rayon::prelude::*;

@@ -26,9 +26,9 @@
 //! `<name>_rotation_per_moment_real(...)` (rad/(N m)), and their `_imag`.
 
 use super::netcdf::{NcError, write_atomically};
-use crate::dynamics::head_response::HeadResponse;
-use crate::dynamics::section::Mat4;
-use crate::dynamics::track_response::TrackResponse;
+use crate::dynamics::track::head::HeadResponse;
+use crate::dynamics::track::response::TrackResponse;
+use crate::dynamics::track::section::Mat4;
 use ndarray::{Array0, Array1, Array2, Array3, ArrayD, Dimension, IxDyn};
 use std::path::Path;
 

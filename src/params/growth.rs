@@ -142,7 +142,7 @@ pub enum CreepForces {
     Steady,
     /// The frequency-dependent creep coefficients measured on the
     /// passage's own transient contact solver
-    /// ([`crate::dynamics::creep_response`]): the force lags and falls
+    /// ([`crate::dynamics::coupling::creep_response`]): the force lags and falls
     /// where the patch is rolled over in a time comparable to the period.
     Transient,
 }

@@ -354,7 +354,7 @@ impl VehicleParams {
     }
 }
 
-/// The wheelset (`[wheelset]`): its torsion ([`crate::dynamics::torsion`])
+/// The wheelset (`[wheelset]`): its torsion ([`crate::dynamics::wheelset::torsion`])
 /// and, with `model = "modal"`, the flexible rotating wheelset
 /// ([`crate::dynamics::wheelset`]).
 #[derive(Debug, Clone, PartialEq)]

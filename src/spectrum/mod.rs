@@ -9,7 +9,7 @@
 //! grow or decay exponentially under `r <- r - W(r)` per wheel passage
 //! (Hempelmann and Knothe's roughness-to-wear transfer; Meehan, Daniel and
 //! Campey, Wear 258 (2005): growth as an instability across passages).
-//! Here `J` is measured on the passage's own model chain ([`WearMap`]:
+//! Here `J` is measured on the passage's own model chain ([`crate::growth::wear_map::WearMap`]:
 //! the contact, the dynamics, the wear of a growth study) by finite
 //! differences: perturbations `eps cos(q X + phi)`, uniform across the
 //! head as roughness is, and the response's contact-filtered line (the

@@ -36,7 +36,7 @@
 //!   wheel's axial (out-of-plane) mode along the rim; its load a moment
 //!   about `+z` at the contact (N m). The wheel's share of the spin
 //!   creepage's variation is `i w psi / V` (in the rail's axes, `z` down,
-//!   with the opposite sign: [`crate::dynamics::contact_point`]).
+//!   with the opposite sign: [`crate::dynamics::coupling::contact_point`]).
 //!
 //! Time dependence `exp(+i w t)`, as in [`crate::dynamics`]: a passive
 //! receptance has a negative imaginary point receptance.
@@ -107,6 +107,7 @@
 pub mod rigid;
 pub mod standard;
 pub mod table;
+pub mod torsion;
 
 use nalgebra::{DMatrix, SMatrix};
 use num_complex::Complex64;
@@ -326,12 +327,12 @@ impl WheelsetModel {
         Ok(WheelsetModel { modes, couplings, blocks })
     }
 
-    /// Today's torsional model ([`super::torsion`]) as modes: the rigid spin
+    /// Today's torsional model ([`torsion`]) as modes: the rigid spin
     /// (free, 0 Hz) and the torsional mode `sqrt(2 k_t / J)` with the axle's
     /// loss factor, each wheel's rotation `+-1 / sqrt(2 J)` and its contact's
     /// longitudinal displacement `-r` times that. Its `x`-`x` receptance
-    /// times `i w / V` is [`super::torsion::WheelsetTorsion::creepage_per_force`].
-    pub fn torsion(t: &super::torsion::WheelsetTorsion) -> Self {
+    /// times `i w / V` is [`torsion::WheelsetTorsion::creepage_per_force`].
+    pub fn torsion(t: &torsion::WheelsetTorsion) -> Self {
         let (spin, twist) = standard::torsion_modes(t.inertia, t.stiffness, t.loss_factor, t.radius);
         WheelsetModel::new(vec![spin, twist], Vec::new()).expect("valid torsion modes")
     }
@@ -353,7 +354,7 @@ impl WheelsetModel {
     ///
     /// A mode without damping is singular at its own frequency (the table
     /// and the default's keys require damping; the torsion's loss factor
-    /// may be 0, as in [`super::torsion`]).
+    /// may be 0, as in [`torsion`]).
     ///
     /// # Panics
     /// If `omega` is not finite and > 0 or `spin` is not finite, or a

@@ -43,7 +43,7 @@ pub struct RigidWheelset {
     /// Moment of inertia I_z about the vertical axis (yaw) (kg m^2).
     pub yaw_inertia: f64,
     /// Polar moment of inertia I_y of the spinning parts about the axle (kg
-    /// m^2): twice a wheel's with its half axle ([`super::super::torsion`]'s
+    /// m^2): twice a wheel's with its half axle ([`super::torsion`]'s
     /// J).
     pub spin_inertia: f64,
     /// Primary suspension stiffness per axle box, longitudinal k_x (N/m).

@@ -5,7 +5,7 @@
 //!
 //! | mode (per family) | frequency | source of the frequency | participation from |
 //! |---|---|---|---|
-//! | torsion | `sqrt(2 k_t / J)`, 71.2 Hz | [`super::super::torsion`] (measured modes 40-100 Hz) | two wheels on the axle's torsional spring |
+//! | torsion | `sqrt(2 k_t / J)`, 71.2 Hz | [`super::torsion`] (measured modes 40-100 Hz) | two wheels on the axle's torsional spring |
 //! | first symmetric bending, vertical and horizontal plane | 87.0 Hz | Wu et al. 2020 | beam model (below) |
 //! | first antisymmetric bending, both planes | 143.1 Hz | Wu et al. 2020 | beam model |
 //! | umbrella (n = 0, axial), symmetric / antisymmetric | 450 / 563 Hz | Thompson 2009, ch. 5 | rim mass on the web's axial spring |
@@ -140,7 +140,7 @@ pub struct Design {
 /// The rigid spin and the torsional mode of two wheels of polar inertia
 /// `inertia` (kg m^2) on an axle of torsional stiffness `stiffness` (N
 /// m/rad) with loss factor `loss_factor`, rolling radius `radius` (m)
-/// (eq. 1 of [`super::super::torsion`] as modes).
+/// (eq. 1 of [`super::torsion`] as modes).
 pub fn torsion_modes(inertia: f64, stiffness: f64, loss_factor: f64, radius: f64) -> (Mode, Mode) {
     let s = 1.0 / (2.0 * inertia).sqrt();
     let mut spin = [0.0; super::DOFS];

@@ -6,7 +6,7 @@
 use super::rigid::RigidWheelset;
 use super::standard::{self, Beam, Design};
 use super::*;
-use crate::dynamics::torsion::WheelsetTorsion;
+use crate::dynamics::wheelset::torsion::WheelsetTorsion;
 use nalgebra::SMatrix;
 
 const TORSION: WheelsetTorsion = WheelsetTorsion { stiffness: 3e6, loss_factor: 0.02, inertia: 30.0, radius: 0.5 };

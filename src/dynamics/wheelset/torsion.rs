@@ -60,7 +60,7 @@
 //! prescribed (`load.control = "creepage"`, `rolling.creepage_x = xi_0`,
 //! the mean drive torque `r F(xi_0)` its result).
 
-use super::apply_periodic_response;
+use crate::dynamics::apply_periodic_response;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 

@@ -30,7 +30,7 @@
 //! 5/6 for a rectangle). Warping torsion is not modelled (Saint-Venant
 //! torsion only: it stiffens the rail's torsion above about 1 kHz).
 
-use super::receptance::{RAIL_YOUNG_MODULUS, UIC60_MASS, UIC60_SECOND_MOMENT};
+use crate::dynamics::receptance::{RAIL_YOUNG_MODULUS, UIC60_MASS, UIC60_SECOND_MOMENT};
 
 /// Shear modulus of rail steel (Pa).
 pub const RAIL_SHEAR_MODULUS: f64 = 81e9;

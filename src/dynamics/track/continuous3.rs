@@ -23,8 +23,8 @@
 //! the torsion rod's, `1 / (8 EI_z beta_y^3) + h_s^2 / (2 GJ gamma_t)`
 //! (tests/rail_head.rs).
 
+use super::TrackConfig;
 use super::section::{Mat3, Mat4, Mat6, Section, pad};
-use super::track::TrackConfig;
 use super::waves::{RootsError, Waves};
 use num_complex::Complex64;
 

@@ -45,14 +45,14 @@
 //! (kGA k^2)`) added in closed form; the integral is the midpoint rule.
 
 use super::rail::RailSection;
-use super::track::{Damping, TrackConfig};
+use super::{Damping, TrackConfig};
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
 /// Rail loss factor (1): the rail's own damping, which keeps the lattice
 /// sums finite at the propagating waves' wavenumbers (the default of
 /// `track.rail_loss_factor`).
-pub use super::track::RAIL_LOSS_FACTOR;
+pub use super::RAIL_LOSS_FACTOR;
 
 /// Harmonics `|j| <= J` of the lattice sums.
 const LATTICE_TERMS: i64 = 384;

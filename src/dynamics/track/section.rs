@@ -59,7 +59,7 @@
 //! ([`Section::head_map4`]): what the spin creepage's variation needs.
 
 use super::rail::RailSection;
-use super::track::{Damping, TrackConfig};
+use super::{Damping, TrackConfig};
 use nalgebra::{SMatrix, SVector};
 use num_complex::Complex64;
 
@@ -360,7 +360,7 @@ mod tests {
         let w = 2.0 * std::f64::consts::PI * 400.0;
         let k = s.support(w);
         assert!((k - k.transpose()).norm() == 0.0);
-        let vertical = super::super::discrete::DiscreteTrack::new(&t).support_stiffness(w);
+        let vertical = crate::dynamics::track::discrete::DiscreteTrack::new(&t).support_stiffness(w);
         assert!((k[(0, 0)] - vertical).norm() < 1e-9 * vertical.norm());
     }
 }

@@ -114,8 +114,8 @@ impl Waves {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::section::Section;
     use crate::dynamics::track::TrackConfig;
+    use crate::dynamics::track::section::Section;
 
     #[test]
     fn lattice_sums_equal_the_truncated_harmonic_sums() {

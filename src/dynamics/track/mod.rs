@@ -1,4 +1,4 @@
-//! The track as configured (`[track]`): per-pad and per-sleeper values as
+//! The rail and its supports. Here: the track as configured (`[track]`): per-pad and per-sleeper values as
 //! engineers give them, and the continuous model's per-length parameters
 //! ([`TrackConfig::smeared`]). Defaults reproduce the track the program had
 //! built in: UIC60 on 200 MN/m pads (loss factor 0.25), 0.6 m spacing,
@@ -21,8 +21,17 @@
 //! viscous damper scaled with the stiffness (the same loss factor at a
 //! frequency).
 
-use super::rail::RailSection;
-use super::receptance::{
+pub mod continuous3;
+pub mod discrete;
+pub mod discrete3;
+pub mod head;
+pub mod rail;
+pub mod response;
+pub mod section;
+pub mod waves;
+
+use self::rail::RailSection;
+use crate::dynamics::receptance::{
     BALLAST_LOSS_FACTOR, BALLAST_STIFFNESS_PER_HALF_SLEEPER, HALF_SLEEPER_MASS, PAD_LOSS_FACTOR, PAD_STIFFNESS_PER_PAD,
     SLEEPER_SPACING, TrackParams,
 };

@@ -4,9 +4,9 @@
 //! model's, the wheel's and the contact spring's, the resonances, and the
 //! transfer receptances between the wheels of a vehicle.
 
+use super::TrackConfig;
 use super::discrete::DiscreteTrack;
-use super::receptance::{TrackParams, WheelParams};
-use super::track::TrackConfig;
+use crate::dynamics::receptance::{TrackParams, WheelParams};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use std::f64::consts::PI;

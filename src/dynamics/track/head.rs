@@ -7,10 +7,10 @@
 //! force and per moment about `z`; axes of [`super::section`]: `x` along
 //! the rail, `y` across to the right, `z` down).
 
+use super::TrackConfig;
 use super::continuous3::Continuous3;
 use super::discrete3::{Discrete3, Discrete3Error};
 use super::section::Mat4;
-use super::track::TrackConfig;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 

@@ -31,7 +31,7 @@
 //!
 //! At `w = 0`, `H` is the steady creep curve's Jacobian `dF/dq`: the
 //! slopes `C_xi = dF_x/dxi_x` and `C_N = dF_x/dN` that
-//! [`crate::dynamics::torsion`] takes from FASTSIM are `H_xx(0)` and
+//! [`crate::dynamics::wheelset::torsion`] takes from FASTSIM are `H_xx(0)` and
 //! `H_xN(0)`.
 //!
 //! # Method ([`measure`])
@@ -50,7 +50,9 @@
 //! is the ratio of the force's and the input's discrete Fourier
 //! coefficients over the measured period. The runs go in parallel, each on
 //! its own solver. Defaults, their measured convergence and the cost:
-//! [`scene`] and `docs/src/theory/creep-response.md`.
+//! `build::creep_response` (the assembly, which measures a scene's
+//! response with the scene's own solver) and
+//! `docs/src/theory/creep-response.md`.
 //!
 //! The closed form of the simplified (Winkler) theory in full adhesion,
 //! which tests the simplified-transient solver, is [`brush`].

@@ -5,7 +5,7 @@
 //! creep forces) with the rail head's and the wheel's receptances in
 //! three directions.
 //!
-//! Axes as [`super::section`]: `x` along the rail (travel), `y` across (to
+//! Axes as [`crate::dynamics::track::section`]: `x` along the rail (travel), `y` across (to
 //! the right), `z` down. Time dependence `exp(+i w t)`; the load stands
 //! still and the rail is pulled through, so a profile harmonic is met at
 //! `w = k V`.
@@ -34,11 +34,11 @@
 //! spin's row is not formed and the system is the three directions' alone,
 //! bit for bit. Its limits: without
 //! the tangential directions `N = r / (a_z + 1 / k_H)`, the vertical
-//! model's eq. 5 of [`super::receptance`]; with the wheel's rotation alone
+//! model's eq. 5 of [`crate::dynamics::receptance`]; with the wheel's rotation alone
 //! in `A_xx` (`(i w / V) A_xx = T`, the torsion's creepage per force) the
-//! creepage `T C_N / (1 - C_xi T) N`, eq. 3 of [`super::torsion`].
+//! creepage `T C_N / (1 - C_xi T) N`, eq. 3 of [`crate::dynamics::wheelset::torsion`].
 
-use super::section::{Mat4, translations};
+use crate::dynamics::track::section::{Mat4, translations};
 use nalgebra::{SMatrix, SVector};
 use num_complex::Complex64;
 
@@ -134,7 +134,7 @@ pub fn respond(a: &Mat4, law: &ContactLaw, omega: f64, speed: f64) -> ContactRes
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::torsion::{TorsionFeedback, WheelsetTorsion};
+    use crate::dynamics::wheelset::torsion::{TorsionFeedback, WheelsetTorsion};
 
     fn c(v: f64) -> Complex64 {
         Complex64::new(v, 0.0)

@@ -22,8 +22,8 @@
 //! adaptive ([`crate::quadrature`], to [`TOLERANCE`] of the head's largest
 //! receptance). The head's receptance is `B^T G B`.
 
+use super::TrackConfig;
 use super::section::{Mat3, Mat4, Mat6, Section, pad, project};
-use super::track::TrackConfig;
 use super::waves::{RootsError, Waves};
 use crate::quadrature::{QuadratureError, integrate};
 use nalgebra::SMatrix;
