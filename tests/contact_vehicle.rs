@@ -6,7 +6,6 @@
 //! runs and resumes bit for bit.
 use crate::common;
 use corrugation::config::load_str;
-use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
 use corrugation::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
 use corrugation::dynamics::coupling::contact_point::ContactLaw;

@@ -4,7 +4,6 @@
 //! bit-for-bit resume.
 use crate::common;
 use corrugation::config::load_str;
-use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
 use corrugation::dynamics::receptance::WheelParams;
 use corrugation::dynamics::track::TrackConfig;

@@ -3,7 +3,8 @@
 //! the periodic application of H(f) to a rail profile.
 use corrugation::dynamics::receptance::{SWEEP_MAX_HZ, SWEEP_MIN_HZ};
 use corrugation::dynamics::{
-    ReceptanceModel, TrackDynamics, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,
+    ContactVariations, ReceptanceModel, TrackDynamics, TrackParams, WheelParams, hertz_stiffness,
+    winkler_point_receptance,
 };
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use num_complex::Complex64;
@@ -217,9 +218,12 @@ fn dynamic_force_of_a_sinusoid_is_h_times_the_amplitude() {
             let expect = amplitude * h.norm() * (k * j as f64 * dx + phase + h.arg()).cos();
             assert!((got - expect).abs() < 1e-9 * scale, "n = {n}, V = {speed}, j = {j}: {got} vs {expect}");
         }
-        // The trait gives the same force.
+        // The trait gives the same force, as the normal force alone.
         let dynamics: &dyn TrackDynamics = &m;
-        assert_eq!(dynamics.force_from_profile(&profile, dx, speed), force);
+        assert_eq!(
+            dynamics.contact_variations(std::slice::from_ref(&profile), dx, speed),
+            [ContactVariations::Normal(force)]
+        );
     }
     // Backward travel conjugates H: the phase lag flips sign.
     let h = m.force_per_roughness(750.0);

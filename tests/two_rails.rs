@@ -9,7 +9,6 @@ use crate::common;
 use common::{largest, worst_scaled};
 use corrugation::build::wheelset_model;
 use corrugation::config::load_str;
-use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, WheelSide};
 use corrugation::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
 use corrugation::dynamics::coupling::contact_point::ContactLaw;
@@ -93,8 +92,8 @@ fn the_second_rail_without_its_contact_is_one_rail() {
     let two = wheelset(free);
     let one = ContactDynamics::new(rail(), side(), law(), None, 1e5, NODES, DX, SPEED).unwrap();
     let (r0, r1) = (profile(0.0), profile(1.0));
-    let both = two.contact_signals(&[r0.clone(), r1], DX, SPEED).unwrap();
-    let single = one.contact_signals(&[r0], DX, SPEED).unwrap().swap_remove(0);
+    let both = two.signals(&[r0.clone(), r1], DX, SPEED);
+    let single = one.signals(&r0, DX, SPEED);
     for (name, a, b) in [
         ("normal", &both[0].normal, &single.normal),
         ("force_x", &both[0].force_x, &single.force_x),
@@ -116,7 +115,7 @@ fn a_symmetric_wheelset_on_mirror_image_contacts_answers_symmetrically() {
     // included.
     let two = wheelset(mirrored(&law()));
     let r = profile(0.0);
-    let s = two.contact_signals(&[r.clone(), r], DX, SPEED).unwrap();
+    let s = two.signals(&[r.clone(), r], DX, SPEED);
     assert!(largest(&s[0].normal) > 100.0 && largest(&s[0].creepage_y) > 1e-9);
     assert!(worst_scaled(&s[1].normal, &s[0].normal, 1.0) < 1e-9, "{}", worst_scaled(&s[1].normal, &s[0].normal, 1.0));
     assert!(worst_scaled(&s[1].creepage_x, &s[0].creepage_x, 1.0) < 1e-9);
@@ -132,7 +131,7 @@ fn the_second_rails_profile_reaches_the_first_rails_contact_through_the_wheelset
     // the wheelset's transfer receptances (roll, bending, torsion), less
     // than the second's own, and not by nothing.
     let two = wheelset(law());
-    let s = two.contact_signals(&[vec![0.0; NODES], profile(0.0)], DX, SPEED).unwrap();
+    let s = two.signals(&[vec![0.0; NODES], profile(0.0)], DX, SPEED);
     let (first, second) = (largest(&s[0].normal), largest(&s[1].normal));
     assert!(first > 1e-3 * second && first < second, "first {first} N, second {second} N");
     assert!(largest(&s[0].creepage_x) > 0.0);

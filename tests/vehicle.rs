@@ -4,7 +4,6 @@
 //! receptances, one wheel as the single-wheel model, far-apart wheels as
 //! single wheels in the growth loop, and resume bit for bit.
 use corrugation::config::load_str;
-use corrugation::dynamics::TrackDynamics;
 use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
 use corrugation::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams};
 use corrugation::dynamics::track::TrackConfig;

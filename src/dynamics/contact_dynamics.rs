@@ -51,7 +51,6 @@
 //! control) or force's (force control: the force the dynamics transmits,
 //! the creepage the passage's contact solver finds).
 
-use super::TrackDynamics;
 use super::coupling::contact_point::{ContactLaw, ContactResponse, respond};
 use super::coupling::creep_response::CreepResponse;
 use super::discrete_dynamics::{harmonics, parametric_path};
@@ -61,6 +60,7 @@ use super::track::discrete3::{Discrete3, Discrete3Error};
 use super::track::section::{Mat3, Mat4, pad};
 use super::wheelset::torsion::WheelsetTorsion;
 use super::wheelset::{Dir, WheelsetModel, dof};
+use super::{ContactVariations, TrackDynamics};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use rustfft::FftPlanner;
@@ -347,8 +347,8 @@ impl ContactDynamics {
 }
 
 impl TrackDynamics for ContactDynamics {
-    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
-        self.signals(profile, dx, speed).normal
+    fn contact_variations(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactVariations> {
+        vec![ContactVariations::Every(self.signals(&profiles[0], dx, speed))]
     }
 
     fn describe_resonances(&self) -> Vec<(String, f64)> {
@@ -369,9 +369,5 @@ impl TrackDynamics for ContactDynamics {
 
     fn forces_smooth_rail(&self) -> bool {
         matches!(self.rail, Rail3::Discrete { .. })
-    }
-
-    fn contact_signals(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Option<Vec<ContactSignals>> {
-        Some(vec![self.signals(&profiles[0], dx, speed)])
     }
 }

@@ -30,7 +30,6 @@
 //! slopes the normal forces are the vertical coupled model's with the
 //! head's vertical receptances.
 
-use super::TrackDynamics;
 use super::contact_dynamics::{ContactSignals, Rail3, WheelSide};
 use super::coupling::contact_point::ContactLaw;
 use super::coupling::creep_response::CreepResponse;
@@ -38,6 +37,7 @@ use super::discrete_dynamics::harmonics;
 use super::track::discrete3::Discrete3Error;
 use super::track::section::Mat4;
 use super::vehicle::{BAY_PLACES, bay_place, inputs_as_met, parametric_paths, static_receptances};
+use super::{ContactVariations, TrackDynamics};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rayon::prelude::*;
@@ -303,8 +303,8 @@ fn solve(own: &[Mat4], a_r: &[Mat4], laws: &[ContactLaw], omega: f64, speed: f64
 }
 
 impl TrackDynamics for ContactVehicle {
-    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
-        self.signals(&vec![profile.to_vec(); self.wheels.len()], dx, speed).swap_remove(0).normal
+    fn contact_variations(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactVariations> {
+        self.signals(profiles, dx, speed).into_iter().map(ContactVariations::Every).collect()
     }
 
     fn describe_resonances(&self) -> Vec<(String, f64)> {
@@ -325,13 +325,5 @@ impl TrackDynamics for ContactVehicle {
 
     fn rail_of(&self, wheel: usize) -> usize {
         self.wheels[wheel].rail
-    }
-
-    fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
-        self.signals(profiles, dx, speed).into_iter().map(|s| s.normal).collect()
-    }
-
-    fn contact_signals(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Option<Vec<ContactSignals>> {
-        Some(self.signals(profiles, dx, speed))
     }
 }

@@ -23,9 +23,9 @@
 //! harmonics that the same transfer (1) turns into the sleeper-passing
 //! force.
 
-use super::TrackDynamics;
 use super::receptance::WheelParams;
 use super::track::discrete::DiscreteTrack;
+use super::{ContactVariations, TrackDynamics};
 use num_complex::Complex64;
 use rayon::prelude::*;
 use rustfft::FftPlanner;
@@ -143,8 +143,10 @@ fn half_bay_index(d: f64, sleeper_x0: f64, x: f64) -> f64 {
     folded / (0.5 * d) * (POSITIONS - 1) as f64
 }
 
-impl TrackDynamics for DiscreteDynamics {
-    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
+impl DiscreteDynamics {
+    /// The dynamic normal force (N, zero mean) at the profile's sample
+    /// points `X_j = j dx` (see [`TrackDynamics::contact_variations`]).
+    pub fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
         let n = profile.len();
         assert_eq!(
             (speed, n, dx),
@@ -179,6 +181,12 @@ impl TrackDynamics for DiscreteDynamics {
                 force
             })
             .collect()
+    }
+}
+
+impl TrackDynamics for DiscreteDynamics {
+    fn contact_variations(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactVariations> {
+        vec![ContactVariations::Normal(self.force_from_profile(&profiles[0], dx, speed))]
     }
 
     fn describe_resonances(&self) -> Vec<(String, f64)> {

@@ -45,17 +45,24 @@ pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,
 };
 
+pub use contact_dynamics::ContactSignals;
 use num_complex::Complex64;
 use rustfft::FftPlanner;
 
-/// A linear (or linearised) vehicle-track model that turns the rail profile
-/// of one periodic stretch into the dynamic contact force along it.
+/// A linear (or linearised) vehicle-track model: the one question the
+/// growth loop asks of it is each wheel's contact variations along the
+/// periodic stretch from the profiles the wheels meet
+/// ([`TrackDynamics::contact_variations`]); the rest describes it.
 pub trait TrackDynamics {
-    /// Dynamic normal contact force (N, zero mean) at the profile's sample
-    /// points `X_j = j dx`, for a wheel at speed `speed` (m/s; the sign gives
-    /// the direction of travel along `X`). `profile` (m, rail top height,
-    /// positive up) is one period of a periodic signal sampled every `dx` (m).
-    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64>;
+    /// Each wheel's contact variations (zero mean) when the wheel is at
+    /// `X_j = j dx`, for a vehicle at speed `speed` (m/s; the sign gives
+    /// the direction of travel along `X`), from the profile each wheel sees
+    /// (`profiles[wheel]`, m, rail top height, positive up: one period of
+    /// a periodic signal sampled every `dx` (m); wheels of different loads
+    /// see the rail through different patches). A vertical model gives the
+    /// normal force alone, a model in every direction the creep force's
+    /// and creepages' variations beside it.
+    fn contact_variations(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactVariations>;
 
     /// The model's resonances as (label, frequency in Hz), for reports.
     fn describe_resonances(&self) -> Vec<(String, f64)>;
@@ -79,30 +86,41 @@ pub trait TrackDynamics {
         let _ = wheel;
         0
     }
+}
 
-    /// The dynamic normal force on each wheel (N, zero mean), `[wheel][j]`
-    /// the force on the wheel when it is at `X_j = j dx`, from the profile
-    /// each wheel sees (`profiles[wheel]`, sampled as in
-    /// [`Self::force_from_profile`]; wheels of different loads see it
-    /// through different patches); [`Self::force_from_profile`] is the
-    /// force of every wheel seeing the same profile, the leading wheel's.
-    fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
-        vec![self.force_from_profile(&profiles[0], dx, speed)]
+/// One wheel's contact variations along the stretch (see
+/// [`TrackDynamics::contact_variations`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ContactVariations {
+    /// A vertical model: the dynamic normal force (N, zero mean). The
+    /// creepage then follows the wheelset's torsion where the scene has
+    /// one.
+    Normal(Vec<f64>),
+    /// A model in every direction: the normal force, the longitudinal
+    /// creep force, the creepages and the spin.
+    Every(ContactSignals),
+}
+
+impl ContactVariations {
+    /// The dynamic normal force (N, zero mean).
+    pub fn normal(&self) -> &[f64] {
+        match self {
+            ContactVariations::Normal(n) => n,
+            ContactVariations::Every(s) => &s.normal,
+        }
     }
 
-    /// Each wheel's contact variations in every direction the model has
-    /// (the normal force, the longitudinal force and creepages: a model of
-    /// the dynamics in every direction, [`contact_dynamics`]), from the
-    /// profiles as [`Self::wheel_forces`]; None for a vertical model, whose
-    /// normal force is [`Self::wheel_forces`]'s.
-    fn contact_signals(
-        &self,
-        profiles: &[Vec<f64>],
-        dx: f64,
-        speed: f64,
-    ) -> Option<Vec<contact_dynamics::ContactSignals>> {
-        let _ = (profiles, dx, speed);
-        None
+    /// The variations in every direction, where the model has them.
+    pub fn every(&self) -> Option<&ContactSignals> {
+        match self {
+            ContactVariations::Normal(_) => None,
+            ContactVariations::Every(s) => Some(s),
+        }
+    }
+
+    /// The normal forces of a vertical model's wheels.
+    pub fn normals(forces: Vec<Vec<f64>>) -> Vec<ContactVariations> {
+        forces.into_iter().map(ContactVariations::Normal).collect()
     }
 }
 

@@ -89,7 +89,7 @@
 //!   this rail are coupled by [`super::vehicle::CoupledReceptance`] (the
 //!   transfer receptance [`winkler_transfer_receptance`] between them).
 
-use super::{TrackDynamics, apply_periodic_response};
+use super::{ContactVariations, TrackDynamics, apply_periodic_response};
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -469,8 +469,8 @@ fn golden_max<G: Fn(f64) -> f64>(g: &G, mut a: f64, mut b: f64) -> f64 {
 }
 
 impl TrackDynamics for ReceptanceModel {
-    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
-        self.dynamic_force(profile, dx, speed)
+    fn contact_variations(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactVariations> {
+        vec![ContactVariations::Normal(self.dynamic_force(&profiles[0], dx, speed))]
     }
 
     /// The peaks of [`ReceptanceModel::default_resonances`], labelled by the

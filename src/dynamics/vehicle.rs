@@ -37,10 +37,10 @@
 //! wheel's path includes the static deflection under all the wheels'
 //! loads (the parametric excitation).
 
-use super::TrackDynamics;
 use super::discrete_dynamics::harmonics;
 use super::receptance::{ReceptanceModel, WheelParams};
 use super::track::discrete::DiscreteTrack;
+use super::{ContactVariations, TrackDynamics};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rayon::prelude::*;
@@ -160,9 +160,25 @@ impl CoupledReceptance {
     }
 }
 
-impl TrackDynamics for CoupledReceptance {
-    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
+impl CoupledReceptance {
+    /// The leading wheel's dynamic normal force (N, zero mean) where every
+    /// wheel sees `profile`.
+    pub fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
         self.wheel_forces(&vec![profile.to_vec(); self.wheels.len()], dx, speed).swap_remove(0)
+    }
+
+    /// Each wheel's dynamic normal force (N, zero mean) from the profile it
+    /// sees (see [`TrackDynamics::contact_variations`]).
+    pub fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+        assert!(speed > 0.0, "the vehicle runs forwards (speed = {speed} m/s)");
+        let length = profiles[0].len() as f64 * dx;
+        couple(profiles, |bin| self.coupling(speed * bin as f64 / length, speed))
+    }
+}
+
+impl TrackDynamics for CoupledReceptance {
+    fn contact_variations(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactVariations> {
+        ContactVariations::normals(self.wheel_forces(profiles, dx, speed))
     }
 
     fn describe_resonances(&self) -> Vec<(String, f64)> {
@@ -171,12 +187,6 @@ impl TrackDynamics for CoupledReceptance {
 
     fn wheels(&self) -> usize {
         self.wheels.len()
-    }
-
-    fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
-        assert!(speed > 0.0, "the vehicle runs forwards (speed = {speed} m/s)");
-        let length = profiles[0].len() as f64 * dx;
-        couple(profiles, |bin| self.coupling(speed * bin as f64 / length, speed))
     }
 }
 
@@ -340,8 +350,8 @@ fn bay_places(spacing: f64) -> Vec<f64> {
 }
 
 impl TrackDynamics for DiscreteVehicle {
-    fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
-        self.wheel_forces(&vec![profile.to_vec(); self.wheels.len()], dx, speed).swap_remove(0)
+    fn contact_variations(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactVariations> {
+        ContactVariations::normals(self.wheel_forces(profiles, dx, speed))
     }
 
     fn describe_resonances(&self) -> Vec<(String, f64)> {
@@ -355,8 +365,18 @@ impl TrackDynamics for DiscreteVehicle {
     fn wheels(&self) -> usize {
         self.wheels.len()
     }
+}
 
-    fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
+impl DiscreteVehicle {
+    /// The leading wheel's dynamic normal force (N, zero mean) where every
+    /// wheel sees `profile`.
+    pub fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
+        self.wheel_forces(&vec![profile.to_vec(); self.wheels.len()], dx, speed).swap_remove(0)
+    }
+
+    /// Each wheel's dynamic normal force (N, zero mean) from the profile it
+    /// sees (see [`TrackDynamics::contact_variations`]).
+    pub fn wheel_forces(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<Vec<f64>> {
         let nodes = profiles[0].len();
         assert_eq!(
             (speed, nodes, dx),

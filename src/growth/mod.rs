@@ -25,7 +25,7 @@ pub mod wear_map;
 
 use crate::contact::grid::RailSurface;
 use crate::contact::{RailContact, TangentialSolver};
-use crate::dynamics::TrackDynamics;
+use crate::dynamics::{ContactSignals, ContactVariations, TrackDynamics};
 use crate::hertz::HertzShape;
 use crate::loads::ImposedLoads;
 use crate::metrics::centre_row;
@@ -431,12 +431,13 @@ fn passage_with<'o>(
     // where the dynamics has every direction, its creep force's and
     // creepages' variations.
     let speed = rails[0].spec.speed;
-    let signals = dynamics.and_then(|d| d.contact_signals(&seen, grid.dx, speed));
-    let forces = match (&signals, dynamics) {
-        (Some(s), _) => s.iter().map(|c| c.normal.clone()).collect(),
-        (None, Some(d)) => d.wheel_forces(&seen, grid.dx, speed),
-        (None, None) => vec![vec![0.0; grid.nx]],
+    let variations = dynamics.map(|d| d.contact_variations(&seen, grid.dx, speed));
+    let forces: Vec<Vec<f64>> = match &variations {
+        Some(v) => v.iter().map(|c| c.normal().to_vec()).collect(),
+        None => vec![vec![0.0; grid.nx]],
     };
+    let signals: Option<Vec<&ContactSignals>> =
+        variations.as_ref().and_then(|v| v.iter().map(ContactVariations::every).collect());
     // Extended grid on the same lattice, wide enough for the largest patch
     // of this passage (imposed plus dynamic normal force, of any wheel), so
     // no wear is clipped at its ends.
