@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Sets up (scripts/setup.sh), builds in release, puts `corrugation` on the
-# PATH (a link in cargo's bin folder, where none is there yet), runs one
+# Sets up (scripts/setup.sh), builds in release, puts `corrugation` and
+# `corrugation-post` on the PATH (links in cargo's bin folder, where none
+# is there yet), runs one
 # scene and draws its figures; for a growth study also its linear growth
 # spectrum and the forecast of its roughness (what grows, when each band
 # reaches its limit). Usage: scripts/run_scene.sh [CONFIG] [OUT_DIR]
@@ -23,6 +24,10 @@ bin_dir=${CARGO_HOME:-$HOME/.cargo}/bin
 if ! command -v corrugation > /dev/null && [ -d "$bin_dir" ]; then
   ln -s "$PWD/target/release/corrugation" "$bin_dir/corrugation"
   echo "linked $bin_dir/corrugation to the release binary: \`corrugation\` is on the PATH"
+fi
+if ! command -v corrugation-post > /dev/null && [ -d "$bin_dir" ]; then
+  ln -s "$PWD/.venv/bin/corrugation-post" "$bin_dir/corrugation-post"
+  echo "linked $bin_dir/corrugation-post to the post-processing command: \`corrugation-post\` is on the PATH"
 fi
 mkdir -p "$out"
 ./target/release/corrugation run --overwrite "$config" -o "$out/$name.h5" "$@"
