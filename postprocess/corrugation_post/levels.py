@@ -185,7 +185,14 @@ def _nearest_bands(d: dict, bands: int) -> list[int]:
         return []
     held = initial > HELD_LEVEL if initial is not None else np.ones(limit.shape, bool)
     margin = np.where(finite & held, limit - np.nanmax(d["level"], axis=0), np.inf)
-    order = [int(k) for k in np.argsort(margin) if np.isfinite(margin[k])][:bands]
+    nearest = [int(k) for k in np.argsort(margin) if np.isfinite(margin[k])]
+    # Half the bands the ones that rose most over the run (the growing
+    # ones, which the nearest decaying bands would crowd out), the rest the
+    # nearest their limit.
+    start = initial if initial is not None else d["level"][0]
+    rise = np.where(finite & held, d["level"][-1] - start, -np.inf)
+    rising = [int(k) for k in np.argsort(-rise) if rise[k] > 0][: bands // 2]
+    order = list(dict.fromkeys(rising + nearest))[:bands]
     if to_limit is not None:
         last = np.where(held & finite & (to_limit[-1] > 0), to_limit[-1], np.inf)
         if np.isfinite(last).any():
@@ -194,9 +201,11 @@ def _nearest_bands(d: dict, bands: int) -> list[int]:
     return order
 
 
-def _draw_level_growth(ax, d: dict, order: list[int], colours: dict[int, str]) -> tuple[float, float]:
+def _draw_level_growth(ax, d: dict, order: list[int], colours: dict[int, str]) -> tuple[float, float, set]:
     """One rail's band levels against traffic, limits dotted, crossings
-    marked; returns the level range to show."""
+    marked; returns the level range to show and the markers drawn
+    ("reached", "forecast")."""
+    drawn = set()
     x, level, limit, initial, to_limit = d["x"], d["level"], d["limit"], d["initial"], d["to_limit"]
     cross = crossings(x, initial, level, limit)
     t = np.r_[0.0, x] if initial is not None else x
@@ -207,21 +216,24 @@ def _draw_level_growth(ax, d: dict, order: list[int], colours: dict[int, str]) -
         ax.axhline(limit[k], color=colour, ls=":", lw=1)
         if k in cross:
             ax.plot(cross[k], limit[k], "o", color=colour, ms=8)
+            drawn.add("reached")
         elif to_limit is not None and d["per_passage"] is not None and np.isfinite(to_limit[-1, k]) \
                 and to_limit[-1, k] > 0 and x[-1] + to_limit[-1, k] * d["per_passage"] <= 3 * max(x[-1], 1e-30):
             end = x[-1] + to_limit[-1, k] * d["per_passage"]
             ax.plot([x[-1], end], [level[-1, k], limit[k]], "--", color=colour, lw=1)
             ax.plot(end, limit[k], "o", mfc="none", color=colour, ms=8)
+            drawn.add("forecast")
     # The levels near the limits: a band rising from far below would squash them.
     shown_limits = limit[order]
     top = max(float(np.max(shown_limits)), float(np.max(level[:, order]))) + 3.0
-    return max(float(np.min(shown_limits)) - 25.0, float(np.min(level[:, order])) - 3.0), top
+    return max(float(np.min(shown_limits)) - 25.0, float(np.min(level[:, order])) - 3.0), top, drawn
 
 
 def level_growth(run: Run, out_dir: Path, bands: int = 6) -> Path | None:
-    """Level against traffic for the ``bands`` bands nearest their limit (the
-    band the run's last lines forecast first; bands absent from the initial
-    roughness left out), the crossing marked (filled: during the run;
+    """Level against traffic for ``bands`` bands: the band the run's last
+    lines forecast first, the half that rose most over the run, the rest
+    the nearest their limit (bands absent from the initial roughness left
+    out), the crossing marked (filled: during the run;
     hollow: forecast from the last passage's rate).  Two rails: a panel per
     rail, side by side on the same level axis, a band the same colour in both."""
     if not has_levels(run):
@@ -235,9 +247,13 @@ def level_growth(run: Run, out_dir: Path, bands: int = 6) -> Path | None:
     fig = Figure(figsize=(9 if len(found) == 1 else 15, 5), layout="constrained")
     axes = [fig.add_subplot()] if len(found) == 1 else list(fig.subplots(1, len(found), sharex=True, sharey=True))
     ranges = [_draw_level_growth(ax, d, order, colours) for ax, (_, d, order) in zip(axes, found)]
-    axes[0].set_ylim(min(lo for lo, _ in ranges), max(hi for _, hi in ranges))
-    title = (f"Band levels against traffic, {found[0][1]['name']} limit dotted\n"
-             "● reached during the run, ○ forecast at the last passage's rate (within 3x the simulated traffic)")
+    axes[0].set_ylim(min(r[0] for r in ranges), max(r[1] for r in ranges))
+    drawn = set().union(*(r[2] for r in ranges))
+    words = {"reached": "● reached during the run",
+             "forecast": "○ forecast at the last passage's rate (within 3x the simulated traffic)"}
+    marks = ", ".join(words[m] for m in ("reached", "forecast") if m in drawn) or \
+        "no band reached the limit, or reaches it within 3x the simulated traffic"
+    title = f"Band levels against traffic, {found[0][1]['name']} limit dotted\n{marks}"
     for ax, (r, d, _) in zip(axes, found):
         ax.set(xlabel=d["xlabel"], ylabel="roughness level (dB re 1 µm)", title=r.rail_name or title)
         ax.grid(alpha=0.3)

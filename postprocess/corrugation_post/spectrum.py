@@ -115,9 +115,10 @@ def figure(path, out):
         plt.close(fig)
         targets.append(target)
 
-    target = forecast_figure(path, out)
-    if target is not None:
-        targets.append(target)
+    for group, name in (("forecast", "spectrum_forecast.png"), ("forecast_grinding", "spectrum_forecast_grinding.png")):
+        target = forecast_figure(path, out, group, name)
+        if target is not None:
+            targets.append(target)
 
     rows = table(ds)
     target = out / "spectrum_modes.csv"
@@ -129,11 +130,12 @@ def figure(path, out):
     return targets
 
 
-def forecast_figure(path, out):
-    """``spectrum_forecast.png``: each band's level against traffic from the
-    file's ``forecast`` group (the config's bands and limit), each band's
-    limit dashed in its colour and the linear horizon dotted; None where the
-    file has no forecast."""
+def forecast_figure(path, out, group="forecast", name="spectrum_forecast.png"):
+    """``name``: each band's level against traffic from the file's ``group``
+    (``forecast``: the config's bands and limit; ``forecast_grinding``: EN
+    13231-3's bands against the grinding limit), each band's limit dashed
+    in its colour and the linear horizon dotted; None where the file has no
+    such group."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -141,17 +143,21 @@ def forecast_figure(path, out):
     import h5py
 
     with h5py.File(path, "r") as f:
-        if "forecast" not in f:
+        if group not in f:
             return None
-    fc = xr.open_dataset(path, engine="h5netcdf", group="forecast")
+    fc = xr.open_dataset(path, engine="h5netcdf", group=group)
     traffic = fc.traffic.values
     mgt = float(fc.attrs["tonnes_per_passage"]) * 1e-6 if "tonnes_per_passage" in fc.attrs else None
     x = traffic * mgt if mgt else traffic
     fig, ax = plt.subplots(figsize=(8, 4.5))
-    # One colour per band, long to short (ten colours would repeat).
-    colours = plt.cm.viridis(np.linspace(0.0, 0.9, max(fc.sizes["band"], 1)))
+    # One colour per band (tab20: twenty that can be told apart; ten would
+    # repeat).
+    colours = [plt.cm.tab20(k % 20) for k in range(fc.sizes["band"])]
     for b in range(fc.sizes["band"]):
-        label = f"{fc.band.values[b] * 1e3:.3g} mm"
+        if str(fc.attrs.get("bands", "")).startswith("one-third"):
+            label = f"{fc.band.values[b] * 1e3:.3g} mm"
+        else:
+            label = f"{fc.band_lower.values[b] * 1e3:.3g}-{fc.band_upper.values[b] * 1e3:.3g} mm"
         (line,) = ax.plot(x, fc.level_forecast.values[b], label=label, color=colours[b])
         limit = float(fc.limit_level.values[b])
         if np.isfinite(limit):
@@ -172,10 +178,10 @@ def forecast_figure(path, out):
     ax.set_xscale("log")
     ax.set_xlabel("traffic from now (MGT)" if mgt else "traffic from now (wheel passages)")
     ax.set_ylabel("band level (dB re 1 um)")
-    ax.set_title(f"forecast from the spectrum; dashed: the {fc.attrs['limit_name']} limit of each band")
+    ax.set_title(f"forecast from the spectrum\ndashed: each band's limit, {fc.attrs['limit_name']}", fontsize=10)
     ax.legend(fontsize=7, ncol=2, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
-    target = out / "spectrum_forecast.png"
+    target = out / name
     fig.savefig(target, dpi=120)
     plt.close(fig)
     return target

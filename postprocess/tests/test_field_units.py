@@ -66,12 +66,12 @@ def test_levels_in_xarray_with_units(study):
         # Consistent with the levels, rates and forced pattern (the forecast
         # the book states): A(n)^2 = A0^2 e^(2 s n) + f^2 ((e^(s n) - 1)/s)^2
         # reaches the limit's rms at n; a band that held no roughness of its
-        # own before the passage (-60 dB) and that the wear raised counts
-        # its rise per wheel passage as a forcing. 0 above the limit.
+        # own at the start (-60 dB) and that the wear raised counts its rise
+        # per wheel passage as a forcing. 0 above the limit.
         amp = lambda lv: 1e-6 * 10 ** (lv / 20)  # noqa: E731
         before = np.vstack([ps["initial_level"].values[None, :], level[:-1]])
         scale = ps["traffic_scale"].values[:, None]
-        held = (before <= -60.0) & (rate >= 0)
+        held = (ps["initial_level"].values[None, :] <= -60.0) & (rate >= 0)
         rise = np.where(before <= -120.0, np.sqrt(np.maximum(amp(level) ** 2 - (scale * forced) ** 2, 0.0)),
                         amp(before) * (10 ** (rate * scale / 20 / 1e5) - 1))
         a0 = amp(level)

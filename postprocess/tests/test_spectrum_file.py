@@ -131,4 +131,4 @@ def test_the_forecast_group_reads_and_is_drawn(tmp_path):
     else:
         assert p == 0 or (levels < limit).all()
     paths = [Path(p).name for p in figure(out, tmp_path / "figs")]
-    assert "spectrum_forecast.png" in paths
+    assert "spectrum_forecast.png" in paths and "spectrum_forecast_grinding.png" in paths
