@@ -33,23 +33,22 @@ pub fn growth_rates(before: &[f64], after: &[f64], traffic: f64, floor: f64) -> 
         .collect()
 }
 
-/// What a growth study grew, in words: the harmonics of the initial
-/// roughness with the highest and the lowest mean roughness-driven rate
-/// over the run (the mean over the passages of each harmonic's rate, as
-/// `corrugation-post figures` draws it).
 /// A harmonic counts as one of the initial roughness where its filtered
 /// amplitude after the first passage is at least this share of the
 /// largest (a harmonic the roughness did not hold has no meaningful rate:
 /// it grows from nothing).
 const HELD_SHARE: f64 = 0.05;
 
-/// "what grew (...): 40 mm +1.07, 33.3 mm +0.52; what wore down fastest:
-/// 10 mm -5.15", from a study's filtered amplitudes after its first
+/// What a growth study grew, in words: the harmonics of the initial
+/// roughness with the highest and the lowest mean roughness-driven rate
+/// over the run (the mean over the passages of each harmonic's rate, as
+/// `corrugation-post figures` draws it). "what grew (...): 40 mm +1.07,
+/// 33.3 mm +0.52; what wore down fastest: 10 mm -5.15", from a study's filtered amplitudes after its first
 /// passage `first` (m, of the harmonics of `wavelengths` (m)) and each
 /// passage's roughness-driven rates `rates` (dB per 1e5 wheel passages,
 /// the same harmonics): at most `count` growing harmonics, fastest first,
 /// and the fastest decaying one; None before the first passage.
-pub fn what_grew(first: &[f64], rates: &[Vec<f64>], wavelengths: &[f64], count: usize) -> Option<String> {
+pub fn what_grew(first: &[f64], rates: &[&[f64]], wavelengths: &[f64], count: usize) -> Option<String> {
     let largest = first.iter().fold(0.0f64, |m, a| m.max(*a));
     if rates.is_empty() || largest <= 0.0 {
         return None;
@@ -62,7 +61,8 @@ pub fn what_grew(first: &[f64], rates: &[Vec<f64>], wavelengths: &[f64], count: 
         .map(|(n, _)| (wavelengths[n], mean(n)))
         .collect();
     held.sort_by(|a, b| b.1.total_cmp(&a.1));
-    let words = |(wavelength, rate): &(f64, f64)| format!("{} mm {rate:+.2}", short_mm(*wavelength));
+    let words =
+        |(wavelength, rate): &(f64, f64)| format!("{} mm {rate:+.2}", crate::numerics::round_sig(wavelength * 1e3, 3));
     let grew: Vec<String> = held.iter().filter(|h| h.1 > 0.0).take(count).map(words).collect();
     let grew = if grew.is_empty() { "nothing".to_string() } else { grew.join(", ") };
     let mut line = format!(
@@ -73,19 +73,6 @@ pub fn what_grew(first: &[f64], rates: &[Vec<f64>], wavelengths: &[f64], count: 
         line.push_str(&format!("; what wore down fastest: {}", words(last)));
     }
     Some(line)
-}
-
-/// A wavelength (m) in mm with three significant digits ("33.3", "120").
-fn short_mm(wavelength: f64) -> String {
-    let mm = wavelength * 1e3;
-    let digits = if mm >= 100.0 {
-        0
-    } else if mm >= 10.0 {
-        1
-    } else {
-        2
-    };
-    format!("{mm:.digits$}")
 }
 
 #[cfg(test)]
@@ -119,11 +106,11 @@ mod tests {
         // 0.6 m: harmonics 600, 300, 200, 150 mm; the 300 mm one below 5 %
         // of the largest (not held: its +40 is growth from nothing).
         let spectrum = [1e-7, 1e-10, 5e-8, 2e-8];
-        let rates = [vec![0.5, 40.0, -2.0, 1.0], vec![0.7, 40.0, -3.0, 1.2]];
+        let rates: [&[f64]; 2] = [&[0.5, 40.0, -2.0, 1.0], &[0.7, 40.0, -3.0, 1.2]];
         let line = what_grew(&spectrum, &rates, &[0.6, 0.3, 0.2, 0.15], 3).unwrap();
         assert!(line.ends_with(": 150 mm +1.10, 600 mm +0.60; what wore down fastest: 200 mm -2.50"), "{line}");
         assert_eq!(what_grew(&spectrum, &[], &[0.6, 0.3, 0.2, 0.15], 3), None);
-        let decaying = [vec![-0.5, 0.0, -2.0, -1.0]];
+        let decaying: [&[f64]; 1] = [&[-0.5, 0.0, -2.0, -1.0]];
         assert!(
             what_grew(&spectrum, &decaying, &[0.6, 0.3, 0.2, 0.15], 3)
                 .unwrap()

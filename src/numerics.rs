@@ -1,6 +1,7 @@
 //! Small numerical helpers shared by the kernels: a Brent root finder with
 //! separate tolerances on the unknown and on the residual (wrapping the
-//! `roots` crate, whose built-in convergence test uses one tolerance for both).
+//! `roots` crate, whose built-in convergence test uses one tolerance for both),
+//! and a number rounded to significant digits for the terminal.
 
 use roots::{Convergency, SearchError, find_root_brent};
 
@@ -27,6 +28,16 @@ impl Convergency<f64> for Tolerance {
     fn is_iteration_limit_reached(&mut self, iter: usize) -> bool {
         iter >= self.max_iter
     }
+}
+
+/// `x` to `digits` significant digits, as a short number (33.3, 120, 10:
+/// a wavelength in mm as the terminal writes it).
+pub fn round_sig(x: f64, digits: i32) -> f64 {
+    if x == 0.0 {
+        return 0.0;
+    }
+    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
+    (x * scale).round() / scale
 }
 
 /// Brent's method on a bracket `[lo, hi]` (Brent, *Algorithms for

@@ -99,17 +99,8 @@ impl Band {
 
     /// The band's label in mm as a person writes it ("31.5 mm").
     pub fn label(&self) -> String {
-        format!("{} mm", round_sig(self.wavelength * 1e3, 3))
+        format!("{} mm", crate::numerics::round_sig(self.wavelength * 1e3, 3))
     }
-}
-
-/// `x` to `digits` significant digits, as a short number.
-fn round_sig(x: f64, digits: i32) -> f64 {
-    if x == 0.0 {
-        return 0.0;
-    }
-    let scale = 10f64.powi(digits - 1 - x.abs().log10().floor() as i32);
-    (x * scale).round() / scale
 }
 
 /// The bands of `set` a periodic stretch of `n` nodes spaced `dx` (m)

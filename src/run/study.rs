@@ -344,7 +344,7 @@ fn continue_run(
             let forced: Vec<Vec<f64>> = rows.iter().map(|r| r.forced_band_wear.clone()).collect();
             let traffic: Vec<f64> = rows.iter().map(|r| r.traffic).collect();
             let shares: Vec<f64> = study.classes().iter().map(|c| c.share).collect();
-            let grew_rates: Vec<Vec<f64>> = rows.iter().map(|r| r.growth_rate.clone()).collect();
+            let grew_rates: Vec<&[f64]> = rows.iter().map(|r| r.growth_rate.as_slice()).collect();
             let first = rows.first().map_or(&[][..], |r| r.filtered_spectrum.as_slice());
             let grew = crate::harmonics::what_grew(first, &grew_rates, study.wavelengths(), 3);
             let mut lines: Vec<String> = grew.into_iter().collect();
