@@ -221,7 +221,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
             .iter()
             .map(|c| {
                 let n = c.wheels.as_ref().map_or(wheels, Vec::len);
-                let harmonics = crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64;
+                let harmonics = crate::dynamics::model::harmonics(g.nx, g.dx, c.speed) as f64;
                 0.0042 * table(n) * harmonics + per_passage * n as f64 / mean_wheels
             })
             .sum(),
@@ -263,7 +263,7 @@ fn directions_cost(
     let tables: f64 = gr
         .classes
         .iter()
-        .map(|c| crate::dynamics::discrete_dynamics::harmonics(g.nx, g.dx, c.speed) as f64 * per_harmonic / 2.0)
+        .map(|c| crate::dynamics::model::harmonics(g.nx, g.dx, c.speed) as f64 * per_harmonic / 2.0)
         .sum();
     let creep_response = match creep_forces {
         CreepForces::Steady => 0.0,

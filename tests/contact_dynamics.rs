@@ -1,18 +1,17 @@
 //! The growth loop's dynamics in every direction
-//! (src/dynamics/contact_dynamics.rs): on the continuous track, where the
+//! (src/dynamics/model/, one wheel in every direction): on the continuous track, where the
 //! head's cross terms vanish under the load, the normal force of a profile
 //! harmonic is the vertical chain's `r / (a_w + a_c + a_r,zz)` and the
 //! longitudinal creepage the rim's and the head's motion under the creep
 //! force that the normal force's variation drives; on the discrete track
 //! the responses vary across the bay; a study with it resumes bit for bit.
+use crate::common::model::{OneWheel, continuous, discrete};
 use corrugation::config::load_str;
-use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
 use corrugation::dynamics::coupling::contact_point::ContactLaw;
 use corrugation::dynamics::coupling::creep_response::CreepResponse;
 use corrugation::dynamics::track::TrackConfig;
 use corrugation::dynamics::track::continuous3::Continuous3;
-use corrugation::dynamics::track::discrete::DiscreteTrack;
-use corrugation::dynamics::track::discrete3::Discrete3;
+use corrugation::dynamics::wheelset::side::{Wheel3, WheelSide};
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};
 use num_complex::Complex64;
@@ -45,9 +44,7 @@ fn continuous_track_against_the_vertical_chain_and_the_rims_motion() {
     let (nodes, dx, speed) = (600, 2e-4, 27.78);
     let track = TrackConfig::default();
     let rail = Continuous3::new(&track, 0.0);
-    let model =
-        ContactDynamics::new(Rail3::Continuous(rail), WheelSide::Rigid(wheel()), law(), None, 1e5, nodes, dx, speed)
-            .unwrap();
+    let model = OneWheel::every(continuous(&track, 0.0), WheelSide::Rigid(wheel()), law(), None, 1e5, nodes, dx, speed);
     for wavelength in [0.03, 0.12 / 7.0, 0.06] {
         let k = 2.0 * PI / wavelength;
         let r = 1e-6;
@@ -114,20 +111,10 @@ fn each_harmonic_closes_with_the_creep_response_at_its_frequency() {
     let (nodes, dx, speed) = (600, 2e-4, 27.78);
     let rail = Continuous3::new(&TrackConfig::default(), 0.0);
     let response = lagging_response(speed);
-    let model = ContactDynamics::new(
-        Rail3::Continuous(rail),
-        WheelSide::Rigid(wheel()),
-        law(),
-        Some(response.clone()),
-        1e5,
-        nodes,
-        dx,
-        speed,
-    )
-    .unwrap();
-    let steady =
-        ContactDynamics::new(Rail3::Continuous(rail), WheelSide::Rigid(wheel()), law(), None, 1e5, nodes, dx, speed)
-            .unwrap();
+    let track = || continuous(&TrackConfig::default(), 0.0);
+    let model =
+        OneWheel::every(track(), WheelSide::Rigid(wheel()), law(), Some(response.clone()), 1e5, nodes, dx, speed);
+    let steady = OneWheel::every(track(), WheelSide::Rigid(wheel()), law(), None, 1e5, nodes, dx, speed);
     for wavelength in [0.03, 0.12 / 7.0, 0.06] {
         let k = 2.0 * PI / wavelength;
         let r = 1e-6;
@@ -166,12 +153,8 @@ fn discrete_track_varies_the_response_across_the_bay_and_feeds_the_lateral_creep
     let (nodes, dx, speed) = (3000, 2e-4, 27.78);
     let track = TrackConfig::default();
     let build = |offset: f64| {
-        let rail = Rail3::Discrete {
-            model: Discrete3::new(&track, offset),
-            vertical: DiscreteTrack::new(&track),
-            sleeper_x0: 0.0,
-        };
-        ContactDynamics::new(rail, WheelSide::Rigid(wheel()), law(), None, 1e5, nodes, dx, speed).unwrap()
+        let rail = discrete(&track, Some(offset), 0.0);
+        OneWheel::every(rail, WheelSide::Rigid(wheel()), law(), None, 1e5, nodes, dx, speed)
     };
     let k = 2.0 * PI / 0.024;
     let profile: Vec<f64> = (0..nodes).map(|i| 1e-6 * (k * i as f64 * dx).cos()).collect();
@@ -191,9 +174,7 @@ fn discrete_track_varies_the_response_across_the_bay_and_feeds_the_lateral_creep
     let (sleeper, mid) = (envelope(0.0), envelope(0.3));
     eprintln!("normal force of 1 um at 24 mm: {sleeper:.0} N above a sleeper, {mid:.0} N mid-span");
     assert!((sleeper - mid).abs() > 0.05 * sleeper.max(mid), "{sleeper} vs {mid}");
-    let lateral = |s: &corrugation::dynamics::contact_dynamics::ContactSignals| {
-        s.creepage_y.iter().fold(0.0f64, |m, v| m.max(v.abs()))
-    };
+    let lateral = |s: &corrugation::dynamics::ContactSignals| s.creepage_y.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let longitudinal = centred.creepage_x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     eprintln!(
         "lateral creepage: centred {:.2e}, 12 mm off {:.2e} (longitudinal {longitudinal:.2e})",

@@ -1,20 +1,16 @@
-//! Several wheels in every direction (src/dynamics/contact_vehicle.rs):
-//! one wheel is the single wheel's model; without creep slopes the normal
-//! forces are the vertical coupled model's closed form (eq. 1 of
-//! src/dynamics/vehicle.rs) with the head's vertical receptances; wheels
+//! Several wheels in every direction (src/dynamics/model/): one wheel is
+//! the single contact's closed form (src/dynamics/coupling/contact_point.rs
+//! per harmonic); without creep slopes the normal forces are the vertical
+//! coupled closed form with the head's vertical receptances; wheels
 //! far apart are each the single wheel; a bogie study in every direction
 //! runs and resumes bit for bit.
 use crate::common;
 use corrugation::config::load_str;
-use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
-use corrugation::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
-use corrugation::dynamics::coupling::contact_point::ContactLaw;
-use corrugation::dynamics::receptance::WheelParams;
+use corrugation::dynamics::coupling::contact_point::{ContactLaw, respond};
+use corrugation::dynamics::model::{Directions, VehicleTrack, Wheel, harmonics};
 use corrugation::dynamics::track::TrackConfig;
 use corrugation::dynamics::track::continuous3::Continuous3;
-use corrugation::dynamics::track::discrete::DiscreteTrack;
-use corrugation::dynamics::track::discrete3::Discrete3;
-use corrugation::dynamics::vehicle::{CoupledWheel, DiscreteVehicle};
+use corrugation::dynamics::wheelset::side::{Wheel3, WheelSide};
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};
 use nalgebra::DMatrix;
@@ -39,11 +35,11 @@ fn wheel() -> Wheel3 {
     Wheel3 { mass: 600.0, radius: 0.5, polar_inertia: 30.0, torsion: None }
 }
 
-fn vehicle(behind: &[f64], slopes: bool, nodes: usize, dx: f64, speed: f64) -> ContactVehicle {
-    let rail = Rail3::Continuous(Continuous3::new(&TrackConfig::default(), 0.005));
+fn vehicle(behind: &[f64], slopes: bool, nodes: usize, dx: f64, speed: f64) -> VehicleTrack {
+    let rail = common::model::continuous(&TrackConfig::default(), 0.005);
     let wheels = behind
         .iter()
-        .map(|&b| VehicleWheel3 {
+        .map(|&b| Wheel {
             behind: b,
             side: WheelSide::Rigid(wheel()),
             law: law(slopes),
@@ -52,7 +48,7 @@ fn vehicle(behind: &[f64], slopes: bool, nodes: usize, dx: f64, speed: f64) -> C
             rail: 0,
         })
         .collect();
-    ContactVehicle::new(rail, wheels, nodes, dx, speed).unwrap()
+    VehicleTrack::new(rail, wheels, Directions::All, nodes, dx, speed).unwrap()
 }
 
 fn worst(a: &[f64], b: &[f64]) -> f64 {
@@ -65,18 +61,38 @@ fn profile(nodes: usize, dx: f64) -> Vec<f64> {
 }
 
 #[test]
-fn one_wheel_is_the_single_wheels_model() {
+fn one_wheel_is_the_single_contacts_closed_form() {
+    // Per harmonic of the stretch the single contact's 3 x 3 system
+    // (contact_point::respond, its own elimination) with the wheel's and
+    // the head's receptances, summed over the profile's DFT written out.
     let (nodes, dx, speed) = (600, 2e-4, 27.78);
     let one = vehicle(&[0.0], true, nodes, dx, speed);
-    let rail = Rail3::Continuous(Continuous3::new(&TrackConfig::default(), 0.005));
-    let single = ContactDynamics::new(rail, WheelSide::Rigid(wheel()), law(true), None, 1e5, nodes, dx, speed).unwrap();
+    let head = Continuous3::new(&TrackConfig::default(), 0.005);
     let r = profile(nodes, dx);
-    let (a, b) = (one.signals(std::slice::from_ref(&r), dx, speed).remove(0), single.signals(&r, dx, speed));
+    let a = one.signals(std::slice::from_ref(&r), dx, speed).remove(0);
+    let length = nodes as f64 * dx;
+    let mut b = [vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes]];
+    for k in 1..=harmonics(nodes, dx, speed) {
+        let rk: Complex64 = r
+            .iter()
+            .enumerate()
+            .map(|(j, v)| v * Complex64::from_polar(1.0, -2.0 * PI * (k * j) as f64 / nodes as f64))
+            .sum();
+        let w = 2.0 * PI * speed * k as f64 / length;
+        let rail = head.heads(w, &[0.0], false).unwrap()[0];
+        let h = respond(&(WheelSide::Rigid(wheel()).receptance(w, speed) + rail), &law(true), w, speed);
+        let weight = if 2 * k == nodes { 1.0 } else { 2.0 } / nodes as f64;
+        for (channel, hc) in b.iter_mut().zip([h.normal, h.force[0], h.creepage[0], h.creepage[1]]) {
+            for (m, v) in channel.iter_mut().enumerate() {
+                *v += weight * (hc * rk * Complex64::from_polar(1.0, 2.0 * PI * (k * m) as f64 / nodes as f64)).re;
+            }
+        }
+    }
     for (x, y, what) in [
-        (&a.normal, &b.normal, "normal"),
-        (&a.force_x, &b.force_x, "force"),
-        (&a.creepage_x, &b.creepage_x, "creepage x"),
-        (&a.creepage_y, &b.creepage_y, "creepage y"),
+        (&a.normal, &b[0], "normal"),
+        (&a.force_x, &b[1], "force"),
+        (&a.creepage_x, &b[2], "creepage x"),
+        (&a.creepage_y, &b[3], "creepage y"),
     ] {
         let e = worst(x, y);
         eprintln!("{what}: {e:.1e}");
@@ -123,8 +139,8 @@ fn without_creep_slopes_the_normal_forces_are_the_vertical_coupled_closed_form()
 
 #[test]
 fn on_the_discrete_track_without_creep_slopes_the_normal_forces_are_the_vertical_vehicles() {
-    // The vertical discrete vehicle (src/dynamics/vehicle.rs, its own
-    // Floquet method) and this model's head receptances agree where the
+    // The vertical closure on the discrete track (src/dynamics/track/discrete.rs,
+    // its own Floquet method) and this model's head receptances agree where the
     // section moves vertically alone: no pad pitch restraint, the
     // longitudinal pads and the shear centre at the neutral axis (as
     // tests/rail_head.rs, 5e-4 there).
@@ -134,11 +150,10 @@ fn on_the_discrete_track_without_creep_slopes_the_normal_forces_are_the_vertical
     track.supports.pad_length = 0.0;
     let (nodes, dx, speed) = (300, 2e-3, 27.78);
     let behind = [0.0, 2.5];
-    let rail =
-        Rail3::Discrete { model: Discrete3::new(&track, 0.0), vertical: DiscreteTrack::new(&track), sleeper_x0: 0.0 };
+    let rail = common::model::discrete(&track, Some(0.0), 0.0);
     let wheels = behind
         .iter()
-        .map(|&b| VehicleWheel3 {
+        .map(|&b| Wheel {
             behind: b,
             side: WheelSide::Rigid(wheel()),
             law: law(false),
@@ -147,19 +162,13 @@ fn on_the_discrete_track_without_creep_slopes_the_normal_forces_are_the_vertical
             rail: 0,
         })
         .collect();
-    let model = ContactVehicle::new(rail, wheels, nodes, dx, speed).unwrap();
-    let coupled = behind
-        .iter()
-        .map(|&b| CoupledWheel {
-            behind: b,
-            wheel: WheelParams { unsprung_mass: 600.0 },
-            contact_stiffness: law(false).stiffness,
-            mean_load: 1e5,
-        })
-        .collect();
-    let vertical = DiscreteVehicle::new(DiscreteTrack::new(&track), coupled, 0.0, nodes, dx, speed);
+    let model = VehicleTrack::new(rail, wheels, Directions::All, nodes, dx, speed).unwrap();
+    let coupled = behind.iter().map(|&b| Wheel::vertical(b, wheel(), law(false).stiffness, 1e5)).collect();
+    let rail = common::model::discrete(&track, None, 0.0);
+    let vertical = VehicleTrack::new(rail, coupled, Directions::Vertical, nodes, dx, speed).unwrap();
     let r = profile(nodes, dx);
-    let (a, b) = (model.signals(&[r.clone(), r.clone()], dx, speed), vertical.wheel_forces(&[r.clone(), r], dx, speed));
+    let (a, b) =
+        (model.signals(&[r.clone(), r.clone()], dx, speed), vertical.normal_forces(&[r.clone(), r], dx, speed));
     for i in 0..2 {
         let e = worst(&a[i].normal, &b[i]);
         eprintln!("wheel {i}: {e:.1e}");

@@ -3,9 +3,8 @@
 //! the pinned-pinned band in the force transfer, sleeper-bay stretches, and
 //! bit-for-bit resume.
 use crate::common;
+use common::model::{OneWheel, discrete};
 use corrugation::config::load_str;
-use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
-use corrugation::dynamics::receptance::WheelParams;
 use corrugation::dynamics::track::TrackConfig;
 use corrugation::dynamics::track::discrete::DiscreteTrack;
 use corrugation::output::netcdf::read_f64;
@@ -38,17 +37,8 @@ fn sleeper_passing_force_of_a_smooth_rail() {
     // path its own load presses into the rail, and the force is its mass
     // times that path's acceleration, M w^2 |r_1| (a direct estimate).
     let (nodes, dx, speed, mass) = (300, 2e-3, 10.0, 600.0);
-    let m = DiscreteDynamics::new(
-        DiscreteTrack::new(&TrackConfig::default()),
-        WheelParams { unsprung_mass: mass },
-        1.8e9,
-        1e5,
-        0.0,
-        nodes,
-        dx,
-        speed,
-    );
-    let path = m.parametric_profile(nodes, dx);
+    let m = OneWheel::vertical(discrete(&TrackConfig::default(), None, 0.0), mass, 1.8e9, 1e5, nodes, dx, speed);
+    let path = m.parametric_profile();
     let r1 = harmonic(&path, 1);
     // The rail deflects more at mid-span than above a sleeper by the span's
     // bending under the load, P d^3 / (c EI), the continuous rail's span
@@ -73,16 +63,7 @@ fn the_pinned_pinned_band_shows_in_the_force_transfer() {
     // its anti-resonance above the sleepers, so the force it drives is far
     // larger above the sleepers (H = 1 / (alpha_w + alpha_c + alpha_r)).
     let (nodes, dx, speed) = (3000, 2e-4, 27.78);
-    let m = DiscreteDynamics::new(
-        DiscreteTrack::new(&TrackConfig::default()),
-        WheelParams { unsprung_mass: 600.0 },
-        1.8e9,
-        1e5,
-        0.0,
-        nodes,
-        dx,
-        speed,
-    );
+    let m = OneWheel::vertical(discrete(&TrackConfig::default(), None, 0.0), 600.0, 1.8e9, 1e5, nodes, dx, speed);
     let k = 23; // 0.6 m / 23 = 26.1 mm, 1065 Hz
     let profile: Vec<f64> = (0..nodes).map(|i| 1e-6 * (2.0 * PI * k as f64 * i as f64 / nodes as f64).cos()).collect();
     let smooth = m.force_from_profile(&vec![0.0; nodes], dx, speed);

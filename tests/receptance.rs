@@ -1,7 +1,9 @@
 //! Linear frequency-domain wheel-track model (`corrugation::dynamics`):
 //! static and high-frequency limits, resonances against hand formulas, and
 //! the periodic application of H(f) to a rail profile.
+use corrugation::dynamics::model::{Directions, Track, VehicleTrack, Wheel};
 use corrugation::dynamics::receptance::{SWEEP_MAX_HZ, SWEEP_MIN_HZ};
+use corrugation::dynamics::wheelset::side::Wheel3;
 use corrugation::dynamics::{
     ContactVariations, ReceptanceModel, TrackDynamics, TrackParams, WheelParams, hertz_stiffness,
     winkler_point_receptance,
@@ -218,8 +220,12 @@ fn dynamic_force_of_a_sinusoid_is_h_times_the_amplitude() {
             let expect = amplitude * h.norm() * (k * j as f64 * dx + phase + h.arg()).cos();
             assert!((got - expect).abs() < 1e-9 * scale, "n = {n}, V = {speed}, j = {j}: {got} vs {expect}");
         }
-        // The trait gives the same force, as the normal force alone.
-        let dynamics: &dyn TrackDynamics = &m;
+        // The vehicle-track model of this one wheel gives the same force bit
+        // for bit, as the normal force alone.
+        let track = Track::Continuous { vertical: m.track, head: None };
+        let wheel = Wheel::vertical(0.0, Wheel3::new(m.wheel.unsprung_mass, 0.46), m.contact_stiffness, 1e5);
+        let model = VehicleTrack::new(track, vec![wheel], Directions::Vertical, n, dx, speed).unwrap();
+        let dynamics: &dyn TrackDynamics = &model;
         assert_eq!(
             dynamics.contact_variations(std::slice::from_ref(&profile), dx, speed),
             [ContactVariations::Normal(force)]

@@ -1,19 +1,19 @@
-//! Both rails of a wheelset (`[second_rail]`, src/dynamics/contact_vehicle.rs
-//! with wheels on two rails): the second rail without its contact is the
+//! Both rails of a wheelset (`[second_rail]`, src/dynamics/model/ with
+//! wheels on two rails): the second rail without its contact is the
 //! one-rail model; a mirror-symmetric wheelset on mirror-image contacts and
 //! equal profiles answers mirror-symmetrically; the second rail's profile
 //! reaches the first rail's contact through the wheelset; a two-rail study
 //! resumes bit for bit, both rails; a second rail the scene cannot carry is
 //! refused naming the key.
 use crate::common;
+use common::model::{OneWheel, continuous};
 use common::{largest, worst_scaled};
 use corrugation::build::wheelset_model;
 use corrugation::config::load_str;
-use corrugation::dynamics::contact_dynamics::{ContactDynamics, Rail3, WheelSide};
-use corrugation::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
 use corrugation::dynamics::coupling::contact_point::ContactLaw;
+use corrugation::dynamics::model::{Directions, Track, VehicleTrack, Wheel};
 use corrugation::dynamics::track::TrackConfig;
-use corrugation::dynamics::track::continuous3::Continuous3;
+use corrugation::dynamics::wheelset::side::WheelSide;
 use corrugation::output::netcdf::{read_attr_str, read_f64};
 use corrugation::run::{resume, run_scene};
 use num_complex::Complex64;
@@ -57,13 +57,13 @@ const NODES: usize = 300;
 const DX: f64 = 1e-3;
 const SPEED: f64 = 16.67;
 
-fn rail() -> Rail3 {
-    Rail3::Continuous(Continuous3::new(&TrackConfig::default(), 0.0))
+fn rail() -> Track {
+    continuous(&TrackConfig::default(), 0.0)
 }
 
-fn wheelset(second: ContactLaw) -> ContactVehicle {
+fn wheelset(second: ContactLaw) -> VehicleTrack {
     let side = side();
-    let wheel = |law: ContactLaw, rail: usize| VehicleWheel3 {
+    let wheel = |law: ContactLaw, rail: usize| Wheel {
         behind: 0.0,
         side: side.clone(),
         law,
@@ -71,7 +71,7 @@ fn wheelset(second: ContactLaw) -> ContactVehicle {
         mean_load: 1e5,
         rail,
     };
-    ContactVehicle::new(rail(), vec![wheel(law(), 0), wheel(second, 1)], NODES, DX, SPEED).unwrap()
+    VehicleTrack::new(rail(), vec![wheel(law(), 0), wheel(second, 1)], Directions::All, NODES, DX, SPEED).unwrap()
 }
 
 /// Three harmonics of the stretch, phase `p`.
@@ -90,7 +90,7 @@ fn the_second_rail_without_its_contact_is_one_rail() {
         force_per_spin: None,
     };
     let two = wheelset(free);
-    let one = ContactDynamics::new(rail(), side(), law(), None, 1e5, NODES, DX, SPEED).unwrap();
+    let one = OneWheel::every(rail(), side(), law(), None, 1e5, NODES, DX, SPEED);
     let (r0, r1) = (profile(0.0), profile(1.0));
     let both = two.signals(&[r0.clone(), r1], DX, SPEED);
     let single = one.signals(&r0, DX, SPEED);

@@ -1,24 +1,49 @@
-//! Several wheels on one rail (`[vehicle] wheels`): the coupled
-//! moving-irregularity model against its closed form on the continuous
-//! track, the discrete track's receptance matrices against its transfer
-//! receptances, one wheel as the single-wheel model, far-apart wheels as
-//! single wheels in the growth loop, and resume bit for bit.
+//! Several wheels on one rail (`[vehicle] wheels`), vertically: the
+//! coupled moving-irregularity model against its closed form on the
+//! continuous track, the discrete track's receptance matrices against its
+//! transfer receptances, one wheel on the discrete track as the
+//! position-dependent model written out, far-apart wheels as single
+//! wheels in the growth loop, and resume bit for bit.
+use crate::common::model::{OneWheel, discrete};
 use corrugation::config::load_str;
-use corrugation::dynamics::discrete_dynamics::DiscreteDynamics;
+use corrugation::dynamics::model::{Directions, Track, VehicleTrack, Wheel, harmonics};
 use corrugation::dynamics::receptance::{ReceptanceModel, TrackParams, WheelParams};
 use corrugation::dynamics::track::TrackConfig;
 use corrugation::dynamics::track::discrete::DiscreteTrack;
-use corrugation::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
+use corrugation::dynamics::wheelset::side::Wheel3;
 use corrugation::output::netcdf::read_f64;
 use corrugation::run::{resume, run_scene};
+use nalgebra::DMatrix;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
 /// Wheels of 600 kg on a 1.8e9 N/m contact spring under 100 kN, `behind`
 /// the leading one.
-fn equal_wheels(behind: &[f64]) -> Vec<CoupledWheel> {
-    let wheel = WheelParams { unsprung_mass: 600.0 };
-    behind.iter().map(|&b| CoupledWheel { behind: b, wheel, contact_stiffness: 1.8e9, mean_load: 1e5 }).collect()
+fn equal_wheels(behind: &[f64]) -> Vec<Wheel> {
+    behind.iter().map(|&b| Wheel::vertical(b, Wheel3::new(600.0, 0.46), 1.8e9, 1e5)).collect()
+}
+
+/// The vertical model of `wheels` on the continuous track `t` over a
+/// stretch of `nodes` samples every `dx` (m) at `speed` (m/s).
+fn on_continuous(t: TrackParams, wheels: Vec<Wheel>, nodes: usize, dx: f64, speed: f64) -> VehicleTrack {
+    let track = Track::Continuous { vertical: t, head: None };
+    VehicleTrack::new(track, wheels, Directions::Vertical, nodes, dx, speed).unwrap()
+}
+
+/// `G_ij = [M^-1]_ij exp(i k (s_i - s_j))` (eq. 1 of src/dynamics/model/)
+/// at the model's harmonic `k` of a stretch of `length` (m), wheels
+/// `behind` (m).
+fn coupling(model: &VehicleTrack, k: usize, length: f64, behind: &[f64]) -> DMatrix<Complex64> {
+    let g = model.response(k, 0);
+    let wave = 2.0 * PI * k as f64 / length;
+    DMatrix::from_fn(g.nrows(), g.ncols(), |i, j| {
+        g[(i, j)] * Complex64::from_polar(1.0, wave * (behind[i] - behind[j]))
+    })
+}
+
+/// Each wheel's `H_i = sum_j G_ij` (every wheel seeing the same profile).
+fn force_per_roughness(g: &DMatrix<Complex64>) -> Vec<Complex64> {
+    (0..g.nrows()).map(|i| g.row(i).iter().sum()).collect()
 }
 
 /// The continuous track's transfer receptance written out (Hetenyi's
@@ -39,68 +64,75 @@ fn two_wheels_on_the_continuous_track_against_the_closed_form() {
     // Two equal wheels L apart: M = [[c, t], [t, c]] with c = alpha_w +
     // alpha_c + alpha_r(0), t = alpha_r(L), so the leading wheel's
     // H_0 = (c - t exp(-i k L)) / (c^2 - t^2); in phase (k L = 2 pi m)
-    // 1 / (c + t), half a wavelength off 1 / (c - t).
-    let model =
-        ReceptanceModel::new(TrackParams::uic60_default(), WheelParams { unsprung_mass: 600.0 }, 1.8e9).unwrap();
+    // 1 / (c + t), half a wavelength off 1 / (c - t). A stretch of V x 1 s
+    // puts a harmonic at every whole hertz.
+    let wheel = WheelParams { unsprung_mass: 600.0 };
     let (spacing, speed) = (2.5, 27.78);
-    let bogie = CoupledReceptance { model, wheels: equal_wheels(&[0.0, spacing]) };
+    let (nodes, dx) = (13890, 2e-3);
+    let length = nodes as f64 * dx;
+    let t = TrackParams::uic60_default();
+    let behind = [0.0, spacing];
+    let bogie = on_continuous(t, equal_wheels(&behind), nodes, dx, speed);
+    let omega = |k: usize| 2.0 * PI * (speed * k as f64 / length);
     let mut worst = 0.0f64;
-    for f in [50.0, 120.0, 333.3, 700.0, 1070.0, 2000.0] {
-        let w = 2.0 * PI * f;
-        let t = &model.track;
-        let c = model.wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(t, w, 0.0);
-        let tr = hetenyi(t, w, spacing);
-        let k = w / speed;
-        let h = bogie.force_per_roughness(f, speed);
-        let lead = (c - tr * Complex64::from_polar(1.0, -k * spacing)) / (c * c - tr * tr);
-        let trail = (c - tr * Complex64::from_polar(1.0, k * spacing)) / (c * c - tr * tr);
+    for k in [50, 120, 333, 700, 1070, 2000] {
+        let w = omega(k);
+        let c = wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(&t, w, 0.0);
+        let tr = hetenyi(&t, w, spacing);
+        let kw = w / speed;
+        let h = force_per_roughness(&coupling(&bogie, k, length, &behind));
+        let lead = (c - tr * Complex64::from_polar(1.0, -kw * spacing)) / (c * c - tr * tr);
+        let trail = (c - tr * Complex64::from_polar(1.0, kw * spacing)) / (c * c - tr * tr);
         worst = worst.max(((h[0] - lead) / lead).norm()).max(((h[1] - trail) / trail).norm());
         // The wave between the wheels matters: the transfer is not small
         // against the point receptance at every frequency here.
-        eprintln!("{f} Hz: |alpha_r(L) / c| = {:.3e}", (tr / c).norm());
+        eprintln!("{k} Hz: |alpha_r(L) / c| = {:.3e}", (tr / c).norm());
     }
     assert!(worst < 1e-9, "closed form: {worst:e}");
     // Unequal wheels (a 900 kg wheel on a 2.2e9 N/m spring behind): c_1,
     // c_2 on the diagonal, H_0 = (c_2 - t exp(-i k L)) / (c_1 c_2 - t^2),
     // H_1 = (c_1 - t exp(i k L)) / (c_1 c_2 - t^2).
-    let mut wheels = equal_wheels(&[0.0, spacing]);
-    (wheels[1].wheel, wheels[1].contact_stiffness) = (WheelParams { unsprung_mass: 900.0 }, 2.2e9);
-    let unequal = CoupledReceptance { model, wheels };
-    for f in [120.0, 1070.0] {
-        let w = 2.0 * PI * f;
-        let t = &model.track;
-        let c1 = model.wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(t, w, 0.0);
-        let c2 = WheelParams { unsprung_mass: 900.0 }.receptance(w) + 1.0 / 2.2e9 + hetenyi(t, w, 0.0);
-        let tr = hetenyi(t, w, spacing);
-        let k = w / speed;
+    let mut wheels = equal_wheels(&behind);
+    wheels[1] = Wheel::vertical(spacing, Wheel3::new(900.0, 0.46), 2.2e9, 1e5);
+    let unequal = on_continuous(t, wheels, nodes, dx, speed);
+    for k in [120, 1070] {
+        let w = omega(k);
+        let c1 = wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(&t, w, 0.0);
+        let c2 = WheelParams { unsprung_mass: 900.0 }.receptance(w) + 1.0 / 2.2e9 + hetenyi(&t, w, 0.0);
+        let tr = hetenyi(&t, w, spacing);
+        let kw = w / speed;
         let det = c1 * c2 - tr * tr;
-        let h = unequal.force_per_roughness(f, speed);
-        let lead = (c2 - tr * Complex64::from_polar(1.0, -k * spacing)) / det;
-        let trail = (c1 - tr * Complex64::from_polar(1.0, k * spacing)) / det;
-        assert!(((h[0] - lead) / lead).norm() < 1e-9 && ((h[1] - trail) / trail).norm() < 1e-9, "{f} Hz");
+        let g = coupling(&unequal, k, length, &behind);
+        let h = force_per_roughness(&g);
+        let lead = (c2 - tr * Complex64::from_polar(1.0, -kw * spacing)) / det;
+        let trail = (c1 - tr * Complex64::from_polar(1.0, kw * spacing)) / det;
+        assert!(((h[0] - lead) / lead).norm() < 1e-9 && ((h[1] - trail) / trail).norm() < 1e-9, "{k} Hz");
         // Entry by entry: G = [[c_2, -t e^{-ikL}], [-t e^{ikL}, c_1]] / det.
-        let g = unequal.coupling(f, speed);
         let expected = [
-            [c2 / det, -tr * Complex64::from_polar(1.0, -k * spacing) / det],
-            [-tr * Complex64::from_polar(1.0, k * spacing) / det, c1 / det],
+            [c2 / det, -tr * Complex64::from_polar(1.0, -kw * spacing) / det],
+            [-tr * Complex64::from_polar(1.0, kw * spacing) / det, c1 / det],
         ];
         for i in 0..2 {
             for j in 0..2 {
-                assert!(((g[(i, j)] - expected[i][j]) / expected[0][0]).norm() < 1e-9, "{f} Hz G[{i}][{j}]");
+                assert!(((g[(i, j)] - expected[i][j]) / expected[0][0]).norm() < 1e-9, "{k} Hz G[{i}][{j}]");
             }
         }
     }
     // The forces of wheels that see different profiles (a harmonic of
     // amplitude 1 um and 0.6 um at a phase 0.7 rad): P_i = Re[sum_j G_ij
-    // R_j exp(i k X)], through the FFT path of wheel_forces.
+    // R_j exp(i k X)], through the FFT path of the evaluation.
     let (nodes, dx) = (600, 2e-4);
+    let length = nodes as f64 * dx;
     let m = 7;
-    let k = 2.0 * PI * m as f64 / (nodes as f64 * dx);
+    let k = 2.0 * PI * m as f64 / length;
     let seen =
         |amp: f64, phase: f64| -> Vec<f64> { (0..nodes).map(|i| amp * (k * i as f64 * dx + phase).cos()).collect() };
     let profiles = [seen(1e-6, 0.0), seen(0.6e-6, 0.7)];
-    let forces = unequal.wheel_forces(&profiles, dx, speed);
-    let g = unequal.coupling(speed * k / (2.0 * PI), speed);
+    let mut wheels = equal_wheels(&behind);
+    wheels[1] = Wheel::vertical(spacing, Wheel3::new(900.0, 0.46), 2.2e9, 1e5);
+    let unequal = on_continuous(t, wheels, nodes, dx, speed);
+    let forces = unequal.normal_forces(&profiles, dx, speed);
+    let g = coupling(&unequal, m, length, &behind);
     let r = [Complex64::new(1e-6, 0.0), Complex64::from_polar(0.6e-6, 0.7)];
     for (i, p) in forces.iter().enumerate() {
         let amp = g[(i, 0)] * r[0] + g[(i, 1)] * r[1];
@@ -110,16 +142,31 @@ fn two_wheels_on_the_continuous_track_against_the_closed_form() {
         }
     }
     // In phase and in anti-phase, on a profile harmonic whose frequency puts
-    // a whole (half) number of wavelengths between the wheels.
-    for (waves, sign) in [(3.0, 1.0), (3.5, -1.0)] {
-        let f = waves * speed / spacing;
-        let w = 2.0 * PI * f;
-        let c = model.wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(&model.track, w, 0.0);
-        let expected = 1.0 / (c + sign * hetenyi(&model.track, w, spacing));
-        for h in bogie.force_per_roughness(f, speed) {
-            assert!(((h - expected) / expected).norm() < 1e-9, "{waves} wavelengths: {h} vs {expected}");
+    // a whole (half) number of wavelengths between the wheels: on a 5 m
+    // stretch harmonics 6 and 7.
+    let (nodes, dx) = (2500, 2e-3);
+    let length = nodes as f64 * dx;
+    let bogie = on_continuous(t, equal_wheels(&behind), nodes, dx, speed);
+    for (k, sign) in [(6, 1.0), (7, -1.0)] {
+        let w = 2.0 * PI * (speed * k as f64 / length);
+        let c = wheel.receptance(w) + 1.0 / 1.8e9 + hetenyi(&t, w, 0.0);
+        let expected = 1.0 / (c + sign * hetenyi(&t, w, spacing));
+        for h in force_per_roughness(&coupling(&bogie, k, length, &behind)) {
+            assert!(((h - expected) / expected).norm() < 1e-9, "harmonic {k}: {h} vs {expected}");
         }
     }
+    // One wheel is the single wheel's closed form (eq. 5 of
+    // src/dynamics/receptance.rs), bit for bit.
+    let profile = seen(1e-6, 0.3);
+    let single = ReceptanceModel::new(t, wheel, 1.8e9).unwrap();
+    let one = on_continuous(t, equal_wheels(&[0.0]), nodes, dx, speed);
+    let profile: Vec<f64> = profile.iter().cycle().take(nodes).copied().collect();
+    for v in [speed, -speed] {
+        let one = on_continuous(t, equal_wheels(&[0.0]), nodes, dx, v);
+        let (a, b) = (one.normal_forces(std::slice::from_ref(&profile), dx, v), single.dynamic_force(&profile, dx, v));
+        assert!(a[0].iter().zip(&b).all(|(x, y)| x.to_bits() == y.to_bits()), "{v} m/s");
+    }
+    let _ = one;
 }
 
 #[test]
@@ -149,26 +196,82 @@ fn the_discrete_vehicles_receptance_matrix_is_the_transfer_receptances() {
     }
 }
 
+/// The position-dependent model of one wheel on the discrete track
+/// written out (the half bay's symmetry, its own tabulation): `H(f, x) =
+/// 1 / (alpha_w + alpha_c + alpha_r(x, f))` at 9 places over the half bay
+/// folded about mid-span, the wheel's path `-alpha_r(x, 0) N0` from the
+/// same places, both interpolated linearly; the force's harmonics up to the
+/// model's.
+fn position_dependent(
+    track: &DiscreteTrack,
+    mass: f64,
+    k_h: f64,
+    load: f64,
+    profile: &[f64],
+    dx: f64,
+    speed: f64,
+) -> Vec<f64> {
+    let n = profile.len();
+    let (length, d) = (n as f64 * dx, track.spacing);
+    let places: Vec<f64> = (0..9).map(|p| d * 0.5 * p as f64 / 8.0).collect();
+    let index = |x: f64| {
+        let u = x.rem_euclid(d);
+        let s = u.min(d - u) / (0.5 * d) * 8.0;
+        let p = (s.floor() as usize).min(7);
+        (p, s - p as f64)
+    };
+    let statics: Vec<f64> = track.receptances(&places, 2.0 * PI * 0.1).iter().map(|a| a.re).collect();
+    let path: Vec<f64> = (0..n)
+        .map(|i| {
+            let (p, t) = index(i as f64 * dx);
+            -((1.0 - t) * statics[p] + t * statics[p + 1]) * load
+        })
+        .collect();
+    let mean = path.iter().sum::<f64>() / n as f64;
+    let input: Vec<f64> = profile.iter().zip(&path).map(|(r, p)| r + p - mean).collect();
+    let mut force = vec![0.0; n];
+    for k in 1..=harmonics(n, dx, speed) {
+        let rk: Complex64 = input
+            .iter()
+            .enumerate()
+            .map(|(j, v)| v * Complex64::from_polar(1.0, -2.0 * PI * (k * j) as f64 / n as f64))
+            .sum();
+        let w = 2.0 * PI * speed * k as f64 / length;
+        let h: Vec<Complex64> =
+            track.receptances(&places, w).iter().map(|a| 1.0 / (-1.0 / (mass * w * w) + 1.0 / k_h + a)).collect();
+        let weight = if 2 * k == n { 1.0 } else { 2.0 } / n as f64;
+        for (i, f) in force.iter_mut().enumerate() {
+            let (p, t) = index(i as f64 * dx);
+            let hx = (1.0 - t) * h[p] + t * h[p + 1];
+            *f += weight * (hx * rk * Complex64::from_polar(1.0, 2.0 * PI * (k * i) as f64 / n as f64)).re;
+        }
+    }
+    force
+}
+
 #[test]
-fn one_wheel_of_the_discrete_vehicle_is_the_single_wheel_model() {
-    // The same position-dependent model tabulated over a whole bay
-    // instead of the half bay: the same forces, sleeper passing included.
+fn one_wheel_on_the_discrete_track_is_the_position_dependent_model_written_out() {
+    // The model tabulates the whole bay (16 places, periodic), the
+    // written-out model the half bay: the same forces, sleeper passing
+    // included.
     let (nodes, dx, speed) = (600, 1e-3, 27.78);
-    let (wheel, k_h, load) = (WheelParams { unsprung_mass: 600.0 }, 1.8e9, 1e5);
     let track = DiscreteTrack::new(&TrackConfig::default());
-    let single = DiscreteDynamics::new(track, wheel, k_h, load, 0.0, nodes, dx, speed);
-    let vehicle = DiscreteVehicle::new(track, equal_wheels(&[0.0]), 0.0, nodes, dx, speed);
+    let one = OneWheel::vertical(discrete(&TrackConfig::default(), None, 0.0), 600.0, 1.8e9, 1e5, nodes, dx, speed);
     let profile: Vec<f64> = (0..nodes)
         .map(|i| 1e-6 * ((0.37 * i as f64).sin() + (2.0 * PI * 23.0 * i as f64 / nodes as f64).cos()))
         .collect();
     let (a, b) = (
-        single.force_from_profile(&profile, dx, speed),
-        vehicle.wheel_forces(std::slice::from_ref(&profile), dx, speed),
+        position_dependent(&track, 600.0, 1.8e9, 1e5, &profile, dx, speed),
+        one.force_from_profile(&profile, dx, speed),
     );
-    assert_eq!(b.len(), 1);
     let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-    let worst = a.iter().zip(&b[0]).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    assert!(worst < 1e-9 * scale, "{worst:e} of {scale:e} N");
+    let worst = a.iter().zip(&b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    eprintln!("against the written-out model: {worst:.1e} of {scale:.1e} N");
+    // Measured 8.5e-10: the two tabulations' lattice sums (the point
+    // receptances against the vehicle's matrices) round differently, and
+    // the path is a small difference of large static deflections; a wrong
+    // place or interpolation is 1e-3 or more.
+    assert!(worst < 1e-8 * scale, "{worst:e} of {scale:e} N");
 }
 
 #[test]
@@ -180,12 +283,13 @@ fn a_bogie_on_the_discrete_track_loads_each_wheel_with_the_others_deflection() {
     // over about 1 m); both wheels' sleeper-passing forces are the single
     // wheel's within the small difference.
     let (nodes, dx, speed) = (600, 1e-3, 27.78);
-    let (wheel, k_h, load) = (WheelParams { unsprung_mass: 600.0 }, 1.8e9, 1e5);
     let track = DiscreteTrack::new(&TrackConfig::default());
-    let bogie = DiscreteVehicle::new(track, equal_wheels(&[0.0, 2.4]), 0.0, nodes, dx, speed);
-    let single = DiscreteDynamics::new(track, wheel, k_h, load, 0.0, nodes, dx, speed);
-    let paths = bogie.parametric_profiles(nodes, dx);
-    let path = single.parametric_profile(nodes, dx);
+    let on_track = || discrete(&TrackConfig::default(), None, 0.0);
+    let bogie =
+        VehicleTrack::new(on_track(), equal_wheels(&[0.0, 2.4]), Directions::Vertical, nodes, dx, speed).unwrap();
+    let single = OneWheel::vertical(on_track(), 600.0, 1.8e9, 1e5, nodes, dx, speed);
+    let paths = bogie.parametric_paths().to_vec();
+    let path = single.parametric_profile();
     // Wheel j's path against the static transfer receptances directly:
     // -N0 (alpha(x_j; x_j) + alpha(x_j; x_other)) at 0.1 Hz, less the mean,
     // at the tabulated places (every d/16 of the leading wheel's bay).
@@ -226,7 +330,7 @@ fn a_bogie_on_the_discrete_track_loads_each_wheel_with_the_others_deflection() {
     assert!((span(&paths[0]) - span(&paths[1])).abs() < 1e-6 * span(&path));
     assert!((span(&paths[0]) - span(&path)).abs() < 0.1 * span(&path), "{} vs {}", span(&paths[0]), span(&path));
     let smooth = vec![0.0; nodes];
-    let forces = bogie.wheel_forces(&[smooth.clone(), smooth.clone()], dx, speed);
+    let forces = bogie.normal_forces(&[smooth.clone(), smooth.clone()], dx, speed);
     let one = single.force_from_profile(&smooth, dx, speed);
     for f in &forces {
         assert!((span(f) - span(&one)).abs() < 0.2 * span(&one), "{} vs {}", span(f), span(&one));
@@ -463,9 +567,10 @@ fn a_curving_wheel_in_the_consistent_chain_wears_the_rail_unevenly_across() {
     eprintln!(
         "imbalance across the rail: straight {s:.2e}, curving {n:.4} (nonlinear), {l:.4} (linear); removed {v_nonlinear:.4e} / {v_linear:.4e} m^3"
     );
-    // Rounding: 1.1e-9 measured (the exact model's iterations over the
-    // 3-patch-length run-in).
-    assert!(s.abs() < 1e-8, "straight: {s}");
+    // Rounding: 1.1e-9 measured, 1.1e-8 after a change of the dynamics'
+    // arithmetic by 1e-14 relative (the exact model's iterations over the
+    // 3-patch-length run-in amplify it); the curving imbalance is 0.3.
+    assert!(s.abs() < 1e-7, "straight: {s}");
     assert!(n.abs() > 0.01 && (n - l).abs() < 0.05 * n.abs(), "curving: {n} vs {l}");
     assert!((v_nonlinear - v_linear).abs() < 0.01 * v_linear, "{v_nonlinear} vs {v_linear}");
 }

@@ -13,18 +13,16 @@ use crate::contact::transient::{ElasticModel, Transient};
 use crate::contact::{Elements, EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use crate::creep_coefficients::creep_coefficients;
 use crate::dynamics::TrackDynamics;
-use crate::dynamics::contact_dynamics::{ContactDynamics, Rail3, Wheel3, WheelSide};
-use crate::dynamics::contact_vehicle::{ContactVehicle, VehicleWheel3};
 use crate::dynamics::coupling::contact_point::ContactLaw;
 use crate::dynamics::coupling::creep_response::CreepResponse;
-use crate::dynamics::discrete_dynamics::DiscreteDynamics;
-use crate::dynamics::receptance::{ReceptanceModel, WheelParams, hertz_stiffness};
+use crate::dynamics::model::{self, Track, VehicleTrack, Wheel};
+use crate::dynamics::receptance::hertz_stiffness;
 use crate::dynamics::track::continuous3::Continuous3;
 use crate::dynamics::track::discrete::DiscreteTrack;
 use crate::dynamics::track::discrete3::Discrete3;
 use crate::dynamics::track::discrete3::Discrete3Error;
-use crate::dynamics::vehicle::{CoupledReceptance, CoupledWheel, DiscreteVehicle};
 use crate::dynamics::wheelset::rigid::RigidWheelset;
+use crate::dynamics::wheelset::side::{Wheel3, WheelSide};
 use crate::dynamics::wheelset::torsion::{TorsionFeedback, WHEEL_POLAR_INERTIA, WheelsetTorsion};
 use crate::dynamics::wheelset::{WheelsetModel, standard};
 use crate::hertz::{HertzPatch, HertzShape};
@@ -440,7 +438,7 @@ pub fn steady_contact_law(scene: &Scene, shape: &HertzShape, n0: f64, fx0: f64, 
 }
 
 /// The dynamics in every direction of a growth study's wheel
-/// ([`ContactDynamics`]): the track of `dynamics.model`, the wheelset's
+/// ([`VehicleTrack`] in every direction): the track of `dynamics.model`, the wheelset's
 /// modal model (`[wheelset] model = "modal"`) or the rigid wheel of
 /// unsprung mass `mass` (kg) with the wheelset's torsion where configured,
 /// and the steady contact law at the wheel's mean loads.
@@ -476,13 +474,16 @@ fn contact_dynamics(
         laws.push((key, law, response));
     }
     let grid = periodic_grid(scene);
-    let rail = match scene.growth.as_ref().map(|g| g.dynamics) {
-        Some(DynamicsKind::Discrete { .. }) => Rail3::Discrete {
-            model: Discrete3::new(&scene.track, contact_offset),
+    let track = match scene.growth.as_ref().map(|g| g.dynamics) {
+        Some(DynamicsKind::Discrete { .. }) => Track::Discrete {
             vertical: DiscreteTrack::new(&scene.track),
+            head: Some(Discrete3::new(&scene.track, contact_offset)),
             sleeper_x0: grid.x_min,
         },
-        _ => Rail3::Continuous(Continuous3::new(&scene.track, contact_offset)),
+        _ => Track::Continuous {
+            vertical: scene.track.smeared(),
+            head: Some(Continuous3::new(&scene.track, contact_offset)),
+        },
     };
     let modal = scene.wheelset.as_ref().is_some_and(|w| w.modal.is_some());
     let side = |mass: f64| {
@@ -503,12 +504,12 @@ fn contact_dynamics(
         }
     };
     let fail = |e: Discrete3Error| DynamicsError::Receptances(e.to_string());
-    let wheels: Vec<VehicleWheel3> = (0..v.wheels.len())
+    let wheels: Vec<Wheel> = (0..v.wheels.len())
         .map(|i| {
             let loads = v.wheel_loads(i, &scene.loads);
             let key = (loads.normal_force, loads.longitudinal_force);
             let (_, law, response) = laws.iter().find(|(k, ..)| *k == key).expect("a law per load").clone();
-            VehicleWheel3 {
+            Wheel {
                 behind: v.wheels[i],
                 side: side(v.wheel_mass(i, mass)),
                 law,
@@ -536,16 +537,11 @@ fn contact_dynamics(
         for i in 0..v.wheels.len() {
             let (law, response) = (law, response.clone());
             let side = side(v.wheel_mass(i, mass));
-            wheels.push(VehicleWheel3 { behind: v.wheels[i], side, law, response, mean_load: n0, rail: 1 });
+            wheels.push(Wheel { behind: v.wheels[i], side, law, response, mean_load: n0, rail: 1 });
         }
     }
-    if wheels.len() > 1 {
-        let model = ContactVehicle::new(rail, wheels, grid.nx, grid.dx, scene.speed).map_err(fail)?;
-        return Ok(Box::new(model));
-    }
-    let w = wheels.into_iter().next().expect("one wheel");
-    let model = ContactDynamics::new(rail, w.side, w.law, w.response, w.mean_load, grid.nx, grid.dx, scene.speed)
-        .map_err(fail)?;
+    let model =
+        VehicleTrack::new(track, wheels, model::Directions::All, grid.nx, grid.dx, scene.speed).map_err(fail)?;
     Ok(Box::new(model))
 }
 
@@ -568,28 +564,14 @@ pub enum DynamicsError {
     Receptances(String),
 }
 
-/// The track model of a growth study, if it has one. The discrete model
-/// tabulates its receptances for the study's speed and periodic stretch
-/// (the first rail node is above a sleeper). Several wheels
-/// (`vehicle.wheels`) are coupled through the rail
-/// ([`crate::dynamics::vehicle`]).
+/// The vehicle-track model of a growth study ([`VehicleTrack`]), if it
+/// has one: the track of `dynamics.model` (continuous or discrete; the
+/// discrete model tabulated for the study's speed and periodic stretch,
+/// the first rail node above a sleeper), the wheels of `[vehicle]`
+/// coupled through the rail, and the contacts closed in the directions of
+/// `dynamics.directions`.
 pub fn track_dynamics(scene: &Scene, d: &Derived) -> Result<Option<Box<dyn TrackDynamics>>, DynamicsError> {
     let v = &scene.vehicle;
-    // Each wheel's mass, and its contact spring at its mean load.
-    let coupled = |mass: f64| -> Vec<CoupledWheel> {
-        (0..v.wheels.len())
-            .map(|i| {
-                let n0 = v.wheel_loads(i, &scene.loads).normal_force;
-                let p = d.shape.patch(n0).expect("validated loads keep N > 0");
-                CoupledWheel {
-                    behind: v.wheels[i],
-                    wheel: WheelParams { unsprung_mass: v.wheel_mass(i, mass) },
-                    contact_stiffness: hertz_stiffness(p.normal_force, p.approach),
-                    mean_load: n0,
-                }
-            })
-            .collect()
-    };
     let Some(growth) = scene.growth.as_ref() else {
         return Ok(None);
     };
@@ -599,43 +581,27 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Result<Option<Box<dyn Track
     {
         return contact_dynamics(scene, d, mass, contact_offset, creep_forces, spin).map(Some);
     }
-    Ok(match growth.dynamics {
-        DynamicsKind::Imposed => None,
+    let grid = periodic_grid(scene);
+    let (track, mass) = match growth.dynamics {
+        DynamicsKind::Imposed => return Ok(None),
         DynamicsKind::Receptance { unsprung_mass } => {
-            let wheels = coupled(unsprung_mass);
-            let lead = wheels[0];
-            let model = ReceptanceModel::new(scene.track.smeared(), lead.wheel, lead.contact_stiffness)
-                .expect("validated parameters");
-            if wheels.len() > 1 {
-                return Ok(Some(Box::new(CoupledReceptance { model, wheels })));
-            }
-            Some(Box::new(model))
+            (Track::Continuous { vertical: scene.track.smeared(), head: None }, unsprung_mass)
         }
-        DynamicsKind::Discrete { unsprung_mass } => {
-            let grid = periodic_grid(scene);
-            let wheels = coupled(unsprung_mass);
-            let track = DiscreteTrack::new(&scene.track);
-            if wheels.len() > 1 {
-                return Ok(Some(Box::new(DiscreteVehicle::new(
-                    track,
-                    wheels,
-                    grid.x_min,
-                    grid.nx,
-                    grid.dx,
-                    scene.speed,
-                ))));
-            }
-            let lead = wheels[0];
-            Some(Box::new(DiscreteDynamics::new(
-                track,
-                lead.wheel,
-                lead.contact_stiffness,
-                lead.mean_load,
-                grid.x_min,
-                grid.nx,
-                grid.dx,
-                scene.speed,
-            )))
-        }
-    })
+        DynamicsKind::Discrete { unsprung_mass } => (
+            Track::Discrete { vertical: DiscreteTrack::new(&scene.track), head: None, sleeper_x0: grid.x_min },
+            unsprung_mass,
+        ),
+    };
+    // Each wheel's mass, and its contact spring at its mean load.
+    let wheels: Vec<Wheel> = (0..v.wheels.len())
+        .map(|i| {
+            let n0 = v.wheel_loads(i, &scene.loads).normal_force;
+            let p = d.shape.patch(n0).expect("validated loads keep N > 0");
+            let wheel = Wheel3::new(v.wheel_mass(i, mass), scene.geometry.wheel_radius);
+            Wheel::vertical(v.wheels[i], wheel, hertz_stiffness(p.normal_force, p.approach), n0)
+        })
+        .collect();
+    let model = VehicleTrack::new(track, wheels, model::Directions::Vertical, grid.nx, grid.dx, scene.speed)
+        .map_err(|e| DynamicsError::Receptances(e.to_string()))?;
+    Ok(Some(Box::new(model)))
 }

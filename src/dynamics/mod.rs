@@ -19,14 +19,15 @@
 //! sections, the continuous and discrete track, their receptances at the
 //! rail head in every direction), [`wheelset`] the wheelset (rigid,
 //! torsion, modal), [`coupling`] the contact between them (the contact
-//! point's closure, the creep forces' response); the vehicle-track models
-//! assembled from them sit here ([`receptance`], [`discrete_dynamics`],
-//! [`vehicle`]: vertical; [`contact_dynamics`], [`contact_vehicle`]: every
-//! direction).
+//! point's closure, the creep forces' response); [`model`] assembles them
+//! into the one vehicle-track model ([`model::VehicleTrack`]: one wheel or
+//! a vehicle on one or two rails, the continuous or the discrete track,
+//! the vertical direction or every direction), on the vertical closed
+//! forms of [`receptance`].
 //!
-//! [`TrackDynamics`] is the interface the pass loop uses, so that a richer
-//! track model (discrete sleepers, Timoshenko rail, moving load) can replace
-//! the [`receptance`] model without touching the loop.
+//! [`TrackDynamics`] is the interface the pass loop uses: one question,
+//! so that a richer model (a track of irregular bays, a curve) composes
+//! without touching the loop.
 
 // The bodies: the rail and its supports, the wheelset, the contact
 // coupling between them.
@@ -34,18 +35,15 @@ pub mod coupling;
 pub mod track;
 pub mod wheelset;
 
-// The vehicle-track models assembled from them.
-pub mod contact_dynamics;
-pub mod contact_vehicle;
-pub mod discrete_dynamics;
+// The vehicle-track model assembled from them, and the vertical
+// closed forms it builds on.
+pub mod model;
 pub mod receptance;
-pub mod vehicle;
 
 pub use receptance::{
     DynamicsError, ReceptanceModel, TrackParams, WheelParams, hertz_stiffness, winkler_point_receptance,
 };
 
-pub use contact_dynamics::ContactSignals;
 use num_complex::Complex64;
 use rustfft::FftPlanner;
 
@@ -81,11 +79,27 @@ pub trait TrackDynamics {
     }
 
     /// The rail wheel `wheel` runs on: 0 the first, 1 the wheelset's
-    /// second rail ([`contact_vehicle`]).
+    /// second rail.
     fn rail_of(&self, wheel: usize) -> usize {
         let _ = wheel;
         0
     }
+}
+
+/// The dynamic variations of one wheel's contact along the stretch (zero
+/// mean), at the profile's samples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSignals {
+    /// Normal force (N).
+    pub normal: Vec<f64>,
+    /// Longitudinal creep force on the wheel (N).
+    pub force_x: Vec<f64>,
+    /// Longitudinal creepage (1).
+    pub creepage_x: Vec<f64>,
+    /// Lateral creepage (1).
+    pub creepage_y: Vec<f64>,
+    /// Spin (1/m; zeros without the spin's channel).
+    pub spin: Vec<f64>,
 }
 
 /// One wheel's contact variations along the stretch (see

@@ -86,10 +86,11 @@
 //! - The load's motion along the rail (valid for `V` far below the critical
 //!   speed of the track), the other rail, the primary suspension, wheel
 //!   modes, and contact filtering (done by the caller). Several wheels on
-//!   this rail are coupled by [`super::vehicle::CoupledReceptance`] (the
-//!   transfer receptance [`winkler_transfer_receptance`] between them).
+//!   this rail are coupled by [`super::model`] (the transfer receptance
+//!   [`winkler_transfer_receptance`] between them), which is also the
+//!   growth loop's model of one wheel.
 
-use super::{ContactVariations, TrackDynamics, apply_periodic_response};
+use super::apply_periodic_response;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -468,11 +469,7 @@ fn golden_max<G: Fn(f64) -> f64>(g: &G, mut a: f64, mut b: f64) -> f64 {
     0.5 * (a + b)
 }
 
-impl TrackDynamics for ReceptanceModel {
-    fn contact_variations(&self, profiles: &[Vec<f64>], dx: f64, speed: f64) -> Vec<ContactVariations> {
-        vec![ContactVariations::Normal(self.dynamic_force(&profiles[0], dx, speed))]
-    }
-
+impl ReceptanceModel {
     /// The peaks of [`ReceptanceModel::default_resonances`], labelled by the
     /// receptances that balance at each peak frequency:
     /// - rail mass-like (`Re alpha_r < 0`) and `|alpha_w| < alpha_c`: the rail's
@@ -485,7 +482,7 @@ impl TrackDynamics for ReceptanceModel {
     ///   `sqrt((s_p + s_b) / m_s) / (2 pi)`;
     /// - otherwise the wheel mass on the contact spring (the rigid-track limit
     ///   `sqrt(k_H / M_w) / (2 pi)`).
-    fn describe_resonances(&self) -> Vec<(String, f64)> {
+    pub fn describe_resonances(&self) -> Vec<(String, f64)> {
         let mut p2_seen = false;
         self.default_resonances()
             .into_iter()

@@ -273,7 +273,7 @@ pub struct Rail<'a> {
 
 /// [`growth_passage`] of a wheelset on `rails` (the first rail first; a
 /// second where the dynamics couples the wheelset's two contacts,
-/// [`crate::dynamics::contact_vehicle`]): each rail's wheel runs over its
+/// [`crate::dynamics::model`]): each rail's wheel runs over its
 /// own profile with its own steady state and its own dynamic variations,
 /// and wears its own rail. `Auto` takes the linear contact where every
 /// rail's corrugation allows it. With `second_solver` (a solver like

@@ -117,7 +117,7 @@ pub enum Directions {
     Vertical,
     /// Every direction: the rail head's and the wheel's receptances in three
     /// directions closed with the creep forces
-    /// ([`crate::dynamics::contact_dynamics`]).
+    /// ([`crate::dynamics::model`]).
     All {
         /// The contact's lateral offset from the rail's centre line, to the
         /// right looking along the rail (m).

@@ -132,3 +132,84 @@ pub fn largest(a: &[f64]) -> f64 {
 pub fn worst_scaled(a: &[f64], b: &[f64], s: f64) -> f64 {
     a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - s * y).abs())) / largest(b)
 }
+
+/// The vehicle-track model in the configurations the dynamics tests
+/// check: one wheel in every direction, one wheel vertically, and the
+/// track bodies.
+pub mod model {
+    use corrugation::dynamics::ContactSignals;
+    use corrugation::dynamics::coupling::contact_point::ContactLaw;
+    use corrugation::dynamics::coupling::creep_response::CreepResponse;
+    use corrugation::dynamics::model::{Directions, Track, VehicleTrack, Wheel};
+    use corrugation::dynamics::track::TrackConfig;
+    use corrugation::dynamics::track::continuous3::Continuous3;
+    use corrugation::dynamics::track::discrete::DiscreteTrack;
+    use corrugation::dynamics::track::discrete3::Discrete3;
+    use corrugation::dynamics::wheelset::side::{Wheel3, WheelSide};
+
+    /// The continuous track of `track` with its head in every direction
+    /// at `offset` (m) from the centre line.
+    pub fn continuous(track: &TrackConfig, offset: f64) -> Track {
+        Track::Continuous { vertical: track.smeared(), head: Some(Continuous3::new(track, offset)) }
+    }
+
+    /// The discrete track of `track`, a sleeper at `sleeper_x0` (m), with
+    /// its head in every direction at `offset` (m) where given.
+    pub fn discrete(track: &TrackConfig, offset: Option<f64>, sleeper_x0: f64) -> Track {
+        let head = offset.map(|o| Discrete3::new(track, o));
+        Track::Discrete { vertical: DiscreteTrack::new(track), head, sleeper_x0 }
+    }
+
+    /// One wheel's model with the single-profile calls of the tests.
+    pub struct OneWheel(pub VehicleTrack);
+
+    impl OneWheel {
+        /// In every direction: the wheel `side` with its contact `law` (and
+        /// creep `response`) at the mean load `mean_load` (N) on `track`.
+        #[allow(clippy::too_many_arguments)]
+        pub fn every(
+            track: Track,
+            side: WheelSide,
+            law: ContactLaw,
+            response: Option<CreepResponse>,
+            mean_load: f64,
+            nodes: usize,
+            dx: f64,
+            speed: f64,
+        ) -> Self {
+            let wheel = Wheel { behind: 0.0, rail: 0, side, law, response, mean_load };
+            OneWheel(VehicleTrack::new(track, vec![wheel], Directions::All, nodes, dx, speed).unwrap())
+        }
+
+        /// Vertically: a rigid wheel of `mass` (kg) on a Hertz spring
+        /// `stiffness` (N/m) at `mean_load` (N) on `track`.
+        #[allow(clippy::too_many_arguments)]
+        pub fn vertical(
+            track: Track,
+            mass: f64,
+            stiffness: f64,
+            mean_load: f64,
+            nodes: usize,
+            dx: f64,
+            speed: f64,
+        ) -> Self {
+            let wheel = Wheel::vertical(0.0, Wheel3::new(mass, 0.46), stiffness, mean_load);
+            OneWheel(VehicleTrack::new(track, vec![wheel], Directions::Vertical, nodes, dx, speed).unwrap())
+        }
+
+        /// The contact's variations from `profile`.
+        pub fn signals(&self, profile: &[f64], dx: f64, speed: f64) -> ContactSignals {
+            self.0.signals(std::slice::from_ref(&profile.to_vec()), dx, speed).remove(0)
+        }
+
+        /// The dynamic normal force (N) from `profile`.
+        pub fn force_from_profile(&self, profile: &[f64], dx: f64, speed: f64) -> Vec<f64> {
+            self.0.normal_forces(std::slice::from_ref(&profile.to_vec()), dx, speed).remove(0)
+        }
+
+        /// The wheel's parametric path (m).
+        pub fn parametric_profile(&self) -> Vec<f64> {
+            self.0.parametric_paths()[0].clone()
+        }
+    }
+}

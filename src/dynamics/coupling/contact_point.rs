@@ -60,6 +60,13 @@ pub struct ContactLaw {
 }
 
 impl ContactLaw {
+    /// The Hertz spring `stiffness` (N/m) alone, without creep slopes: the
+    /// vertical closure's contact.
+    pub fn normal(stiffness: f64) -> ContactLaw {
+        let zero = Complex64::new(0.0, 0.0);
+        ContactLaw { stiffness, force_per_normal: [zero; 2], force_per_creepage: [[zero; 2]; 2], force_per_spin: None }
+    }
+
     /// The law at one frequency: this law's Hertz stiffness with the creep
     /// forces' slopes taken from the frequency response `h` at that
     /// frequency ([`super::creep_response`], eq. 1: rows `(F_x, F_y)`,

@@ -105,6 +105,7 @@
 //! rotation of both wheels) is free: the receptance needs `w > 0`.
 
 pub mod rigid;
+pub mod side;
 pub mod standard;
 pub mod table;
 pub mod torsion;
