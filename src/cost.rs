@@ -36,7 +36,7 @@ pub struct CostEstimate {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DirectionsCost {
     /// The rail head's and the wheel's receptances in three directions per
-    /// harmonic (at 17 places of the bay on the discrete track).
+    /// harmonic (at 16 places of the bay on the discrete track).
     pub tables: f64,
     /// The creep forces' frequency response measured on the passage's own
     /// contact solver (`dynamics.creep_forces = "transient"`).
@@ -44,9 +44,10 @@ pub struct DirectionsCost {
 }
 
 /// CPU seconds per harmonic of the discrete track's head receptances at
-/// the 17 places of the bay (the Floquet integral in three directions; one
-/// core, release build).
-const DISCRETE3_PER_HARMONIC: f64 = 0.08;
+/// the 16 places of the bay (the Floquet integral in three directions; one
+/// core, release build): 0.78 s wall on 2 cores for the 108 harmonics of
+/// growth_discrete.toml with the steady creep slopes.
+const DISCRETE3_PER_HARMONIC: f64 = 0.015;
 /// The same on the continuous track (a 12 x 12 eigenproblem).
 const CONTINUOUS3_PER_HARMONIC: f64 = 2e-4;
 
@@ -73,9 +74,20 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     // A scene that is not symmetric about the centre line (lateral
     // creepage, spin) solves the whole grid: 2.7 times for Gauss-Seidel
     // (scripts/stability_map.sh); with CG, which then has no symmetric
-    // products, 1.8 times at 0.4 mm and 2.3 times at 0.2 mm
-    // (paper_normal_30mm with lateral creepage 2e-3), taken as 2.3.
+    // products but its own contact block (paper_normal_30mm with lateral
+    // creepage 2e-3, median of 3: 0.46 -> 0.39 s at 0.4 mm, 3.61 -> 3.24 s
+    // at 0.2 mm with that block, against 0.22-0.28 and 1.43-1.45 s folded:
+    // 1.4-1.8 and 2.2 times), taken as 2.3, an upper estimate. The
+    // dynamics in every direction vary the lateral creepage and the spin
+    // about a symmetric mean state: the whole grid again, with fewer
+    // slipping elements, 1.67 times on growth_exact.toml and 1.44 times on
+    // growth_discrete.toml with CG (scripts/dynamics_cost.sh), taken as
+    // 1.6 for both solvers (Gauss-Seidel's not measured).
     let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
+    let every_direction = s
+        .growth
+        .as_ref()
+        .is_some_and(|g| matches!(g.directions, Directions::All { .. }) && g.dynamics.unsprung_mass().is_some());
     let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
     let cg = solver == GridSolver::Cg;
     // With the profile in the contact (the default in growth studies):
@@ -115,6 +127,7 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     };
     let per_step = if cg { 0.99e-3 * (n_c / 478.0).powf(0.76) } else { 3.56e-3 * (n_c / 478.0).powf(1.54) };
     let whole = match (symmetric, cg) {
+        (true, _) if every_direction => 1.6,
         (true, _) => 1.0,
         (false, true) => 2.3,
         (false, false) => 2.7,
@@ -208,13 +221,24 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     let rails = if s.second_rail.is_some() { 1.3 } else { 1.0 };
     let per_passage = p.n_steps() as f64 * (contact + deposit) * mean_wheels * rails;
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
-    // The discrete model tabulates its receptances once per traffic class
-    // (0.9 s CPU for the 108 harmonics up to 5 kHz of growth_discrete.toml,
-    // 0.45 s on 2 cores; a vehicle's matrices over the whole bay about 1.5
-    // times that per wheel: 1.4 s for two wheels, 2.9 s for four), and
-    // runs one passage per class over the smooth rail for the update bound
-    // (its forced wear).
-    let table = |n: usize| if n > 1 { 1.5 * n as f64 } else { 1.0 };
+    // The discrete model tabulates its vertical receptances once per
+    // traffic class where the dynamics is vertical (0.87 s on 2 cores for
+    // the 108 harmonics up to 5 kHz of growth_discrete.toml, the
+    // vehicle's matrices at 16 places over the whole bay; 1.4 s for two
+    // wheels, 2.9 s for four: about 0.8 times that per wheel), the
+    // tables in every direction counted in `directions_cost`, and runs one
+    // passage per class over the smooth rail for the update bound (its
+    // forced wear).
+    let every_direction = s.growth.as_ref().is_some_and(|g| matches!(g.directions, Directions::All { .. }));
+    let table = |n: usize| {
+        if every_direction {
+            0.0
+        } else if n > 1 {
+            0.8 * n as f64
+        } else {
+            1.0
+        }
+    };
     let setup: f64 = match &s.growth {
         Some(gr) if matches!(gr.dynamics, DynamicsKind::Discrete { .. }) => gr
             .classes
@@ -222,7 +246,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
             .map(|c| {
                 let n = c.wheels.as_ref().map_or(wheels, Vec::len);
                 let harmonics = crate::dynamics::model::harmonics(g.nx, g.dx, c.speed) as f64;
-                0.0042 * table(n) * harmonics + per_passage * n as f64 / mean_wheels
+                0.008 * table(n) * harmonics + per_passage * n as f64 / mean_wheels
             })
             .sum(),
         _ => 0.0,

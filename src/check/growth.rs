@@ -64,7 +64,7 @@ pub(super) fn print_directions(
         return;
     };
     let track = if matches!(g.dynamics, DynamicsKind::Discrete { .. }) {
-        "discrete supports, 17 places of the bay"
+        "discrete supports, 16 places of the bay"
     } else {
         "continuous supports"
     };

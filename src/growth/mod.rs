@@ -234,7 +234,7 @@ pub const LINEAR_CONTACT_CURVATURE: f64 = 0.5;
 /// [`LINEAR_CONTACT_CURVATURE`] of the wheel's, `Profile` beyond.
 ///
 /// With several wheels on the rail (`dynamics` coupling them,
-/// [`crate::dynamics::vehicle`]) every wheel runs over the whole stretch
+/// [`crate::dynamics::model`]) every wheel runs over the whole stretch
 /// with its own dynamic force, and the wear is their mean: one wheel
 /// passage, whose traffic counts wheel passages; the history is the
 /// leading wheel's. `progress` counts the steps of all the wheels.

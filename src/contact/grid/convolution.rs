@@ -338,6 +338,11 @@ impl<T: Real> FftConvolution<T> {
         }
     }
 
+    /// Grid columns and rows (nx, ny).
+    pub fn shape(&self) -> (usize, usize) {
+        (self.nx, self.ny)
+    }
+
     /// Padded transform size (mx, my).
     pub fn padded(&self) -> (usize, usize) {
         (self.mx, self.my)

@@ -161,6 +161,8 @@ pub struct FixedGrid {
     /// solver's, and the normal solves' (with the normal kernel they are
     /// cut from).
     blocks: block::Blocks<block::BlockProducts>,
+    /// The contact blocks' products of an unfolded step, by size.
+    full_blocks: block::Blocks<block::FullBlockProducts>,
     normal_blocks: block::Blocks<(SymmetricNormal, SymmetricNormal)>,
     normal_kernel: ToeplitzKernel,
     /// The rail surface in the gap (`None`: the quadratic gap alone).
@@ -224,6 +226,7 @@ impl FixedGrid {
             symmetric: None,
             normal_symmetric: None,
             blocks: block::Blocks::default(),
+            full_blocks: block::Blocks::default(),
             normal_blocks: block::Blocks::default(),
             normal_kernel: normal_kernel.clone(),
             surface: None,

@@ -6,9 +6,12 @@
 //! zero-padded product is the grid's (a linear convolution needs the
 //! padding of the block alone); the preconditioner is the block's
 //! circulant inverse. The products of each block size are built once and
-//! kept.
+//! kept. An unfolded step (a lateral creepage or a spin: the traction is
+//! not symmetric) takes the block that holds its elements in contact, its
+//! rows no longer symmetric about the centre line, with the general
+//! products of that size.
 
-use super::super::convolution::ToeplitzKernel;
+use super::super::convolution::{FftConvolution, ToeplitzKernel};
 use super::super::symmetric::SymmetricConvolution;
 use super::super::tangential::ContactSet;
 use std::collections::HashMap;
@@ -17,6 +20,10 @@ use std::sync::{Arc, Mutex};
 /// A block's single-precision products: the zero-padded kernel and its
 /// circulant inverse.
 pub(super) type BlockProducts = (SymmetricConvolution<f32>, SymmetricConvolution<f32>);
+
+/// An unfolded block's single-precision products: the zero-padded kernel
+/// and its circulant inverse.
+pub(super) type FullBlockProducts = (FftConvolution<f32>, FftConvolution<f32>);
 
 /// Blocks used where the block has at most this fraction of the grid's
 /// elements (its transforms are then shorter by enough to pay): on the
@@ -73,6 +80,42 @@ pub(super) fn block_of(
     let r0 = r_min - r_min % (BLOCK_QUANTUM / 2);
     let by = ny - 2 * r0;
     (((bx * by) as f64) <= BLOCK_FRACTION * (nx * ny) as f64).then_some(((c0, r0), (bx, by)))
+}
+
+/// The block of a grid of `nx x ny` elements that holds columns `c_min
+/// ..= c_max` and rows `r_min ..= r_max` (widened to the quanta): its first
+/// column and row and its size, or `None` where it is not much smaller
+/// than the grid.
+pub(super) fn full_block_of(
+    (c_min, c_max): (usize, usize),
+    (r_min, r_max): (usize, usize),
+    (nx, ny): (usize, usize),
+) -> Option<((usize, usize), (usize, usize))> {
+    let bx = (c_max - c_min + 1).next_multiple_of(BLOCK_QUANTUM).min(nx);
+    let by = (r_max - r_min + 1).next_multiple_of(BLOCK_QUANTUM).min(ny);
+    let (c0, r0) = (c_min.min(nx - bx), r_min.min(ny - by));
+    (((bx * by) as f64) <= BLOCK_FRACTION * (nx * ny) as f64).then_some(((c0, r0), (bx, by)))
+}
+
+impl Blocks<FullBlockProducts> {
+    /// The block of a grid of `nx x ny` elements (unfolded) for the set:
+    /// its first column and row and its products, or `None` where the whole
+    /// grid is as cheap.
+    pub fn for_full_set(
+        &self,
+        kernel: &ToeplitzKernel,
+        set: &ContactSet,
+        shape: (usize, usize),
+    ) -> Option<((usize, usize), Arc<FullBlockProducts>)> {
+        let (&c_min, &c_max) = (set.ix.iter().min()?, set.ix.iter().max()?);
+        let (&r_min, &r_max) = (set.iy.iter().min()?, set.iy.iter().max()?);
+        let (origin, size) = full_block_of((c_min, c_max), (r_min, r_max), shape)?;
+        let products = self.get(size, || {
+            let block = kernel.block(size);
+            (FftConvolution::single(&block), FftConvolution::circulant_inverse_single(&block))
+        });
+        Some((origin, products))
+    }
 }
 
 impl Blocks<BlockProducts> {
@@ -153,5 +196,51 @@ mod tests {
         assert_eq!(blocks.0.lock().unwrap().len(), 1);
         let full = ContactSet::new(nx, ny.div_ceil(2) * nx, |_| true);
         assert!(blocks.for_set(&kernel, &full, (nx, ny)).is_none());
+    }
+
+    /// An unfolded set (an ellipse off the centre line both ways): on its
+    /// elements the block's general product equals the whole grid's
+    /// (single precision: within 1e-5 of the largest); the block is not
+    /// symmetric about the centre line.
+    #[test]
+    fn the_unfolded_block_product_is_the_grids_on_the_set() {
+        use crate::contact::grid::convolution::FftScratch;
+        let (nx, ny) = (58, 38);
+        let grid = PotentialGrid {
+            nx,
+            ny,
+            dx: 4e-4,
+            dy: 1e-3,
+            x_front: 0.5 * nx as f64 * 4e-4,
+            y_low: -0.5 * ny as f64 * 1e-3,
+        };
+        let kernel = ToeplitzKernel::tangential(&grid, 8.1e10, 0.28);
+        let inside = |k: usize| {
+            let (x, r) = ((k % nx) as f64 - 25.0, (k / nx) as f64 - 22.0);
+            (x / 15.0).powi(2) + (r / 10.0).powi(2) < 1.0
+        };
+        let set = ContactSet::new(nx, nx * ny, inside);
+        let blocks = Blocks::<FullBlockProducts>::default();
+        let ((c0, r0), products) = blocks.for_full_set(&kernel, &set, (nx, ny)).expect("a block");
+        let (bx, by) = products.0.shape();
+        assert!(r0 + by / 2 != ny / 2, "the block is off the centre line");
+        let field: Vec<(f64, f64)> =
+            (0..set.len()).map(|c| ((c as f64 * 0.37).sin(), (c as f64 * 0.11).cos())).collect();
+        let product = |conv: &FftConvolution<f32>, (w, h): (usize, usize), index: &dyn Fn(usize) -> usize| {
+            let (mut gx, mut gy) = (vec![0.0; w * h], vec![0.0; w * h]);
+            for c in 0..set.len() {
+                (gx[index(c)], gy[index(c)]) = field[c];
+            }
+            let (mut ux, mut uy) = (vec![0.0; w * h], vec![0.0; w * h]);
+            conv.tangential(&mut FftScratch::default(), (&gx, &gy), (&mut ux, &mut uy));
+            (0..set.len()).map(|c| (ux[index(c)], uy[index(c)])).collect::<Vec<_>>()
+        };
+        let whole = product(&FftConvolution::single(&kernel), (nx, ny), &|c| set.element[c]);
+        let on_block = product(&products.0, (bx, by), &|c| (set.iy[c] - r0) * bx + set.ix[c] - c0);
+        let scale = whole.iter().fold(0.0f64, |m, v| m.max(v.0.abs()).max(v.1.abs()));
+        let err = whole.iter().zip(&on_block).fold(0.0f64, |m, (a, b)| m.max((a.0 - b.0).abs()).max((a.1 - b.1).abs()));
+        assert!(err < 1e-5 * scale, "{err:e} of {scale:e}");
+        let full = ContactSet::new(nx, nx * ny, |_| true);
+        assert!(blocks.for_full_set(&kernel, &full, (nx, ny)).is_none());
     }
 }

@@ -3,7 +3,9 @@
 //! mirror image on a folded grid: x the same, y negated), an FFT product
 //! over the whole grid, gathered back. On a folded grid the symmetric
 //! product ([`SymmetricConvolution`]) reads the lower half alone, at about
-//! half the cost.
+//! half the cost. Either product may run on a block of the grid that holds
+//! the elements in contact ([`super::block`]): symmetric about the centre
+//! line on a folded grid, the general product's block on an unfolded one.
 
 use super::super::convolution::{FftConvolution, FftScratch, Real};
 use super::super::symmetric::{SymmetricConvolution, SymmetricScratch};
@@ -26,6 +28,9 @@ pub(super) struct OnSet<'a, T: Real> {
     /// The set's columns and rows in the block the symmetric product runs
     /// on (`None`: the whole grid).
     place: Option<(Vec<usize>, Vec<usize>)>,
+    /// The set's elements in the block the general product runs on
+    /// (`None`: the whole grid's `set.element`).
+    block: Option<Vec<usize>>,
     set: &'a ContactSet,
     weight: &'a [f64],
     /// Grid columns and rows.
@@ -54,6 +59,7 @@ impl<'a, T: Real> OnSet<'a, T> {
             scratch: FftScratch::default(),
             symmetric: None,
             place: None,
+            block: None,
             set,
             weight,
             shape,
@@ -83,6 +89,18 @@ impl<'a, T: Real> OnSet<'a, T> {
         self
     }
 
+    /// Products of an unfolded step's fields by `conv`, the products of
+    /// the block of the grid from column `c0` and row `r0` that holds the
+    /// set (the same products on the set, on shorter transforms).
+    pub fn on_full_block(mut self, conv: &'a FftConvolution<T>, (c0, r0): (usize, usize)) -> Self {
+        debug_assert!(self.weight.iter().all(|&w| w == 1.0), "an unfolded set");
+        let (bx, by) = conv.shape();
+        self.conv = conv;
+        self.shape = (bx, by);
+        self.block = Some(self.set.ix.iter().zip(&self.set.iy).map(|(&x, &y)| (y - r0) * bx + (x - c0)).collect());
+        self
+    }
+
     /// `out = conv (field)` on the elements in contact.
     pub fn product(&mut self, field: &[f64], out: &mut [f64]) {
         let nc = self.set.len();
@@ -105,7 +123,8 @@ impl<'a, T: Real> OnSet<'a, T> {
         }
         gx.fill(0.0);
         gy.fill(0.0);
-        for (c, &k) in self.set.element.iter().enumerate() {
+        let elements = self.block.as_ref().unwrap_or(&self.set.element);
+        for (c, &k) in elements.iter().enumerate() {
             gx[k] = field[2 * c];
             gy[k] = field[2 * c + 1];
             if self.weight[c] == 2.0 {
@@ -115,14 +134,14 @@ impl<'a, T: Real> OnSet<'a, T> {
         }
         let (ux, uy) = (&mut self.u.0, &mut self.u.1);
         self.conv.tangential(&mut self.scratch, (gx, gy), (ux, uy));
-        for (c, &k) in self.set.element.iter().enumerate() {
+        for (c, &k) in elements.iter().enumerate() {
             store(c, ux[k], uy[k]);
         }
     }
 
     /// The last product on the whole grid (x, y).
     pub fn whole(mut self) -> (Vec<f64>, Vec<f64>) {
-        debug_assert!(self.place.is_none(), "a block's product is not the grid's");
+        debug_assert!(self.place.is_none() && self.block.is_none(), "a block's product is not the grid's");
         let n = self.shape.0 * self.shape.1;
         self.u.0.resize(n, 0.0);
         self.u.1.resize(n, 0.0);

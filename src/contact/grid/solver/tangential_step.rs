@@ -126,9 +126,18 @@ impl FixedGrid {
         let block = sym.filter(|_| newton_krylov).and_then(|_| self.blocks.for_set(&self.kernel, &set, shape));
         let single = OnSet::new(&self.tangential_single, &set, &weight, shape, Layout::Blocks);
         let pre = OnSet::new(&self.inverse_single, &set, &weight, shape, Layout::Interleaved);
-        let (mut single, mut pre) = match &block {
-            Some((origin, products)) => (single.on_block(&products.0, *origin), pre.on_block(&products.1, *origin)),
-            None => (single.symmetric(sym.map(|s| &s.single)), pre.symmetric(sym.map(|s| &s.inverse))),
+        // An unfolded step's block, its products general.
+        let full_block = (sym.is_none() && newton_krylov)
+            .then(|| self.full_blocks.for_full_set(&self.kernel, &set, shape))
+            .flatten();
+        let (mut single, mut pre) = match (&block, &full_block) {
+            (Some((origin, products)), _) => {
+                (single.on_block(&products.0, *origin), pre.on_block(&products.1, *origin))
+            }
+            (None, Some((origin, products))) => {
+                (single.on_full_block(&products.0, *origin), pre.on_full_block(&products.1, *origin))
+            }
+            (None, None) => (single.symmetric(sym.map(|s| &s.single)), pre.symmetric(sym.map(|s| &s.inverse))),
         };
         let mut inner = |p: &[f64], u: &mut [f64]| single.product(p, u);
         let mut inverse = |r: &[f64], z: &mut [f64]| pre.product(r, z);
