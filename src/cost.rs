@@ -45,9 +45,10 @@ pub struct DirectionsCost {
 
 /// CPU seconds per harmonic of the discrete track's head receptances at
 /// the 16 places of the bay (the Floquet integral in three directions; one
-/// core, release build): 0.78 s wall on 2 cores for the 108 harmonics of
-/// growth_discrete.toml with the steady creep slopes.
-const DISCRETE3_PER_HARMONIC: f64 = 0.015;
+/// core, release build): 0.46 s wall on 2 cores for the 108 harmonics of
+/// growth_discrete.toml with the steady creep slopes (one wheel or one
+/// wheelset: the places past mid-bay the mirror images of those before).
+const DISCRETE3_PER_HARMONIC: f64 = 0.0085;
 /// The same on the continuous track (a 12 x 12 eigenproblem).
 const CONTINUOUS3_PER_HARMONIC: f64 = 2e-4;
 
@@ -222,10 +223,11 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     let per_passage = p.n_steps() as f64 * (contact + deposit) * mean_wheels * rails;
     let passes = s.growth.as_ref().map_or(1, |g| g.passes);
     // The discrete model tabulates its vertical receptances once per
-    // traffic class where the dynamics is vertical (0.87 s on 2 cores for
+    // traffic class where the dynamics is vertical (0.55 s on 2 cores for
     // the 108 harmonics up to 5 kHz of growth_discrete.toml, the
-    // vehicle's matrices at 16 places over the whole bay; 1.4 s for two
-    // wheels, 2.9 s for four: about 0.8 times that per wheel), the
+    // vehicle's matrices at 9 places over the half bay, the others their
+    // mirror images; a vehicle's at all 16: 1.4 s for two wheels, 2.9 s
+    // for four, about 1.3 times the one wheel's per wheel), the
     // tables in every direction counted in `directions_cost`, and runs one
     // passage per class over the smooth rail for the update bound (its
     // forced wear).
@@ -246,7 +248,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
             .map(|c| {
                 let n = c.wheels.as_ref().map_or(wheels, Vec::len);
                 let harmonics = crate::dynamics::model::harmonics(g.nx, g.dx, c.speed) as f64;
-                0.008 * table(n) * harmonics + per_passage * n as f64 / mean_wheels
+                0.005 * table(n) * harmonics + per_passage * n as f64 / mean_wheels
             })
             .sum(),
         _ => 0.0,
