@@ -59,6 +59,14 @@ impl CostEstimate {
     }
 }
 
+/// Whether scene `s` is a growth study with the dynamics in every
+/// direction (its steps unfold the grid; its tables are the head's).
+fn every_direction(s: &Scene) -> bool {
+    s.growth
+        .as_ref()
+        .is_some_and(|g| matches!(g.directions, Directions::All { .. }) && g.dynamics.unsprung_mass().is_some())
+}
+
 /// The fixed grid's CPU time per step (s, 2 cores) of scene `s` with the
 /// tangential solver `solver` (Cg or GaussSeidel) on the fixed grid `f`.
 fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, solver: GridSolver) -> f64 {
@@ -86,10 +94,7 @@ fn fixed_grid_step(s: &Scene, d: &crate::build::Derived, f: FixedGridParams, sol
     // (scripts/dynamics_cost.sh, two runs) with CG, taken as 1.5 for both
     // solvers (Gauss-Seidel's not measured).
     let n_c = std::f64::consts::PI * d.patch_mean.a * d.patch_mean.b / (f.dx * f.dy);
-    let every_direction = s
-        .growth
-        .as_ref()
-        .is_some_and(|g| matches!(g.directions, Directions::All { .. }) && g.dynamics.unsprung_mass().is_some());
+    let every_direction = every_direction(s);
     let symmetric = s.creepage_y == 0.0 && s.spin == 0.0;
     let cg = solver == GridSolver::Cg;
     // With the profile in the contact (the default in growth studies):
@@ -232,7 +237,7 @@ pub fn estimate(s: &Scene) -> CostEstimate {
     // tables in every direction counted in `directions_cost`, and runs one
     // passage per class over the smooth rail for the update bound (its
     // forced wear).
-    let every_direction = s.growth.as_ref().is_some_and(|g| matches!(g.directions, Directions::All { .. }));
+    let every_direction = every_direction(s);
     let table = |n: usize| {
         if every_direction {
             0.0

@@ -73,11 +73,7 @@ fn one_wheel_is_the_single_contacts_closed_form() {
     let length = nodes as f64 * dx;
     let mut b = [vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes], vec![0.0; nodes]];
     for k in 1..=harmonics(nodes, dx, speed) {
-        let rk: Complex64 = r
-            .iter()
-            .enumerate()
-            .map(|(j, v)| v * Complex64::from_polar(1.0, -2.0 * PI * (k * j) as f64 / nodes as f64))
-            .sum();
+        let rk = common::dft(&r, k);
         let w = 2.0 * PI * speed * k as f64 / length;
         let rail = head.heads(w, &[0.0], false).unwrap()[0];
         let h = respond(&(WheelSide::Rigid(wheel()).receptance(w, speed) + rail), &law(true), w, speed);

@@ -133,6 +133,16 @@ pub fn worst_scaled(a: &[f64], b: &[f64], s: f64) -> f64 {
     a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - s * y).abs())) / largest(b)
 }
 
+/// The DFT coefficient `sum_j v_j exp(-i 2 pi k j / N)` of harmonic `k`
+/// of one period `v`, written out.
+pub fn dft(v: &[f64], k: usize) -> num_complex::Complex64 {
+    let n = v.len() as f64;
+    v.iter()
+        .enumerate()
+        .map(|(j, x)| x * num_complex::Complex64::from_polar(1.0, -2.0 * std::f64::consts::PI * (k * j) as f64 / n))
+        .sum()
+}
+
 /// The vehicle-track model in the configurations the dynamics tests
 /// check: one wheel in every direction, one wheel vertically, and the
 /// track bodies.

@@ -7,7 +7,7 @@
 //! `M = (alpha_w + 1 / k_H) I + A_zz`, `P = M^-1 r` (Grassie et al. 1982
 //! eq. 5 for one wheel; Wu and Thompson 2005 for several).
 
-use super::{BAY_PLACES, Directions, Track, Wheel, mirror};
+use super::{BAY_PLACES, Directions, Track, Wheel};
 use crate::dynamics::coupling::contact_point::ContactLaw;
 use crate::dynamics::track::discrete3::Discrete3Error;
 use crate::dynamics::track::section::Mat4;
@@ -116,23 +116,27 @@ fn computed_places(wheels: &[Wheel]) -> usize {
 /// was computed, place `p` past mid-bay is `mirror(computed[BAY_PLACES -
 /// p])`.
 fn mirrored<T>(mut computed: Vec<T>, mirror: impl Fn(&T) -> T) -> Vec<T> {
-    if computed.len() < BAY_PLACES {
-        for p in computed.len()..BAY_PLACES {
-            let image = mirror(&computed[BAY_PLACES - p]);
-            computed.push(image);
-        }
+    for p in computed.len()..BAY_PLACES {
+        let image = mirror(&computed[BAY_PLACES - p]);
+        computed.push(image);
     }
     computed
 }
 
-/// The head's receptance at the mirror image of a place along the rail
-/// (`x -> -x` about a sleeper): `S A S`, `S = diag(-1, 1, 1, -1)` (the
-/// longitudinal direction reversed, and with it the rotation about z, an
-/// axial vector).
-fn along_mirror(a: &Mat4) -> Mat4 {
-    let sign = [-1.0, 1.0, 1.0, -1.0];
+/// A receptance seen in mirrored axes: `S A S`, `S = diag(sign)`.
+fn mirror(a: &Mat4, sign: [f64; 4]) -> Mat4 {
     Mat4::from_fn(|r, c| a[(r, c)] * (sign[r] * sign[c]))
 }
+
+/// The signs of the mirror image of a place along the rail (`x -> -x`
+/// about a sleeper): the longitudinal direction reversed, and with it the
+/// rotation about z (an axial vector).
+const ALONG: [f64; 4] = [-1.0, 1.0, 1.0, -1.0];
+
+/// The signs of the second rail's blocks against the first's in the
+/// common axes (y to the right): the lateral direction mirrored, and with
+/// it the rotation about z.
+const ACROSS: [f64; 4] = [1.0, -1.0, 1.0, -1.0];
 
 /// The rail head's blocks `[j n + l]` in every direction (m/N; the
 /// rotation about z where `spin`) per place: on one rail the head's
@@ -156,7 +160,7 @@ fn head_rail(track: &Track, wheels: &[Wheel], omega: f64, spin: bool) -> Result<
                 .flat_map(|x| (0..n * n).map(move |q| (x - wheels[q % n].behind, x - wheels[q / n].behind)))
                 .collect();
             let computed: Vec<Vec<Mat4>> = head.heads(&pairs, omega, spin)?.chunks(n * n).map(|c| c.to_vec()).collect();
-            mirrored(computed, |blocks| blocks.iter().map(along_mirror).collect())
+            mirrored(computed, |blocks| blocks.iter().map(|a| mirror(a, ALONG)).collect())
         }
     };
     Ok(rails
@@ -167,7 +171,7 @@ fn head_rail(track: &Track, wheels: &[Wheel], omega: f64, spin: bool) -> Result<
                 .enumerate()
                 .map(|(p, a)| match (wheels[p / n].rail, wheels[p % n].rail) {
                     (0, 0) => a,
-                    (1, 1) => mirror(&a),
+                    (1, 1) => mirror(&a, ACROSS),
                     _ => Mat4::zeros(),
                 })
                 .collect()
@@ -273,7 +277,7 @@ mod tests {
             for p in [1usize, 3, 6] {
                 let x = d * p as f64 / BAY_PLACES as f64;
                 let a = head.heads(&[(x, x), (d - x, d - x)], w, true).unwrap();
-                let image = along_mirror(&a[0]);
+                let image = mirror(&a[0], ALONG);
                 let scale = a[1].iter().fold(0.0f64, |m, v| m.max(v.norm()));
                 let err = a[1].iter().zip(image.iter()).fold(0.0f64, |m, (u, v)| m.max((u - v).norm()));
                 eprintln!("{f} Hz, place {p}: mirror within {:.1e}", err / scale);

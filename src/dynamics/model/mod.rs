@@ -60,7 +60,6 @@ use super::receptance::{ReceptanceModel, TrackParams, WheelParams};
 use super::track::continuous3::Continuous3;
 use super::track::discrete::DiscreteTrack;
 use super::track::discrete3::{Discrete3, Discrete3Error};
-use super::track::section::Mat4;
 use super::wheelset::side::{Wheel3, WheelSide};
 use super::{ContactSignals, ContactVariations, TrackDynamics};
 use nalgebra::DMatrix;
@@ -361,12 +360,4 @@ impl TrackDynamics for VehicleTrack {
     fn rail_of(&self, wheel: usize) -> usize {
         self.wheels[wheel].rail
     }
-}
-
-/// The second rail's block of the first's in the common axes: `M A M`,
-/// `M = diag(1, -1, 1, -1)` (the lateral direction mirrored, and with it
-/// the rotation about z, an axial vector).
-fn mirror(a: &Mat4) -> Mat4 {
-    let sign = [1.0, -1.0, 1.0, -1.0];
-    Mat4::from_fn(|r, c| a[(r, c)] * (sign[r] * sign[c]))
 }

@@ -148,11 +148,9 @@ mod tests {
     use crate::contact::grid::PotentialGrid;
     use crate::contact::grid::symmetric::SymmetricScratch;
 
-    /// On the elements in contact the block's product equals the whole
-    /// grid's (single precision: within 1e-5 of the largest), and a set
-    /// that fills the grid gets no block.
-    #[test]
-    fn the_block_product_is_the_grids_on_the_set() {
+    /// The tangential kernel of a 58 x 38 grid of 0.4 x 1 mm elements
+    /// centred on the origin, and the grid's shape.
+    fn test_kernel() -> (ToeplitzKernel, (usize, usize)) {
         let (nx, ny) = (58, 38);
         let grid = PotentialGrid {
             nx,
@@ -162,7 +160,15 @@ mod tests {
             x_front: 0.5 * nx as f64 * 4e-4,
             y_low: -0.5 * ny as f64 * 1e-3,
         };
-        let kernel = ToeplitzKernel::tangential(&grid, 8.1e10, 0.28);
+        (ToeplitzKernel::tangential(&grid, 8.1e10, 0.28), (nx, ny))
+    }
+
+    /// On the elements in contact the block's product equals the whole
+    /// grid's (single precision: within 1e-5 of the largest), and a set
+    /// that fills the grid gets no block.
+    #[test]
+    fn the_block_product_is_the_grids_on_the_set() {
+        let (kernel, (nx, ny)) = test_kernel();
         // An ellipse of 30 x 20 elements off the grid's centre along x, on
         // the lower half.
         let inside = |k: usize| {
@@ -205,16 +211,7 @@ mod tests {
     #[test]
     fn the_unfolded_block_product_is_the_grids_on_the_set() {
         use crate::contact::grid::convolution::FftScratch;
-        let (nx, ny) = (58, 38);
-        let grid = PotentialGrid {
-            nx,
-            ny,
-            dx: 4e-4,
-            dy: 1e-3,
-            x_front: 0.5 * nx as f64 * 4e-4,
-            y_low: -0.5 * ny as f64 * 1e-3,
-        };
-        let kernel = ToeplitzKernel::tangential(&grid, 8.1e10, 0.28);
+        let (kernel, (nx, ny)) = test_kernel();
         let inside = |k: usize| {
             let (x, r) = ((k % nx) as f64 - 25.0, (k / nx) as f64 - 22.0);
             (x / 15.0).powi(2) + (r / 10.0).powi(2) < 1.0
