@@ -44,8 +44,12 @@
 //! run over `|j| <= J` with the tail of `T(kappa, 0)` (`alpha^ ~ 1 /
 //! (kGA k^2)`) added in closed form; the integral is the midpoint rule.
 
+use super::floquet::{self, Supported};
+use super::layout::Layout;
 use super::rail::RailSection;
 use super::{Damping, TrackConfig};
+use crate::quadrature::QuadratureError;
+use nalgebra::SMatrix;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -275,6 +279,108 @@ impl DiscreteTrack {
         w2.sqrt() / (2.0 * PI)
     }
 }
+
+/// The free Timoshenko rail's two vertical waves at one frequency: eq. 1's
+/// denominator is a quadratic in `s = k^2`, `P(s) = EI kGA s^2 - (kGA rho
+/// I + m EI) w^2 s - m w^2 (kGA - rho I w^2)`, with numerator `N(s) = EI s +
+/// kGA - rho I w^2`; by residues in the upper half plane (as
+/// [`super::waves`] eq. 1)
+/// ```text
+/// G(x) = sum_r c_r exp(i k_r |x|),   c_r = i N(s_r) / (2 k_r P'(s_r)),   k_r = sqrt(s_r), Im k_r > 0   (5)
+/// ```
+/// (Euler-Bernoulli's limit: `G(0) = -(1 + i) / (4 EI k_b^3)`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VerticalWaves {
+    /// Wavenumbers `k_r` (rad/m), `Im > 0`.
+    pub k: [Complex64; 2],
+    /// Their residues `c_r` (m/N).
+    pub c: [Complex64; 2],
+}
+
+impl super::floquet::RailWaves<1> for VerticalWaves {
+    fn green(&self, x: f64) -> SMatrix<Complex64, 1, 1> {
+        let g: Complex64 = (0..2).map(|r| self.c[r] * (Complex64::i() * self.k[r] * x.abs()).exp()).sum();
+        SMatrix::from_element(g)
+    }
+
+    /// [`super::waves`] eq. 2 with the scalar residues (`G` even in `x`).
+    fn lattice(&self, kappa: f64, x: f64, period: f64) -> SMatrix<Complex64, 1, 1> {
+        let cells = (x / period).floor();
+        let xr = (x - cells * period).clamp(0.0, period);
+        let zeta = Complex64::from_polar(1.0, kappa * period);
+        let mut t = Complex64::new(0.0, 0.0);
+        for r in 0..2 {
+            let ik = Complex64::i() * self.k[r];
+            let z = (ik * period).exp();
+            t +=
+                self.c[r] * ((ik * xr).exp() / (1.0 - z / zeta) + (ik * (period - xr)).exp() * zeta / (1.0 - z * zeta));
+        }
+        SMatrix::from_element(t * Complex64::from_polar(period, kappa * period * cells))
+    }
+}
+
+impl DiscreteTrack {
+    /// The free rail's vertical waves (eq. 5) at `omega` (rad/s).
+    pub fn waves(&self, omega: f64) -> VerticalWaves {
+        let r = &self.rail;
+        let loss = Complex64::new(1.0, self.rail_loss_factor);
+        let (ei, kga) = (loss * r.bending_stiffness, loss * r.shear_stiffness);
+        let w2 = omega * omega;
+        let (a, b, c) =
+            (ei * kga, -(kga * r.rotary_inertia + r.mass * ei) * w2, -(kga - r.rotary_inertia * w2) * r.mass * w2);
+        let root = (b * b - 4.0 * a * c).sqrt();
+        let s = [(-b + root) / (2.0 * a), (-b - root) / (2.0 * a)];
+        let k = s.map(|s| {
+            let k = s.sqrt();
+            if k.im < 0.0 { -k } else { k }
+        });
+        let c = std::array::from_fn(|i| {
+            Complex64::i() * (ei * s[i] + kga - r.rotary_inertia * w2) / (2.0 * k[i] * (2.0 * a * s[i] + b))
+        });
+        VerticalWaves { k, c }
+    }
+
+    /// The receptances (m/N) on `layout`, each support with its own pad
+    /// and sleeper ([`super::layout::Layout::track_of`]): the rail's
+    /// displacement at `x1` under a unit force at `x0` for each `(x0, x1)`
+    /// of `pairs` (m from the layout's start) at angular frequency `omega`
+    /// (rad/s), eq. 1 of [`super::floquet`] with the waves of eq. 5.
+    ///
+    /// # Errors
+    /// Where the Floquet integral does not converge.
+    pub fn layout_receptances(
+        &self,
+        track: &TrackConfig,
+        layout: &Layout,
+        pairs: &[(f64, f64)],
+        omega: f64,
+    ) -> Result<Vec<Complex64>, QuadratureError> {
+        let supports: Vec<Supported<1>> = (0..layout.len())
+            .map(|m| {
+                (
+                    layout.supports[m].x,
+                    SMatrix::from_element(DiscreteTrack::new(&layout.track_of(track, m)).support_stiffness(omega)),
+                )
+            })
+            .collect();
+        let one = SMatrix::<Complex64, 1, 1>::from_element(Complex64::new(1.0, 0.0));
+        let out = floquet::response(
+            &self.waves(omega),
+            &supports,
+            layout.period,
+            &one,
+            pairs,
+            (LAYOUT_TOLERANCE, LAYOUT_EVALUATIONS),
+        )?;
+        Ok(out.into_iter().map(|g| g[(0, 0)]).collect())
+    }
+}
+
+/// Relative tolerance of a layout's Floquet integral.
+pub const LAYOUT_TOLERANCE: f64 = 1e-6;
+
+/// The most integrand evaluations per frequency of a layout's integral.
+const LAYOUT_EVALUATIONS: usize = 200_000;
 
 /// The supports' lattice sums at the place `x` (m from a support):
 /// `T(kappa, x) = sum_j alpha^(kappa_j) exp(i kappa_j x)` and `T(kappa, -x)`,

@@ -23,7 +23,9 @@
 //! receptance). The head's receptance is `B^T G B`.
 
 use super::TrackConfig;
-use super::section::{Mat3, Mat4, Mat6, Section, pad, project};
+use super::floquet::{self, Supported};
+use super::layout::Layout;
+use super::section::{Map64, Mat3, Mat4, Mat6, Section, pad, project};
 use super::waves::{RootsError, Waves};
 use crate::quadrature::{QuadratureError, integrate};
 use nalgebra::SMatrix;
@@ -112,11 +114,7 @@ impl Discrete3 {
     /// m/N, of one size (the rail's bending wavenumbers are a few per
     /// metre), then scaled back.
     pub fn head_receptances4(&self, pairs: &[(f64, f64)], omega: f64) -> Result<Vec<Mat4>, Discrete3Error> {
-        let mut b = self.section.head_map4();
-        for r in 0..6 {
-            b[(r, 3)] *= ROTATION_ARM;
-        }
-        let scale = [1.0, 1.0, 1.0, 1.0 / ROTATION_ARM];
+        let (b, scale) = self.arm_map();
         Ok(self
             .projected(&b, pairs, omega)?
             .into_iter()
@@ -133,6 +131,46 @@ impl Discrete3 {
         } else {
             Ok(self.head_receptances(pairs, omega)?.iter().map(pad).collect())
         }
+    }
+
+    /// [`Self::heads`] on `layout` (its supports each with their own pad
+    /// and sleeper, [`Layout::track_of`]; places in m from the layout's
+    /// start): eq. 1 of [`super::floquet`].
+    pub fn layout_heads(
+        &self,
+        layout: &Layout,
+        pairs: &[(f64, f64)],
+        omega: f64,
+        rotation: bool,
+    ) -> Result<Vec<Mat4>, Discrete3Error> {
+        let waves = self.free_waves(omega)?;
+        let s = &self.section;
+        let supports: Vec<Supported<6>> = (0..layout.len())
+            .map(|m| {
+                (layout.supports[m].x, Section::new(&layout.track_of(&s.track, m), s.contact_offset).support(omega))
+            })
+            .collect();
+        let fail = |source| Discrete3Error::Quadrature { frequency: omega / (2.0 * PI), source };
+        let limits = (TOLERANCE, MAX_EVALUATIONS);
+        if rotation {
+            let (b, scale) = self.arm_map();
+            let out = floquet::response(&waves, &supports, layout.period, &b, pairs, limits).map_err(fail)?;
+            Ok(out.into_iter().map(|a| Mat4::from_fn(|r, c| a[(r, c)] * (scale[r] * scale[c]))).collect())
+        } else {
+            let out =
+                floquet::response(&waves, &supports, layout.period, &s.head_map(), pairs, limits).map_err(fail)?;
+            Ok(out.iter().map(pad).collect())
+        }
+    }
+
+    /// The head map with the rotation about `z` per [`ROTATION_ARM`], and
+    /// the scales that undo it.
+    fn arm_map(&self) -> (Map64, [f64; 4]) {
+        let mut b = self.section.head_map4();
+        for r in 0..6 {
+            b[(r, 3)] *= ROTATION_ARM;
+        }
+        (b, [1.0, 1.0, 1.0, 1.0 / ROTATION_ARM])
     }
 
     /// `B^T G(x1; x0) B` of eq. 1 for the head map `b`.

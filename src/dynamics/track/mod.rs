@@ -24,7 +24,9 @@
 pub mod continuous3;
 pub mod discrete;
 pub mod discrete3;
+pub mod floquet;
 pub mod head;
+pub mod layout;
 pub mod rail;
 pub mod response;
 pub mod section;

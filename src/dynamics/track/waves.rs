@@ -111,6 +111,16 @@ impl Waves {
     }
 }
 
+impl super::floquet::RailWaves<6> for Waves {
+    fn green(&self, x: f64) -> Mat6 {
+        Waves::green(self, x)
+    }
+
+    fn lattice(&self, kappa: f64, x: f64, period: f64) -> Mat6 {
+        Waves::lattice(self, kappa, x, period)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
