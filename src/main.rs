@@ -330,7 +330,26 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
         }
         None => None,
     };
-    match corrugation::output::track_file::write_track_file(out, &r, head.as_ref(), s.track.rail_name, &resolved.toml) {
+    let layout = if s.layout.is_one_bay() {
+        None
+    } else {
+        match corrugation::dynamics::track::response::layout_response(&s.track, &s.layout, &r.frequency, offset) {
+            Ok(l) => Some(l),
+            Err(e) => {
+                say!("error: the receptances on the track layout: {e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    };
+    let written = corrugation::output::track_file::write_track_file(
+        out,
+        &r,
+        head.as_ref(),
+        layout.as_ref(),
+        s.track.rail_name,
+        &resolved.toml,
+    );
+    match written {
         Ok(()) => {
             say!(
                 "wrote {}: {} rail on {} m sleeper spacing; pinned-pinned {:.0} Hz (simply supported span {:.0} Hz), \
@@ -350,6 +369,16 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
                 },
                 if head.is_some() { "; the rail head in three directions" } else { "" }
             );
+            if let Some(l) = &layout {
+                let peaks: Vec<String> =
+                    l.pinned_pinned.iter().map(|(_, f, a)| format!("{f:.0} Hz {a:.2e} m/N")).collect();
+                say!(
+                    "the layout: {} supports over {} m; each span's pinned-pinned peak at mid-span: {}",
+                    l.layout.len(),
+                    l.layout.period,
+                    peaks.join(", ")
+                );
+            }
             ExitCode::SUCCESS
         }
         Err(e) => {

@@ -401,6 +401,33 @@ fn probes() -> Vec<(String, Table)> {
         &[],
     ));
     out.push(with("levels against ISO 3095", "[levels]\nlimit = \"iso3095\"", &[]));
+    // Track layouts, on the discrete track.
+    let discrete: Table = out.iter().find(|(n, _)| n.ends_with("growth_discrete.toml")).unwrap().1.clone();
+    for (name, extra) in [
+        (
+            "a layout by positions and patterns",
+            "[track]\nsleeper_positions = [0.0, 0.55]\npad_stiffness_pattern = [2e8, 3e8]\n\
+             sleeper_mass_pattern = [140.0, 120.0]",
+        ),
+        (
+            "a random layout",
+            "[track]\nspacing_std = 0.02\nspacing_min = 0.5\nspacing_max = 0.7\npad_stiffness_std = 2e7\n\
+             pad_stiffness_min = 1e8\npad_stiffness_max = 3e8\nsleeper_mass_std = 10.0\nsleeper_mass_min = 100.0\n\
+             sleeper_mass_max = 180.0\nseed = 3",
+        ),
+    ] {
+        let mut t = discrete.clone();
+        let extra: Table = format!("[rail]\nx_max = 1.2\n[passage]\nend = 1.2\n{extra}").parse().unwrap();
+        for (k, v) in extra {
+            match (t.get_mut(&k), v) {
+                (Some(Value::Table(old)), Value::Table(new)) => old.extend(new),
+                (_, v) => {
+                    t.insert(k, v);
+                }
+            }
+        }
+        out.push((format!("growth_discrete.toml with {name}"), t));
+    }
     out.push(with(
         "a spectrum",
         "[spectrum]\nwavelength_min = 0.012\nwavelength_max = 0.12\nclasses = 2\nperturbation = 5e-8\n\

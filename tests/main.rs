@@ -35,6 +35,7 @@ mod spectrum;
 mod sweep;
 mod torsion;
 mod track_config;
+mod track_layout;
 mod traffic_mix;
 mod transient_passage;
 mod transient_reference;

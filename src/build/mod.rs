@@ -479,6 +479,7 @@ fn contact_dynamics(
             vertical: DiscreteTrack::new(&scene.track),
             head: Some(Discrete3::new(&scene.track, contact_offset)),
             sleeper_x0: grid.x_min,
+            layout: scene.layout.clone(),
         },
         _ => Track::Continuous {
             vertical: scene.track.smeared(),
@@ -588,7 +589,12 @@ pub fn track_dynamics(scene: &Scene, d: &Derived) -> Result<Option<Box<dyn Track
             (Track::Continuous { vertical: scene.track.smeared(), head: None }, unsprung_mass)
         }
         DynamicsKind::Discrete { unsprung_mass } => (
-            Track::Discrete { vertical: DiscreteTrack::new(&scene.track), head: None, sleeper_x0: grid.x_min },
+            Track::Discrete {
+                vertical: DiscreteTrack::new(&scene.track),
+                head: None,
+                sleeper_x0: grid.x_min,
+                layout: scene.layout.clone(),
+            },
             unsprung_mass,
         ),
     };

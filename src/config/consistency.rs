@@ -132,14 +132,19 @@ pub(super) fn check_sleeper_bays(scene: &Scene, errors: &mut Vec<ConfigError>) {
     if !matches!(g.dynamics, crate::params::DynamicsKind::Discrete { .. }) {
         return;
     }
-    let (length, d) = (scene.rail.x_max - scene.rail.x_min, scene.track.sleeper_spacing);
+    let (length, d) = (scene.rail.x_max - scene.rail.x_min, scene.layout.period);
     let bays = length / d;
     if bays < 0.5 || (bays - bays.round()).abs() > 1e-6 * bays.max(1.0) {
+        let what = if scene.layout.is_one_bay() {
+            format!("sleeper bays (track.sleeper_spacing = {d} m)")
+        } else {
+            format!("the track layout's periods ({d} m, its {} supports)", scene.layout.len())
+        };
         errors.push(ConfigError::new(
             "rail.x_max",
             format!(
-                "- rail.x_min = {length} m must be a whole number of sleeper bays (track.sleeper_spacing = {d} m) with \
-                 dynamics.model = \"discrete\" (it is {bays:.3} bays)"
+                "- rail.x_min = {length} m must be a whole number of {what} with dynamics.model = \"discrete\" (it is \
+                 {bays:.3})"
             ),
         ));
     }

@@ -35,6 +35,7 @@ use consistency::{check_geometry, check_growth, check_sleeper_bays, plausibility
 use crate::contact::friction::FrictionLaw;
 use crate::contact::grid::GridScheme;
 use crate::creep_coefficients::creep_coefficients;
+use crate::dynamics::track::layout::LayoutSpec;
 use crate::hertz::{Elastic, HertzShape};
 use crate::loads::ImposedLoads;
 use crate::model_choice::FIXED_ASPECT;
@@ -337,7 +338,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
     let track = if growth.as_ref().is_ok_and(|g| g.is_some()) || root.contains_key("track") {
         track::read(&mut root, &mut resolved, errors)
     } else {
-        Some(Default::default())
+        Some((Default::default(), LayoutSpec::uniform()))
     };
 
     for (k, _) in root {
@@ -428,7 +429,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         Ok(g) => wheelset::resolve(wheelset, g.as_ref(), creepage_x.is_some()),
         Err(()) => return (None, resolved),
     };
-    let Some(track) = track else {
+    let Some((track, layout_spec)) = track else {
         return (None, resolved);
     };
     let Ok(growth) = growth else {
@@ -534,6 +535,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
             ContactModel::ExactTransient(ContactGrid::Adapted { mesh, solver: step_solver })
         }
     };
+    let layout = track::layout(&track, &layout_spec, stretch, growth.as_ref().map(|g| g.dynamics), errors);
     let mut scene = Scene {
         material,
         geometry,
@@ -553,6 +555,7 @@ fn read_scene(mut root: Table, records: &RecordSource, errors: &mut Vec<ConfigEr
         levels,
         growth,
         track,
+        layout,
         vehicle,
         wheelset,
         wheelset_choice,

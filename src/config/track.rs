@@ -8,13 +8,20 @@ use crate::dynamics::receptance::{
     BALLAST_LOSS_FACTOR, BALLAST_STIFFNESS_PER_HALF_SLEEPER, HALF_SLEEPER_MASS, PAD_LOSS_FACTOR, PAD_STIFFNESS_PER_PAD,
     SLEEPER_SPACING,
 };
+use crate::dynamics::track::layout::{Layout, LayoutError, LayoutSpec, PerSupport, Spacing};
 use crate::dynamics::track::rail::RailSection;
 use crate::dynamics::track::{Damping, RAIL_LOSS_FACTOR, Supports3, TrackConfig};
+use crate::params::DynamicsKind;
 use toml::{Table, Value};
 
-/// Reads `[track]` (defaults where absent) into `resolved`; None when a key
-/// is invalid (the errors are recorded).
-pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<ConfigError>) -> Option<TrackConfig> {
+/// Reads `[track]` (defaults where absent) into `resolved`: the track and
+/// its layout's keys; None when a key is invalid (the errors are
+/// recorded).
+pub(super) fn read(
+    root: &mut Table,
+    resolved: &mut Table,
+    errors: &mut Vec<ConfigError>,
+) -> Option<(TrackConfig, LayoutSpec)> {
     let mut s = Section::new(root, "", "track", errors);
     let name = s.choice("rail", Some("UIC60"), &RailSection::PRESETS);
     let preset = name.as_deref().and_then(RailSection::preset);
@@ -92,8 +99,12 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         );
         ok = false;
     }
+    let layout = match (spacing, pad, sleeper) {
+        (Some(d), Some(k), Some(m)) => layout_spec(&mut s, (d, k, m)),
+        _ => None,
+    };
     resolved.insert("track".into(), Value::Table(s.finish()));
-    Some(TrackConfig {
+    let track = TrackConfig {
         rail_name: RailSection::PRESETS.into_iter().find(|p| Some(*p) == name.as_deref())?,
         rail: ok.then_some(rail)?,
         sleeper_spacing: spacing?,
@@ -104,7 +115,68 @@ pub(super) fn read(root: &mut Table, resolved: &mut Table, errors: &mut Vec<Conf
         ballast_damping: ballast_damping?,
         rail_loss_factor: rail_loss?,
         supports: supports_ok.then_some(supports)?,
-    })
+    };
+    Some((track, layout?))
+}
+
+/// The layout's keys: the sleepers' positions (`sleeper_positions`, m from
+/// the stretch's start, or `spacing_std` with `spacing_min` and
+/// `spacing_max`), the pads' (`pad_stiffness_pattern` or
+/// `pad_stiffness_std` with its bounds) and the sleepers'
+/// (`sleeper_mass_pattern` or `sleeper_mass_std` with its bounds), and the
+/// `seed` of the random forms; `means` the configured spacing, pad
+/// stiffness and sleeper mass. Bounds default to four standard deviations
+/// about the mean (above a tenth of it).
+fn layout_spec(s: &mut Section, (d, pad, mass): (f64, f64, f64)) -> Option<LayoutSpec> {
+    let spacing = match (s.has("sleeper_positions"), s.has("spacing_std")) {
+        (true, true) => {
+            s.error("spacing_std", "and track.sleeper_positions both place the sleepers: give one of them".into());
+            None
+        }
+        (true, false) => {
+            s.f64_list("sleeper_positions", Vec::new(), Range::NonNegative, MAX_SUPPORTS).map(Spacing::Positions)
+        }
+        (false, true) => {
+            random(s, "spacing", d, Range::Closed(0.0, 0.2)).map(|(std, bounds)| Spacing::Random { std, bounds })
+        }
+        (false, false) => Some(Spacing::Uniform),
+    };
+    let pad_stiffness = per_support(s, "pad_stiffness", pad, Range::Positive);
+    let sleeper_mass = per_support(s, "sleeper_mass", mass, Range::NonNegative);
+    let (spacing, pad_stiffness, sleeper_mass) = (spacing?, pad_stiffness?, sleeper_mass?);
+    let drawn = matches!(spacing, Spacing::Random { .. })
+        || [&pad_stiffness, &sleeper_mass].iter().any(|v| matches!(v, PerSupport::Random { .. }));
+    let seed = if drawn || s.has("seed") { s.usize("seed", None, 0, usize::MAX >> 1)? as u64 } else { 0 };
+    Some(LayoutSpec { spacing, pad_stiffness, sleeper_mass, seed })
+}
+
+/// The most supports a layout lists.
+const MAX_SUPPORTS: usize = 10_000;
+
+/// `<name>_std` and its bounds `<name>_min`, `<name>_max` (defaults: four
+/// standard deviations about `mean`, above a tenth of it).
+fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<(f64, (f64, f64))> {
+    let std = s.f64(&format!("{name}_std"), None, std_range)?;
+    let lo = s.f64(&format!("{name}_min"), Some((mean - 4.0 * std).max(0.1 * mean)), Range::NonNegative);
+    let hi = s.f64(&format!("{name}_max"), Some(mean + 4.0 * std), Range::Positive);
+    Some((std, (lo?, hi?)))
+}
+
+/// `<name>_pattern` (a value per support, repeated) or `<name>_std` with
+/// its bounds, not both; the configured value at every support otherwise.
+fn per_support(s: &mut Section, name: &str, mean: f64, range: Range) -> Option<PerSupport> {
+    let (pattern, std) = (format!("{name}_pattern"), format!("{name}_std"));
+    match (s.has(&pattern), s.has(&std)) {
+        (true, true) => {
+            s.error(&std, format!("and track.{pattern} both set the supports' {name}: give one of them"));
+            None
+        }
+        (true, false) => s.f64_list(&pattern, Vec::new(), range, MAX_SUPPORTS).map(PerSupport::Pattern),
+        (false, true) => {
+            random(s, name, mean, Range::NonNegative).map(|(std, bounds)| PerSupport::Random { std, bounds })
+        }
+        (false, false) => Some(PerSupport::Uniform),
+    }
 }
 
 /// `<layer>_loss_factor` or `<layer>_damping`, not both; the loss factor
@@ -121,4 +193,45 @@ fn damping(s: &mut Section, layer: &str, default: f64) -> Option<Damping> {
         (false, true) => s.f64(&c_key, None, Range::NonNegative).map(Damping::Viscous),
         _ => s.f64(&eta_key, Some(default), Range::Closed(0.0, 10.0)).map(Damping::LossFactor),
     }
+}
+
+/// The layout of `spec` over the stretch `stretch` (m, its ends): one bay
+/// of `track` where the layout's keys are absent; refused (recorded in
+/// `errors`, naming the key) where it cannot be laid out or the study's
+/// track has no discrete supports.
+pub(super) fn layout(
+    track: &TrackConfig,
+    spec: &LayoutSpec,
+    stretch: Option<(f64, f64)>,
+    dynamics: Option<DynamicsKind>,
+    errors: &mut Vec<ConfigError>,
+) -> Layout {
+    let one_bay = Layout::uniform(track);
+    if spec.is_uniform() {
+        return one_bay;
+    }
+    let key = match (&spec.spacing, &spec.pad_stiffness) {
+        (Spacing::Positions(_), _) => "track.sleeper_positions",
+        (Spacing::Random { .. }, _) => "track.spacing_std",
+        (_, PerSupport::Pattern(_)) => "track.pad_stiffness_pattern",
+        (_, PerSupport::Random { .. }) => "track.pad_stiffness_std",
+        _ => "track.sleeper_mass_pattern",
+    };
+    if !matches!(dynamics, Some(DynamicsKind::Discrete { .. })) {
+        errors.push(ConfigError::new(
+            key,
+            "lays out the discrete track's supports: it needs a growth study with dynamics.model = \"discrete\"".into(),
+        ));
+        return one_bay;
+    }
+    let Some((a, b)) = stretch else {
+        return one_bay;
+    };
+    Layout::from_spec(track, spec, b - a).unwrap_or_else(|e| {
+        errors.push(match e {
+            LayoutError::Positions(why) => ConfigError::new("track.sleeper_positions", why),
+            LayoutError::Bounds(key, why) => ConfigError::new(&key, why),
+        });
+        one_bay
+    })
 }

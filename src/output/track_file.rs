@@ -24,21 +24,33 @@
 //! `<name>_rotation_real(..., force)` (rad/N per force in `x`, `y`, `z`; by
 //! reciprocity the displacement per moment about `z`) and
 //! `<name>_rotation_per_moment_real(...)` (rad/(N m)), and their `_imag`.
+//!
+//! On a track layout of several supports per period (`[track]`'s layout
+//! keys), group `layout` (attribute `period`, m) with dimensions
+//! `frequency` (Hz), `support` (m from the period's start) and `place` (m:
+//! each support, then the mid-span after it): `pad_stiffness(support)`
+//! (N/m), `sleeper_mass(support)` (kg), each span's `span_frequency`,
+//! `pinned_pinned_frequency` (Hz) and `pinned_pinned_receptance` (m/N) on
+//! `support` (the span after it), the vertical `receptance_real(place,
+//! frequency)` and `_imag`, and with the head in three directions
+//! `head_receptance_real(place, frequency, response, force)` and `_imag`.
 
 use super::netcdf::{NcError, write_atomically};
 use crate::dynamics::track::head::HeadResponse;
-use crate::dynamics::track::response::TrackResponse;
+use crate::dynamics::track::response::{LayoutResponse, TrackResponse};
 use crate::dynamics::track::section::Mat4;
 use ndarray::{Array0, Array1, Array2, Array3, ArrayD, Dimension, IxDyn};
 use std::path::Path;
 
 /// Writes `r` (and the head's receptances in three directions `head`, if
-/// given, on the same frequencies, positions, sources and distances) for
-/// the track named `rail` and the resolved `config` to `path` atomically.
+/// given, on the same frequencies, positions, sources and distances; the
+/// layout's `layout`, if given, on the same frequencies) for the track
+/// named `rail` and the resolved `config` to `path` atomically.
 pub fn write_track_file(
     path: &Path,
     r: &TrackResponse,
     head: Option<&HeadResponse>,
+    layout: Option<&LayoutResponse>,
     rail: &str,
     config: &str,
 ) -> Result<(), NcError> {
@@ -136,6 +148,9 @@ pub fn write_track_file(
         if let Some(h) = head {
             write_head(&g, r, h)?;
         }
+        if let Some(l) = layout {
+            write_layout(&root.group("layout")?, &r.frequency, l)?;
+        }
         let contact = Array0::from_elem((), r.contact);
         g.var_f64(
             "contact_receptance",
@@ -146,6 +161,83 @@ pub fn write_track_file(
         )?;
         Ok(())
     })
+}
+
+/// The layout's group (see the module's doc).
+fn write_layout(g: &super::netcdf::NcGroup, frequency: &[f64], l: &LayoutResponse) -> Result<(), NcError> {
+    let supports = &l.layout.supports;
+    g.attr_f64("period", l.layout.period)?;
+    g.coord_f64("frequency", frequency, "Hz", "frequency", false)?;
+    let x: Vec<f64> = supports.iter().map(|s| s.x).collect();
+    g.coord_f64("support", &x, "m", "support position from the period's start", false)?;
+    let column = |v: Vec<f64>| Array1::from(v);
+    g.var_f64(
+        "pad_stiffness",
+        &["support"],
+        column(supports.iter().map(|s| s.pad_stiffness).collect()).view().into_dyn(),
+        "N/m",
+        "the support's pad stiffness",
+    )?;
+    g.var_f64(
+        "sleeper_mass",
+        &["support"],
+        column(supports.iter().map(|s| s.sleeper_mass).collect()).view().into_dyn(),
+        "kg",
+        "the support's sleeper mass per rail",
+    )?;
+    for (name, k, units, long) in [
+        ("span_frequency", 0, "Hz", "first bending frequency of the span after the support, simply supported"),
+        ("pinned_pinned_frequency", 1, "Hz", "peak of the span's mid-span receptance within a factor 1.5 of it"),
+        ("pinned_pinned_receptance", 2, "m/N", "magnitude of the span's mid-span receptance at its pinned-pinned peak"),
+    ] {
+        let v = column(l.pinned_pinned.iter().map(|p| [p.0, p.1, p.2][k]).collect());
+        g.var_f64(name, &["support"], v.view().into_dyn(), units, long)?;
+    }
+    g.coord_f64(
+        "place",
+        &l.place,
+        "m",
+        "place from the period's start: each support, then the mid-span after it",
+        false,
+    )?;
+    let dims = ["place", "frequency"];
+    let long = "vertical rail point receptance on the layout (exp(+i w t); Im <= 0)";
+    for (suffix, part, re) in [("real", "real", true), ("imag", "imaginary", false)] {
+        let a =
+            Array2::from_shape_fn(
+                (l.place.len(), frequency.len()),
+                |(p, k)| {
+                    if re { l.rail[p][k].re } else { l.rail[p][k].im }
+                },
+            );
+        g.var_f64(
+            &format!("receptance_{suffix}"),
+            &dims,
+            a.view().into_dyn(),
+            "m/N",
+            &format!("{part} part of the {long}"),
+        )?;
+    }
+    if let Some(head) = &l.head {
+        let axes: Vec<String> = ["x", "y", "z"].iter().map(|s| s.to_string()).collect();
+        g.coord_str("response", &axes, "", "direction of the head's displacement: x along the rail, y across, z down")?;
+        g.coord_str("force", &axes, "", "direction of the force on the head")?;
+        let long = "rail head point receptance in three directions on the layout (exp(+i w t))";
+        for (suffix, part, re) in [("real", "real", true), ("imag", "imaginary", false)] {
+            let a = ArrayD::from_shape_fn(IxDyn(&[l.place.len(), frequency.len(), 3, 3]), |ix: IxDyn| {
+                let v = head[ix[0]][ix[1]][(ix[2], ix[3])];
+                if re { v.re } else { v.im }
+            });
+            g.var_f64(
+                &format!("head_receptance_{suffix}"),
+                &["place", "frequency", "response", "force"],
+                a.view(),
+                "m/N",
+                &format!("{part} part of the {long}"),
+            )?;
+        }
+    }
+    Ok(())
 }
 
 /// The head's receptances in three directions (see the module's doc).

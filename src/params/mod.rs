@@ -477,6 +477,10 @@ pub struct Scene {
     pub growth: Option<GrowthParams>,
     /// The track under the wheel (`[track]`).
     pub track: crate::dynamics::track::TrackConfig,
+    /// The discrete track's supports over one period (`[track]`'s layout
+    /// keys; one bay of `track` by default), reduced to the shortest
+    /// period that repeats.
+    pub layout: crate::dynamics::track::layout::Layout,
     /// The vehicle's wheels on the rail (`[vehicle]`; one by default).
     pub vehicle: VehicleParams,
     /// The wheelset (`[wheelset]`), if modelled (None: the rigid wheel).

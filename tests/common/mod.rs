@@ -167,7 +167,8 @@ pub mod model {
     /// its head in every direction at `offset` (m) where given.
     pub fn discrete(track: &TrackConfig, offset: Option<f64>, sleeper_x0: f64) -> Track {
         let head = offset.map(|o| Discrete3::new(track, o));
-        Track::Discrete { vertical: DiscreteTrack::new(track), head, sleeper_x0 }
+        let layout = corrugation::dynamics::track::layout::Layout::uniform(track);
+        Track::Discrete { vertical: DiscreteTrack::new(track), head, sleeper_x0, layout }
     }
 
     /// One wheel's model with the single-profile calls of the tests.

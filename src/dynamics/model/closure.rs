@@ -7,6 +7,7 @@
 //! `M = (alpha_w + 1 / k_H) I + A_zz`, `P = M^-1 r` (Grassie et al. 1982
 //! eq. 5 for one wheel; Wu and Thompson 2005 for several).
 
+use super::places::Places;
 use super::{BAY_PLACES, Directions, Track, Wheel};
 use crate::dynamics::coupling::contact_point::ContactLaw;
 use crate::dynamics::track::discrete3::Discrete3Error;
@@ -37,7 +38,7 @@ pub(super) fn responses(
     let own = wheel_blocks(wheels, omega, speed);
     match directions {
         Directions::Vertical => {
-            Ok(vertical_rail(track, wheels, omega).iter().map(|a| vertical(a, &own, wheels)).collect())
+            Ok(vertical_rail(track, wheels, omega)?.iter().map(|a| vertical(a, &own, wheels)).collect())
         }
         Directions::All => {
             let laws: Vec<ContactLaw> = wheels.iter().map(|w| w.law_at(omega)).collect();
@@ -74,7 +75,7 @@ fn one_rail(wheels: &[Wheel], j: usize, l: usize) -> bool {
 /// The rail's vertical receptance matrices (m/N, row-major `[j n + l]`:
 /// at wheel `j` under a unit force at wheel `l`; zero between the two
 /// rails, whose sleepers' rocking is left out) per place.
-fn vertical_rail(track: &Track, wheels: &[Wheel], omega: f64) -> Vec<Vec<Complex64>> {
+fn vertical_rail(track: &Track, wheels: &[Wheel], omega: f64) -> Result<Vec<Vec<Complex64>>, Discrete3Error> {
     let n = wheels.len();
     let s: Vec<f64> = wheels.iter().map(|w| w.behind).collect();
     let split = |a: Vec<Complex64>| -> Vec<Complex64> {
@@ -86,22 +87,36 @@ fn vertical_rail(track: &Track, wheels: &[Wheel], omega: f64) -> Vec<Vec<Complex
     match track {
         Track::Continuous { vertical, .. } => {
             let a = (0..n * n).map(|p| vertical.rail_transfer_receptance(omega, s[p / n] - s[p % n])).collect();
-            vec![split(a)]
+            Ok(vec![split(a)])
         }
-        Track::Discrete { vertical, .. } => {
+        Track::Discrete { vertical, layout, .. } => {
+            let positions = Places::new(layout, 0.0).positions();
+            if !layout.is_one_bay() {
+                let pairs = wheel_pairs(&positions, wheels);
+                let a = vertical.layout_receptances(layout, &pairs, omega).map_err(|source| {
+                    Discrete3Error::Quadrature { frequency: omega / (2.0 * std::f64::consts::PI), source }
+                })?;
+                return Ok(a.chunks(n * n).map(|c| split(c.to_vec())).collect());
+            }
             let offsets: Vec<f64> = s.iter().map(|b| -b).collect();
             let places = computed_places(wheels);
-            let computed = vertical.vehicle_receptances(&bay_places(vertical.spacing)[..places], &offsets, omega);
+            let computed = vertical.vehicle_receptances(&positions[..places], &offsets, omega);
             // Past mid-bay, the mirror image of the place before it (the
             // vertical receptances are even in x).
-            mirrored(computed, |a| a.clone()).into_iter().map(split).collect()
+            Ok(mirrored(computed, |a| a.clone()).into_iter().map(split).collect())
         }
     }
 }
 
-/// The leading wheel's tabulated places across a bay of `spacing` (m).
-pub(super) fn bay_places(spacing: f64) -> Vec<f64> {
-    (0..BAY_PLACES).map(|p| spacing * p as f64 / BAY_PLACES as f64).collect()
+/// The (load, watched) places of every pair of wheels `[j n + l]` (wheel
+/// `j` watched, `l` loaded) with the leading wheel at each of `positions`
+/// (m).
+fn wheel_pairs(positions: &[f64], wheels: &[Wheel]) -> Vec<(f64, f64)> {
+    let n = wheels.len();
+    positions
+        .iter()
+        .flat_map(|x| (0..n * n).map(move |q| (x - wheels[q % n].behind, x - wheels[q / n].behind)))
+        .collect()
 }
 
 /// The places whose receptances are computed: all of them, or, where the
@@ -152,15 +167,18 @@ fn head_rail(track: &Track, wheels: &[Wheel], omega: f64, spin: bool) -> Result<
             let distances: Vec<f64> = (0..n * n).map(|p| wheels[p % n].behind - wheels[p / n].behind).collect();
             vec![head.heads(omega, &distances, spin)?]
         }
-        Track::Discrete { vertical, head, .. } => {
+        Track::Discrete { layout, head, .. } => {
             let head = head.as_ref().expect("checked: the head's model in every direction");
-            let pairs: Vec<(f64, f64)> = bay_places(vertical.spacing)
-                .into_iter()
-                .take(computed_places(wheels))
-                .flat_map(|x| (0..n * n).map(move |q| (x - wheels[q % n].behind, x - wheels[q / n].behind)))
-                .collect();
-            let computed: Vec<Vec<Mat4>> = head.heads(&pairs, omega, spin)?.chunks(n * n).map(|c| c.to_vec()).collect();
-            mirrored(computed, |blocks| blocks.iter().map(|a| mirror(a, ALONG)).collect())
+            let positions = Places::new(layout, 0.0).positions();
+            if layout.is_one_bay() {
+                let pairs = wheel_pairs(&positions[..computed_places(wheels)], wheels);
+                let computed: Vec<Vec<Mat4>> =
+                    head.heads(&pairs, omega, spin)?.chunks(n * n).map(|c| c.to_vec()).collect();
+                mirrored(computed, |blocks| blocks.iter().map(|a| mirror(a, ALONG)).collect())
+            } else {
+                let pairs = wheel_pairs(&positions, wheels);
+                head.layout_heads(layout, &pairs, omega, spin)?.chunks(n * n).map(|c| c.to_vec()).collect()
+            }
         }
     };
     Ok(rails

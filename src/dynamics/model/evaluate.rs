@@ -10,7 +10,7 @@
 //! the mean is dropped. A wheel running backwards (`V < 0`) meets harmonic
 //! `k` at `-w`: `conj G`.
 
-use super::paths::bay_place;
+use super::places::Places;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
 use rustfft::FftPlanner;
@@ -19,9 +19,9 @@ use std::f64::consts::PI;
 /// The channels (`channels` per wheel) of each wheel `[wheel][channel][node]`
 /// from the responses `table[k - 1][place]`, the wheels' distances behind
 /// the leading one `behind` (m), the profiles they see and their
-/// parametric paths (m, `nodes` samples every `dx`), on the track's bay
-/// `(spacing, sleeper_x0)` (m; `None` on the continuous track), at
-/// `speed` (m/s).
+/// parametric paths (m, `nodes` samples every `dx`), on the discrete
+/// track's tabulated places (`None` on the continuous track), at `speed`
+/// (m/s).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn channels(
     table: &[Vec<DMatrix<Complex64>>],
@@ -29,7 +29,7 @@ pub(super) fn channels(
     behind: &[f64],
     profiles: &[Vec<f64>],
     paths: &[Vec<f64>],
-    bay: Option<(f64, f64)>,
+    places: Option<&Places>,
     dx: f64,
     speed: f64,
 ) -> Vec<Vec<Vec<f64>>> {
@@ -58,9 +58,9 @@ pub(super) fn channels(
             g * Complex64::from_polar(1.0, 2.0 * PI * k as f64 / length * (behind[i] - behind[j]))
         }
     };
-    match bay {
+    match places {
         None => continuous(table, channels, &spectra, nodes, as_met),
-        Some(bay) => discrete(table, channels, behind, &spectra, bay, dx, length, speed),
+        Some(places) => discrete(table, channels, behind, &spectra, places, dx, length, speed),
     }
 }
 
@@ -106,7 +106,7 @@ fn continuous(
         .collect()
 }
 
-/// Places across the bay: at every node the responses interpolated
+/// Places across the period: at every node the responses interpolated
 /// between the leading wheel's places and summed over the harmonics.
 #[allow(clippy::too_many_arguments)]
 fn discrete(
@@ -114,7 +114,7 @@ fn discrete(
     channels: usize,
     behind: &[f64],
     spectra: &[Vec<Complex64>],
-    (spacing, sleeper_x0): (f64, f64),
+    places: &Places,
     dx: f64,
     length: f64,
     speed: f64,
@@ -135,7 +135,7 @@ fn discrete(
             let mut out = vec![vec![0.0; nodes]; channels];
             for m in 0..nodes {
                 let x = m as f64 * dx;
-                let (p, q, t) = bay_place(spacing, sleeper_x0, sleeper_x0 + x + behind[i]);
+                let (p, q, t) = places.locate(places.start() + x + behind[i]);
                 for (k, (places, seen)) in table.iter().zip(&met).enumerate().map(|(h, v)| (h + 1, v)) {
                     let phase = Complex64::from_polar(1.0, 2.0 * PI * k as f64 * x / length);
                     let weight = if 2 * k == nodes { 1.0 } else { 2.0 } / nodes as f64;

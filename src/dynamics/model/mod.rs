@@ -53,6 +53,7 @@
 mod closure;
 mod evaluate;
 pub mod paths;
+pub mod places;
 
 use super::coupling::contact_point::ContactLaw;
 use super::coupling::creep_response::CreepResponse;
@@ -60,15 +61,18 @@ use super::receptance::{ReceptanceModel, TrackParams, WheelParams};
 use super::track::continuous3::Continuous3;
 use super::track::discrete::DiscreteTrack;
 use super::track::discrete3::{Discrete3, Discrete3Error};
+use super::track::layout::Layout;
 use super::wheelset::side::{Wheel3, WheelSide};
 use super::{ContactSignals, ContactVariations, TrackDynamics};
 use nalgebra::DMatrix;
 use num_complex::Complex64;
+use places::Places;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
-/// Places of the leading wheel across one sleeper bay at which the
-/// discrete track's responses are tabulated (every `d / 16`, periodic).
+/// Places of the leading wheel across each support interval (one sleeper
+/// bay: every `d / 16`) at which the discrete track's responses are
+/// tabulated ([`places`]).
 pub const BAY_PLACES: usize = 16;
 
 /// Highest harmonic frequency of the profile a tabulated model transfers
@@ -98,25 +102,27 @@ pub enum Track {
         /// The rail head in every direction.
         head: Option<Continuous3>,
     },
-    /// On discrete supports, the stretch's first node above a sleeper at
-    /// `sleeper_x0` (m).
+    /// On discrete supports laid out by `layout` (one bay of the
+    /// configured track, or a period of several supports each with its
+    /// own place, pad and sleeper), its first support at `sleeper_x0`.
     Discrete {
         /// The vertical model (and the parametric excitation's statics).
         vertical: DiscreteTrack,
         /// The rail head in every direction.
         head: Option<Discrete3>,
-        /// A sleeper's position along the rail (m).
+        /// The layout's first support's position along the rail (m).
         sleeper_x0: f64,
+        /// The supports of the period.
+        layout: Layout,
     },
 }
 
 impl Track {
-    /// The sleeper spacing (m) and a sleeper's position (m) on the
-    /// discrete track.
-    fn bay(&self) -> Option<(f64, f64)> {
+    /// The tabulated places on the discrete track.
+    fn places(&self) -> Option<Places> {
         match self {
             Track::Continuous { .. } => None,
-            Track::Discrete { vertical, sleeper_x0, .. } => Some((vertical.spacing, *sleeper_x0)),
+            Track::Discrete { sleeper_x0, layout, .. } => Some(Places::new(layout, *sleeper_x0)),
         }
     }
 
@@ -186,7 +192,7 @@ pub struct VehicleTrack {
     /// Speed (m/s) and stretch (nodes, spacing) of the table.
     key: (f64, usize, f64),
     /// Per harmonic `k = 1..=k_max` (outer) and place of the leading wheel
-    /// (inner: [`BAY_PLACES`] on the discrete track, one on the
+    /// (inner: [`BAY_PLACES`] per support of the discrete track's period, one on the
     /// continuous), `G` of eq. 2: row `channels i + c`, column `j`.
     table: Vec<Vec<DMatrix<Complex64>>>,
     /// Each wheel's parametric path on the discrete track (m, zeros on the
@@ -232,7 +238,7 @@ impl VehicleTrack {
                 closure::responses(&track, &wheels, directions, omega, speed.abs())
             })
             .collect::<Result<Vec<_>, Discrete3Error>>()?;
-        let paths = paths::wheel_paths(&track, &wheels, nodes, dx);
+        let paths = paths::wheel_paths(&track, &wheels, nodes, dx)?;
         Ok(VehicleTrack { track, wheels, directions, key: (speed, nodes, dx), table, paths })
     }
 
@@ -273,7 +279,16 @@ impl VehicleTrack {
         );
         assert_eq!(profiles.len(), self.wheels.len(), "a profile per wheel");
         let behind: Vec<f64> = self.wheels.iter().map(|w| w.behind).collect();
-        evaluate::channels(&self.table, self.channels(), &behind, profiles, &self.paths, self.track.bay(), dx, speed)
+        evaluate::channels(
+            &self.table,
+            self.channels(),
+            &behind,
+            profiles,
+            &self.paths,
+            self.track.places().as_ref(),
+            dx,
+            speed,
+        )
     }
 
     /// Each wheel's dynamic normal force (N, zero mean) from the profile it

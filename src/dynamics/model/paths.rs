@@ -5,10 +5,13 @@
 //! force (the position-dependent models of Hempelmann and Knothe 1996;
 //! Nielsen 2003 for a bogie).
 
-use super::closure::bay_places;
-use super::{BAY_PLACES, Track, Wheel};
+use super::places::Places;
+use super::{Track, Wheel};
 use crate::dynamics::track::discrete::DiscreteTrack;
+use crate::dynamics::track::discrete3::Discrete3Error;
+use crate::dynamics::track::layout::Layout;
 use nalgebra::DMatrix;
+use num_complex::Complex64;
 use std::f64::consts::PI;
 
 /// Frequency (Hz) at which the static receptance is read (its real part):
@@ -19,10 +22,19 @@ const STATIC_HZ: f64 = 0.1;
 /// mean) at its own positions `x_min + i dx`, `nodes` of them: on the
 /// discrete track under its rail's wheels' mean loads, zeros on the
 /// continuous.
-pub(super) fn wheel_paths(track: &Track, wheels: &[Wheel], nodes: usize, dx: f64) -> Vec<Vec<f64>> {
+///
+/// # Errors
+/// Where a layout's static receptances do not converge.
+pub(super) fn wheel_paths(
+    track: &Track,
+    wheels: &[Wheel],
+    nodes: usize,
+    dx: f64,
+) -> Result<Vec<Vec<f64>>, Discrete3Error> {
     let n = wheels.len();
     let mut paths = vec![vec![0.0; nodes]; n];
-    if let Track::Discrete { vertical, sleeper_x0, .. } = track {
+    if let Track::Discrete { vertical, sleeper_x0, layout, .. } = track {
+        let places = Places::new(layout, *sleeper_x0);
         for r in 0..2 {
             let on: Vec<usize> = (0..n).filter(|&i| wheels[i].rail == r).collect();
             if on.is_empty() {
@@ -30,50 +42,53 @@ pub(super) fn wheel_paths(track: &Track, wheels: &[Wheel], nodes: usize, dx: f64
             }
             let behind: Vec<f64> = on.iter().map(|&i| wheels[i].behind).collect();
             let loads: Vec<f64> = on.iter().map(|&i| wheels[i].mean_load).collect();
-            let statics = static_receptances(vertical, &behind);
-            let rail_paths = parametric_paths(&statics, vertical.spacing, &behind, &loads, *sleeper_x0, nodes, dx);
+            let statics = static_receptances(vertical, layout, &behind)?;
+            let rail_paths = parametric_paths(&statics, &places, &behind, &loads, nodes, dx);
             for (i, p) in on.into_iter().zip(rail_paths) {
                 paths[i] = p;
             }
         }
     }
-    paths
+    Ok(paths)
 }
 
 /// The static receptance matrices (m/N, the real part at [`STATIC_HZ`])
-/// of wheels `behind` (m) the leading one, at the leading wheel's
-/// [`BAY_PLACES`] places across a bay of `track`.
-pub fn static_receptances(track: &DiscreteTrack, behind: &[f64]) -> Vec<DMatrix<f64>> {
+/// of wheels `behind` (m) the leading one, at the leading wheel's places
+/// ([`Places`]) on `layout`'s period of `track`.
+///
+/// # Errors
+/// Where a layout's Floquet integral does not converge.
+pub fn static_receptances(
+    track: &DiscreteTrack,
+    layout: &Layout,
+    behind: &[f64],
+) -> Result<Vec<DMatrix<f64>>, Discrete3Error> {
     let n = behind.len();
-    let offsets: Vec<f64> = behind.iter().map(|b| -b).collect();
-    track
-        .vehicle_receptances(&bay_places(track.spacing), &offsets, 2.0 * PI * STATIC_HZ)
-        .iter()
-        .map(|a| DMatrix::from_fn(n, n, |i, j| a[i * n + j].re))
-        .collect()
-}
-
-/// The leading wheel's place in a bay of `spacing` (m) whose first sleeper
-/// is at `sleeper_x0` (m) when it is at `x` (m): the tabulated place before
-/// it, the one after (periodic over [`BAY_PLACES`]) and the weight of the
-/// one after.
-pub fn bay_place(spacing: f64, sleeper_x0: f64, x: f64) -> (usize, usize, f64) {
-    let u = (x - sleeper_x0).rem_euclid(spacing) / spacing * BAY_PLACES as f64;
-    let p = (u.floor() as usize).min(BAY_PLACES - 1);
-    (p, (p + 1) % BAY_PLACES, u - p as f64)
+    let omega = 2.0 * PI * STATIC_HZ;
+    let positions = Places::new(layout, 0.0).positions();
+    let real = |a: &[Complex64]| DMatrix::from_fn(n, n, |i, j| a[i * n + j].re);
+    if layout.is_one_bay() {
+        let offsets: Vec<f64> = behind.iter().map(|b| -b).collect();
+        return Ok(track.vehicle_receptances(&positions, &offsets, omega).iter().map(|a| real(a)).collect());
+    }
+    let pairs: Vec<(f64, f64)> =
+        positions.iter().flat_map(|x| (0..n * n).map(move |q| (x - behind[q % n], x - behind[q / n]))).collect();
+    let a = track
+        .layout_receptances(layout, &pairs, omega)
+        .map_err(|source| Discrete3Error::Quadrature { frequency: STATIC_HZ, source })?;
+    Ok(a.chunks(n * n).map(real).collect())
 }
 
 /// The path of each wheel (`behind` the leading one, m; mean loads
 /// `loads`, N) on a smooth rail (m, positive up, zero mean) at its own
 /// positions `x_min + i dx`, `nodes` of them: the static deflection under
 /// all the wheels' mean loads, `-sum_l A_jl(x, 0) N0_l`, from `statics`
-/// ([`static_receptances`]) interpolated linearly between the places.
+/// ([`static_receptances`]) interpolated linearly between the `places`.
 pub fn parametric_paths(
     statics: &[DMatrix<f64>],
-    spacing: f64,
+    places: &Places,
     behind: &[f64],
     loads: &[f64],
-    sleeper_x0: f64,
     nodes: usize,
     dx: f64,
 ) -> Vec<Vec<f64>> {
@@ -82,7 +97,7 @@ pub fn parametric_paths(
         .map(|j| {
             let path: Vec<f64> = (0..nodes)
                 .map(|i| {
-                    let (p, q, t) = bay_place(spacing, sleeper_x0, sleeper_x0 + i as f64 * dx + behind[j]);
+                    let (p, q, t) = places.locate(places.start() + i as f64 * dx + behind[j]);
                     let row = |m: &DMatrix<f64>| (0..n).map(|l| m[(j, l)] * loads[l]).sum::<f64>();
                     -((1.0 - t) * row(&statics[p]) + t * row(&statics[q]))
                 })

@@ -298,28 +298,22 @@ pub struct VerticalWaves {
 }
 
 impl super::floquet::RailWaves<1> for VerticalWaves {
-    fn green(&self, x: f64) -> SMatrix<Complex64, 1, 1> {
-        let g: Complex64 = (0..2).map(|r| self.c[r] * (Complex64::i() * self.k[r] * x.abs()).exp()).sum();
-        SMatrix::from_element(g)
+    fn wavenumbers(&self) -> Vec<Complex64> {
+        self.k.to_vec()
     }
 
-    /// [`super::waves`] eq. 2 with the scalar residues (`G` even in `x`).
-    fn lattice(&self, kappa: f64, x: f64, period: f64) -> SMatrix<Complex64, 1, 1> {
-        let cells = (x / period).floor();
-        let xr = (x - cells * period).clamp(0.0, period);
-        let zeta = Complex64::from_polar(1.0, kappa * period);
-        let mut t = Complex64::new(0.0, 0.0);
-        for r in 0..2 {
-            let ik = Complex64::i() * self.k[r];
-            let z = (ik * period).exp();
-            t +=
-                self.c[r] * ((ik * xr).exp() / (1.0 - z / zeta) + (ik * (period - xr)).exp() * zeta / (1.0 - z * zeta));
-        }
-        SMatrix::from_element(t * Complex64::from_polar(period, kappa * period * cells))
+    fn residues(&self) -> Vec<SMatrix<Complex64, 1, 1>> {
+        self.c.iter().map(|c| SMatrix::from_element(*c)).collect()
     }
 }
 
 impl DiscreteTrack {
+    /// This track with support `m` of `layout`'s pad and sleeper.
+    pub fn at_support(&self, layout: &Layout, m: usize) -> DiscreteTrack {
+        let s = &layout.supports[m];
+        DiscreteTrack { pad_stiffness: s.pad_stiffness, sleeper_mass: s.sleeper_mass, ..*self }
+    }
+
     /// The free rail's vertical waves (eq. 5) at `omega` (rad/s).
     pub fn waves(&self, omega: f64) -> VerticalWaves {
         let r = &self.rail;
@@ -341,7 +335,7 @@ impl DiscreteTrack {
     }
 
     /// The receptances (m/N) on `layout`, each support with its own pad
-    /// and sleeper ([`super::layout::Layout::track_of`]): the rail's
+    /// and sleeper: the rail's
     /// displacement at `x1` under a unit force at `x0` for each `(x0, x1)`
     /// of `pairs` (m from the layout's start) at angular frequency `omega`
     /// (rad/s), eq. 1 of [`super::floquet`] with the waves of eq. 5.
@@ -350,18 +344,12 @@ impl DiscreteTrack {
     /// Where the Floquet integral does not converge.
     pub fn layout_receptances(
         &self,
-        track: &TrackConfig,
         layout: &Layout,
         pairs: &[(f64, f64)],
         omega: f64,
     ) -> Result<Vec<Complex64>, QuadratureError> {
         let supports: Vec<Supported<1>> = (0..layout.len())
-            .map(|m| {
-                (
-                    layout.supports[m].x,
-                    SMatrix::from_element(DiscreteTrack::new(&layout.track_of(track, m)).support_stiffness(omega)),
-                )
-            })
+            .map(|m| (layout.supports[m].x, SMatrix::from_element(self.at_support(layout, m).support_stiffness(omega))))
             .collect();
         let one = SMatrix::<Complex64, 1, 1>::from_element(Complex64::new(1.0, 0.0));
         let out = floquet::response(

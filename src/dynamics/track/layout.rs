@@ -47,26 +47,74 @@ pub enum LayoutError {
     /// The positions do not describe supports of a period.
     #[error("{0}")]
     Positions(String),
-    /// A random layout's bounds cannot be met.
-    #[error("{0}")]
-    Bounds(String),
+    /// A random layout's bounds cannot be met: the key, and why.
+    #[error("{0} {1}")]
+    Bounds(String, String),
 }
 
-/// A random layout's spread: each quantity's standard deviation and
-/// bounds (zero spread: the configured value everywhere).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Scatter {
-    /// Sleeper spacing's standard deviation (m) and bounds (m).
-    pub spacing: (f64, (f64, f64)),
-    /// Pad stiffness's standard deviation (N/m) and bounds (N/m).
-    pub pad_stiffness: (f64, (f64, f64)),
-    /// Sleeper mass's standard deviation (kg) and bounds (kg).
-    pub sleeper_mass: (f64, (f64, f64)),
-    /// The generator's seed.
+/// How the supports of a period are placed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Spacing {
+    /// Every `sleeper_spacing`.
+    Uniform,
+    /// At these positions (m from the period's start, the first at 0).
+    Positions(Vec<f64>),
+    /// Each bay's spacing drawn: standard deviation (m) and bounds (m).
+    Random {
+        /// Standard deviation (m).
+        std: f64,
+        /// Bounds (m).
+        bounds: (f64, f64),
+    },
+}
+
+/// A support's value (pad stiffness, sleeper mass) along the period.
+#[derive(Debug, Clone, PartialEq)]
+pub enum PerSupport {
+    /// The configured value at every support.
+    Uniform,
+    /// These values, support after support, repeated.
+    Pattern(Vec<f64>),
+    /// Each support's drawn: standard deviation and bounds (the value's unit).
+    Random {
+        /// Standard deviation.
+        std: f64,
+        /// Bounds.
+        bounds: (f64, f64),
+    },
+}
+
+/// A layout as configured (`[track]`), before the period is known.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayoutSpec {
+    /// The supports' positions.
+    pub spacing: Spacing,
+    /// The pads' stiffnesses (N/m).
+    pub pad_stiffness: PerSupport,
+    /// The sleepers' masses (kg).
+    pub sleeper_mass: PerSupport,
+    /// The generator's seed (random forms).
     pub seed: u64,
 }
 
-/// Draws a truncated normal sample.
+impl LayoutSpec {
+    /// One bay of the configured track, repeated (the default).
+    pub fn uniform() -> LayoutSpec {
+        LayoutSpec {
+            spacing: Spacing::Uniform,
+            pad_stiffness: PerSupport::Uniform,
+            sleeper_mass: PerSupport::Uniform,
+            seed: 0,
+        }
+    }
+
+    /// Whether it is [`Self::uniform`].
+    pub fn is_uniform(&self) -> bool {
+        *self == Self::uniform()
+    }
+}
+
+/// The most draws of a truncated normal sample, and of a set of spacings.
 const MAX_DRAWS: usize = 10_000;
 
 impl Layout {
@@ -109,58 +157,46 @@ impl Layout {
         Ok(Layout { period, supports: positions.iter().map(|&x| Self::configured(track, x)).collect() })
     }
 
-    /// `bays` bays of the configured track's mean spacing, each support's
-    /// spacing to the next, pad stiffness and sleeper mass drawn from
-    /// `scatter`.
+    /// The layout of `spec` over a period of `length` (m, a whole number of
+    /// `track.sleeper_spacing` where the spacing is uniform or random),
+    /// reduced to its shortest repeating period; one bay of the configured
+    /// track where it repeats that (the same layout as [`Self::uniform`],
+    /// bit for bit). Random values are drawn in order: the spacings, then
+    /// the pads', then the sleepers'.
     ///
     /// # Errors
-    /// Where a quantity's bounds exclude its configured mean, or the
-    /// spacings cannot fill the period within their bounds.
-    pub fn random(track: &TrackConfig, bays: usize, scatter: &Scatter) -> Result<Layout, LayoutError> {
+    /// Where the positions are not those of a period, or random values'
+    /// bounds cannot be met (the message names the key).
+    pub fn from_spec(track: &TrackConfig, spec: &LayoutSpec, length: f64) -> Result<Layout, LayoutError> {
         let d = track.sleeper_spacing;
-        for (name, mean, (std, (lo, hi))) in [
-            ("spacing", d, scatter.spacing),
-            ("pad_stiffness", track.pad_stiffness, scatter.pad_stiffness),
-            ("sleeper_mass", track.sleeper_mass, scatter.sleeper_mass),
-        ] {
-            if !(lo <= mean && mean <= hi && lo < hi || std == 0.0) {
-                return Err(LayoutError::Bounds(format!(
-                    "{name}'s bounds [{lo}, {hi}] must hold its mean {mean} (and be a range)"
-                )));
+        let mut rng = ChaCha8Rng::seed_from_u64(spec.seed);
+        let bays = ((length / d).round() as usize).max(1);
+        let positions: Vec<f64> = match &spec.spacing {
+            Spacing::Uniform => (0..bays).map(|i| i as f64 * d).collect(),
+            Spacing::Positions(p) => p.clone(),
+            Spacing::Random { std, bounds } => {
+                let spacings = random_spacings(&mut rng, d, (*std, *bounds), bays)?;
+                spacings.iter().scan(0.0, |x, s| Some(std::mem::replace(x, *x + s))).collect()
             }
-        }
-        let mut rng = ChaCha8Rng::seed_from_u64(scatter.seed);
-        let period = bays as f64 * d;
-        let spacings = 'draw: {
-            for _ in 0..MAX_DRAWS {
-                let s: Vec<f64> = (0..bays)
-                    .map(|_| truncated(&mut rng, d, scatter.spacing))
-                    .collect::<Option<_>>()
-                    .ok_or_else(|| LayoutError::Bounds("spacing: no sample within its bounds".into()))?;
-                let shift = (period - s.iter().sum::<f64>()) / bays as f64;
-                let s: Vec<f64> = s.iter().map(|v| v + shift).collect();
-                let (lo, hi) = scatter.spacing.1;
-                if scatter.spacing.0 == 0.0 || s.iter().all(|v| (lo..=hi).contains(v)) {
-                    break 'draw s;
-                }
-            }
-            return Err(LayoutError::Bounds(format!(
-                "spacing: {MAX_DRAWS} draws of {bays} spacings did not fill the period {period} m within the bounds {:?}",
-                scatter.spacing.1
-            )));
         };
-        let mut x = 0.0;
-        let mut supports = Vec::with_capacity(bays);
-        for s in spacings {
-            let pad = truncated(&mut rng, track.pad_stiffness, scatter.pad_stiffness);
-            let mass = truncated(&mut rng, track.sleeper_mass, scatter.sleeper_mass);
-            let (Some(pad_stiffness), Some(sleeper_mass)) = (pad, mass) else {
-                return Err(LayoutError::Bounds("pad stiffness or sleeper mass: no sample within its bounds".into()));
-            };
-            supports.push(Support { x, pad_stiffness, sleeper_mass });
-            x += s;
+        let period = if matches!(spec.spacing, Spacing::Positions(_)) { length } else { bays as f64 * d };
+        let mut layout = Layout::at_positions(track, period, &positions)?;
+        let m = layout.len();
+        let pads = per_support(&mut rng, &spec.pad_stiffness, track.pad_stiffness, m, "track.pad_stiffness")?;
+        let masses = per_support(&mut rng, &spec.sleeper_mass, track.sleeper_mass, m, "track.sleeper_mass")?;
+        for ((s, pad), mass) in layout.supports.iter_mut().zip(pads).zip(masses) {
+            (s.pad_stiffness, s.sleeper_mass) = (pad, mass);
         }
-        Ok(Layout { period, supports })
+        let minimal = layout.minimal();
+        let one_bay = Layout::uniform(track);
+        let repeats_one_bay =
+            minimal.len() == 1 && minimal.supports[0] == one_bay.supports[0] && (minimal.period - d).abs() <= 1e-9 * d;
+        Ok(if repeats_one_bay { one_bay } else { minimal })
+    }
+
+    /// Whether it is one support per period.
+    pub fn is_one_bay(&self) -> bool {
+        self.supports.len() == 1
     }
 
     /// The shortest period over which the supports repeat (the layout
@@ -213,6 +249,75 @@ impl Layout {
     }
 }
 
+/// `bays` spacings of mean `d` (m) drawn within their bounds and shifted
+/// by one constant to fill `bays d` exactly (drawn again where the shift
+/// leaves a bound).
+fn random_spacings(
+    rng: &mut ChaCha8Rng,
+    d: f64,
+    (std, (lo, hi)): (f64, (f64, f64)),
+    bays: usize,
+) -> Result<Vec<f64>, LayoutError> {
+    if !(lo < d && d < hi) {
+        return Err(LayoutError::Bounds(
+            "track.spacing_min".into(),
+            format!("= {lo} m and track.spacing_max = {hi} m must hold the mean spacing track.sleeper_spacing = {d} m"),
+        ));
+    }
+    for _ in 0..MAX_DRAWS {
+        let s: Vec<f64> =
+            (0..bays).map(|_| truncated(rng, d, (std, (lo, hi)))).collect::<Option<_>>().ok_or_else(|| {
+                LayoutError::Bounds("track.spacing_std".into(), format!("= {std} m: no sample within [{lo}, {hi}] m"))
+            })?;
+        let shift = (bays as f64 * d - s.iter().sum::<f64>()) / bays as f64;
+        let s: Vec<f64> = s.iter().map(|v| v + shift).collect();
+        if s.iter().all(|v| (lo..=hi).contains(v)) {
+            return Ok(s);
+        }
+    }
+    Err(LayoutError::Bounds(
+        "track.spacing_std".into(),
+        format!(
+            "= {std} m: {MAX_DRAWS} draws of {bays} spacings did not fill the stretch within track.spacing_min = {lo} m \
+             and track.spacing_max = {hi} m"
+        ),
+    ))
+}
+
+/// Each of `m` supports' value of `which` (the configured `mean` where
+/// uniform), `key` the value's config key.
+fn per_support(
+    rng: &mut ChaCha8Rng,
+    which: &PerSupport,
+    mean: f64,
+    m: usize,
+    key: &str,
+) -> Result<Vec<f64>, LayoutError> {
+    match which {
+        PerSupport::Uniform => Ok(vec![mean; m]),
+        PerSupport::Pattern(p) => Ok((0..m).map(|i| p[i % p.len()]).collect()),
+        PerSupport::Random { std, bounds: (lo, hi) } => {
+            if !(*lo < mean && mean < *hi) {
+                return Err(LayoutError::Bounds(
+                    format!("{key}_min"),
+                    format!("= {} and {key}_max = {} must hold the mean {key} = {}", show(*lo), show(*hi), show(mean)),
+                ));
+            }
+            (0..m).map(|_| truncated(rng, mean, (*std, (*lo, *hi)))).collect::<Option<_>>().ok_or_else(|| {
+                LayoutError::Bounds(
+                    format!("{key}_std"),
+                    format!("= {}: no sample within [{}, {}]", show(*std), show(*lo), show(*hi)),
+                )
+            })
+        }
+    }
+}
+
+/// A value as a config would write it (`2e8`, `0.6`).
+fn show(v: f64) -> String {
+    if v != 0.0 && !(1e-3..1e5).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
+}
+
 /// A normal sample of `mean` and `(std, bounds)` within the bounds
 /// (rejection); `mean` where `std` is zero; `None` after [`MAX_DRAWS`]
 /// rejections.
@@ -234,21 +339,17 @@ fn standard_normal(rng: &mut ChaCha8Rng) -> f64 {
 mod tests {
     use super::*;
 
-    fn scatter(std: f64, seed: u64) -> Scatter {
-        Scatter {
-            spacing: (std, (0.45, 0.75)),
-            pad_stiffness: (0.0, (0.0, 0.0)),
-            sleeper_mass: (0.0, (0.0, 0.0)),
-            seed,
-        }
+    fn random(std: f64, seed: u64) -> LayoutSpec {
+        LayoutSpec { spacing: Spacing::Random { std, bounds: (0.45, 0.75) }, seed, ..LayoutSpec::uniform() }
     }
 
     #[test]
     fn a_random_layout_is_its_seeds_and_fills_its_period_within_bounds() {
         let t = TrackConfig::default();
-        let a = Layout::random(&t, 10, &scatter(0.03, 7)).unwrap();
-        assert_eq!(a, Layout::random(&t, 10, &scatter(0.03, 7)).unwrap(), "same seed, same layout");
-        assert_ne!(a, Layout::random(&t, 10, &scatter(0.03, 8)).unwrap(), "another seed, another layout");
+        let a = Layout::from_spec(&t, &random(0.03, 7), 6.0).unwrap();
+        assert_eq!(a, Layout::from_spec(&t, &random(0.03, 7), 6.0).unwrap(), "same seed, same layout");
+        assert_ne!(a, Layout::from_spec(&t, &random(0.03, 8), 6.0).unwrap(), "another seed, another layout");
+        assert_eq!(a.len(), 10);
         assert!((a.period - 6.0).abs() < 1e-12);
         let mut x: Vec<f64> = a.supports.iter().map(|s| s.x).collect();
         x.push(a.period);
@@ -262,12 +363,27 @@ mod tests {
     }
 
     #[test]
-    fn bounds_that_exclude_the_mean_are_refused() {
+    fn bounds_that_exclude_the_mean_are_refused_naming_the_key() {
         let t = TrackConfig::default();
-        let mut s = scatter(0.03, 1);
-        s.spacing.1 = (0.62, 0.8);
-        let e = Layout::random(&t, 4, &s).unwrap_err().to_string();
-        assert!(e.contains("spacing") && e.contains("0.62"), "{e}");
+        let spec = LayoutSpec { spacing: Spacing::Random { std: 0.03, bounds: (0.62, 0.8) }, ..random(0.03, 1) };
+        let e = Layout::from_spec(&t, &spec, 2.4).unwrap_err().to_string();
+        assert!(e.contains("track.spacing_min = 0.62"), "{e}");
+        let spec =
+            LayoutSpec { pad_stiffness: PerSupport::Random { std: 1e7, bounds: (1e6, 1e8) }, ..LayoutSpec::uniform() };
+        let e = Layout::from_spec(&t, &spec, 2.4).unwrap_err().to_string();
+        assert!(e.contains("track.pad_stiffness_max"), "{e}");
+    }
+
+    #[test]
+    fn a_pattern_repeats_and_a_uniform_stretch_is_one_bay() {
+        let t = TrackConfig::default();
+        assert_eq!(Layout::from_spec(&t, &LayoutSpec::uniform(), 3.0).unwrap(), Layout::uniform(&t));
+        let spec = LayoutSpec { pad_stiffness: PerSupport::Pattern(vec![1e8, 3e8]), ..LayoutSpec::uniform() };
+        let l = Layout::from_spec(&t, &spec, 2.4).unwrap();
+        assert_eq!(l.len(), 2, "two bays repeat over four");
+        assert_eq!(l.supports[1].pad_stiffness, 3e8);
+        let spec = LayoutSpec { spacing: Spacing::Positions(vec![0.0, 0.6, 1.2]), ..LayoutSpec::uniform() };
+        assert_eq!(Layout::from_spec(&t, &spec, 1.8).unwrap(), Layout::uniform(&t), "identical bays: one bay");
     }
 
     #[test]

@@ -2,10 +2,15 @@
 //! (what `corrugation track` writes): the rail point receptance of the
 //! discrete model at positions across a sleeper bay, the continuous
 //! model's, the wheel's and the contact spring's, the resonances, and the
-//! transfer receptances between the wheels of a vehicle.
+//! transfer receptances between the wheels of a vehicle; on a layout of
+//! several supports per period, the receptances at every support and
+//! mid-span and each span's pinned-pinned peak.
 
 use super::TrackConfig;
 use super::discrete::DiscreteTrack;
+use super::discrete3::{Discrete3, Discrete3Error};
+use super::layout::Layout;
+use super::section::Mat4;
 use crate::dynamics::receptance::{TrackParams, WheelParams};
 use num_complex::Complex64;
 use rayon::prelude::*;
@@ -125,4 +130,80 @@ pub fn track_response(
         rail_on_pad,
         track_on_ballast,
     }
+}
+
+/// The track's response on a layout of several supports per period
+/// (`corrugation track` with the layout's keys): at every support and
+/// every mid-span.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LayoutResponse {
+    /// The layout.
+    pub layout: Layout,
+    /// The places (m from the period's start): support `m` at `2 m`, the
+    /// mid-span after it at `2 m + 1`.
+    pub place: Vec<f64>,
+    /// The vertical rail point receptance (m/N), (place, frequency).
+    pub rail: Vec<Vec<Complex64>>,
+    /// The rail head's point receptances in every direction (m/N; 4 x 4
+    /// with the rotation about z), (place, frequency), where asked.
+    pub head: Option<Vec<Vec<Mat4>>>,
+    /// Per span (after each support): its simply supported bending
+    /// frequency (Hz), and the frequency (Hz) and magnitude (m/N) of its
+    /// mid-span receptance's largest local peak within a factor 1.5 of it
+    /// (the pinned-pinned peak; `NaN` where the sweep holds none).
+    pub pinned_pinned: Vec<(f64, f64, f64)>,
+}
+
+/// The response of `track` laid out by `layout` at `frequency` (Hz), the
+/// head's in every direction with the contact `head_offset` (m) right of
+/// the centre line where given.
+///
+/// # Errors
+/// Where a Floquet integral does not converge.
+pub fn layout_response(
+    track: &TrackConfig,
+    layout: &Layout,
+    frequency: &[f64],
+    head_offset: Option<f64>,
+) -> Result<LayoutResponse, Discrete3Error> {
+    let vertical = DiscreteTrack::new(track);
+    let mut bounds: Vec<f64> = layout.supports.iter().map(|s| s.x).collect();
+    bounds.push(layout.period);
+    let place: Vec<f64> = bounds.windows(2).flat_map(|w| [w[0], 0.5 * (w[0] + w[1])]).collect();
+    let pairs: Vec<(f64, f64)> = place.iter().map(|&x| (x, x)).collect();
+    let by_frequency: Vec<Vec<Complex64>> = frequency
+        .par_iter()
+        .map(|f| {
+            vertical
+                .layout_receptances(layout, &pairs, 2.0 * PI * f)
+                .map_err(|source| Discrete3Error::Quadrature { frequency: *f, source })
+        })
+        .collect::<Result<_, _>>()?;
+    let rail: Vec<Vec<Complex64>> = (0..place.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect();
+    let head = match head_offset {
+        Some(offset) => {
+            let head = Discrete3::new(track, offset);
+            let by_frequency: Vec<Vec<Mat4>> = frequency
+                .par_iter()
+                .map(|f| head.layout_heads(layout, &pairs, 2.0 * PI * f, true))
+                .collect::<Result<_, _>>()?;
+            Some((0..place.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect())
+        }
+        None => None,
+    };
+    let pinned_pinned = bounds
+        .windows(2)
+        .enumerate()
+        .map(|(m, w)| {
+            let span = DiscreteTrack { spacing: w[1] - w[0], ..vertical }.pinned_pinned_frequency();
+            let a: Vec<f64> = rail[2 * m + 1].iter().map(|v| v.norm()).collect();
+            let (f, a) = (1..a.len().saturating_sub(1))
+                .filter(|&k| (span / 1.5..=span * 1.5).contains(&frequency[k]) && a[k] >= a[k - 1] && a[k] >= a[k + 1])
+                .map(|k| (frequency[k], a[k]))
+                .max_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap_or((f64::NAN, f64::NAN));
+            (span, f, a)
+        })
+        .collect();
+    Ok(LayoutResponse { layout: layout.clone(), place, rail, head, pinned_pinned })
 }

@@ -112,12 +112,12 @@ impl Waves {
 }
 
 impl super::floquet::RailWaves<6> for Waves {
-    fn green(&self, x: f64) -> Mat6 {
-        Waves::green(self, x)
+    fn wavenumbers(&self) -> Vec<Complex64> {
+        self.lambda.to_vec()
     }
 
-    fn lattice(&self, kappa: f64, x: f64, period: f64) -> Mat6 {
-        Waves::lattice(self, kappa, x, period)
+    fn residues(&self) -> Vec<Mat6> {
+        self.modes.to_vec()
     }
 }
 

@@ -1,0 +1,122 @@
+//! Track layouts (`[track]`'s layout keys): read, refused with the key
+//! named, deterministic with their seed, identical bays the one-bay track
+//! exactly, and the vehicle-track model on an irregular layout against
+//! its closure written out from the layout's receptances.
+use corrugation::config::load_str;
+use corrugation::dynamics::model::{Directions, Track, VehicleTrack, Wheel};
+use corrugation::dynamics::track::TrackConfig;
+use corrugation::dynamics::track::discrete::DiscreteTrack;
+use corrugation::dynamics::track::layout::Layout;
+use corrugation::dynamics::wheelset::side::Wheel3;
+use num_complex::Complex64;
+use std::f64::consts::PI;
+
+const DISCRETE: &str = include_str!("../configs/growth_discrete.toml");
+
+/// growth_discrete.toml over two bays with `set` (key=value overrides).
+fn load(set: &[&str]) -> Result<corrugation::config::Resolved, Vec<String>> {
+    let mut all: Vec<String> = vec!["rail.x_max=1.2".into(), "passage.end=1.2".into()];
+    all.extend(set.iter().map(|s| s.to_string()));
+    load_str(DISCRETE, "test.toml", &all).map_err(|e| e.errors.iter().map(|e| e.to_string()).collect())
+}
+
+fn error(set: &[&str]) -> String {
+    load(set).expect_err("refused").join("\n")
+}
+
+#[test]
+fn identical_bays_given_by_position_are_the_one_bay_track_exactly() {
+    let plain = load(&[]).unwrap();
+    let listed = load(&["track.sleeper_positions=[0.0, 0.6]", "track.pad_stiffness_pattern=[2e8]"]).unwrap();
+    assert_eq!(listed.scene.layout, Layout::uniform(&listed.scene.track));
+    // The passage is a function of the scene: the same scene, the same
+    // growth passage bit for bit.
+    assert_eq!(listed.scene, plain.scene);
+}
+
+#[test]
+fn a_random_layout_is_its_seeds() {
+    let set = |seed: &str| {
+        let seed = format!("track.seed={seed}");
+        load(&["rail.x_max=3.0", "passage.end=3.0", "track.spacing_std=0.02", "track.pad_stiffness_std=3e7", &seed])
+            .unwrap()
+            .scene
+            .layout
+    };
+    let (a, b) = (set("4"), set("4"));
+    assert_eq!(a, b);
+    assert_eq!(a.len(), 5);
+    assert_ne!(a, set("5"));
+    assert!(a.supports.iter().any(|s| s.pad_stiffness != 2e8));
+}
+
+#[test]
+fn bad_layouts_are_refused_naming_the_key() {
+    for (set, expect) in [
+        (
+            vec!["track.sleeper_positions=[0.0, 0.7, 0.5]"],
+            "track.sleeper_positions: sleeper 3 at 0.5 m does not follow",
+        ),
+        (vec!["track.sleeper_positions=[0.1, 0.7]"], "track.sleeper_positions: the first sleeper must be at 0 m"),
+        (vec!["track.sleeper_positions=[0.0, 1.2]"], "track.sleeper_positions: the last sleeper at 1.2 m"),
+        (vec!["track.spacing_std=0.02"], "track.seed: missing"),
+        (
+            vec!["track.spacing_std=0.02", "track.seed=1", "track.spacing_min=0.61"],
+            "track.spacing_min: = 0.61 m and track.spacing_max",
+        ),
+        (
+            vec!["track.pad_stiffness_std=1e7", "track.seed=1", "track.pad_stiffness_max=1.5e8"],
+            "track.pad_stiffness_min: = 1.6e8 and track.pad_stiffness_max = 1.5e8 must hold the mean track.pad_stiffness = 2e8",
+        ),
+        (
+            vec!["track.sleeper_positions=[0.0, 0.6]", "track.spacing_std=0.02"],
+            "track.spacing_std: and track.sleeper_positions",
+        ),
+        (vec!["track.sleeper_positions=[0.0, 0.6]", "dynamics.model=receptance"], "track.sleeper_positions: lays out"),
+        (vec!["track.spacing_std=0.02", "track.seed=1", "rail.x_max=1.5", "passage.end=1.5"], "rail.x_max:"),
+    ] {
+        let e = error(&set);
+        assert!(e.contains(expect), "{set:?}: expected `{expect}` in:\n{e}");
+    }
+}
+
+#[test]
+fn the_model_on_an_irregular_layout_is_its_closure_at_every_place() {
+    // One wheel vertically: G = 1 / (alpha_rail(x) + alpha_wheel + 1 /
+    // k_H) at each tabulated place, alpha_rail from the layout's own
+    // receptances; the places divide each support interval in 16.
+    let t = TrackConfig::default();
+    let mut layout = Layout::at_positions(&t, 1.2, &[0.0, 0.5]).unwrap();
+    layout.supports[1].pad_stiffness = 4e8;
+    let (mass, k_h, speed, dx) = (600.0, 1.8e9, 30.0, 1e-3);
+    let nodes = 1200;
+    let track =
+        Track::Discrete { vertical: DiscreteTrack::new(&t), head: None, sleeper_x0: 0.0, layout: layout.clone() };
+    let wheel = Wheel::vertical(0.0, Wheel3::new(mass, 0.46), k_h, 1e5);
+    let model = VehicleTrack::new(track, vec![wheel], Directions::Vertical, nodes, dx, speed).unwrap();
+    let vertical = DiscreteTrack::new(&t);
+    let mut worst = 0.0f64;
+    for k in [7, 40, 43, 90] {
+        let omega = 2.0 * PI * speed * k as f64 / (nodes as f64 * dx);
+        for (place, x) in [(0, 0.0), (8, 0.25), (16, 0.5), (24, 0.85)] {
+            let rail = vertical.layout_receptances(&layout, &[(x, x)], omega).unwrap()[0];
+            let own = Complex64::new(-1.0 / (mass * omega * omega) + 1.0 / k_h, 0.0);
+            let expected = 1.0 / (rail + own);
+            let got = model.response(k, place)[(0, 0)];
+            worst = worst.max((got - expected).norm() / expected.norm());
+        }
+    }
+    assert!(worst < 1e-12, "{worst:e}");
+    // On a smooth rail the wheel dips more at mid-span than over a
+    // support, and more over the softer support than over the stiffer.
+    let path = &model.parametric_paths()[0];
+    let at = |x: f64| path[(x / dx).round() as usize];
+    assert!(
+        at(0.25) < at(0.5) && at(0.85) < at(0.0) && at(0.0) < at(0.5),
+        "{} {} {} {}",
+        at(0.0),
+        at(0.25),
+        at(0.5),
+        at(0.85)
+    );
+}
