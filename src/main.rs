@@ -330,7 +330,7 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
         }
         None => None,
     };
-    let layout = if s.layout.is_one_bay() {
+    let layout = if s.layout.is_one_bay(&s.track) {
         None
     } else {
         match corrugation::dynamics::track::response::layout_response(&s.track, &s.layout, &r.frequency, offset) {

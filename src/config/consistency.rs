@@ -135,7 +135,7 @@ pub(super) fn check_sleeper_bays(scene: &Scene, errors: &mut Vec<ConfigError>) {
     let (length, d) = (scene.rail.x_max - scene.rail.x_min, scene.layout.period);
     let bays = length / d;
     if bays < 0.5 || (bays - bays.round()).abs() > 1e-6 * bays.max(1.0) {
-        let what = if scene.layout.is_one_bay() {
+        let what = if scene.layout.is_one_bay(&scene.track) {
             format!("sleeper bays (track.sleeper_spacing = {d} m)")
         } else {
             format!("the track layout's periods ({d} m, its {} supports)", scene.layout.len())

@@ -99,10 +99,14 @@ pub(super) fn read(
         );
         ok = false;
     }
-    let layout = match (spacing, pad, sleeper) {
-        (Some(d), Some(k), Some(m)) => layout_spec(&mut s, (d, k, m)),
-        _ => None,
-    };
+    // The layout's keys are read whatever the rest holds (their bounds'
+    // defaults about the configured means, or the defaults).
+    let means = (
+        spacing.unwrap_or(SLEEPER_SPACING),
+        pad.unwrap_or(PAD_STIFFNESS_PER_PAD),
+        sleeper.unwrap_or(HALF_SLEEPER_MASS),
+    );
+    let layout = layout_spec(&mut s, means);
     resolved.insert("track".into(), Value::Table(s.finish()));
     let track = TrackConfig {
         rail_name: RailSection::PRESETS.into_iter().find(|p| Some(*p) == name.as_deref())?,
@@ -128,54 +132,71 @@ pub(super) fn read(
 /// stiffness and sleeper mass. Bounds default to four standard deviations
 /// about the mean (above a tenth of it).
 fn layout_spec(s: &mut Section, (d, pad, mass): (f64, f64, f64)) -> Option<LayoutSpec> {
-    let spacing = match (s.has("sleeper_positions"), s.has("spacing_std")) {
-        (true, true) => {
+    let positions = s
+        .has("sleeper_positions")
+        .then(|| s.f64_list("sleeper_positions", Vec::new(), Range::NonNegative, MAX_SUPPORTS));
+    let drawn = random(s, "spacing", d, Range::Closed(0.0, 0.2));
+    let spacing = match (positions, drawn) {
+        (Some(_), Some(_)) => {
             s.error("spacing_std", "and track.sleeper_positions both place the sleepers: give one of them".into());
             None
         }
-        (true, false) => {
-            s.f64_list("sleeper_positions", Vec::new(), Range::NonNegative, MAX_SUPPORTS).map(Spacing::Positions)
-        }
-        (false, true) => {
-            random(s, "spacing", d, Range::Closed(0.0, 0.2)).map(|(std, bounds)| Spacing::Random { std, bounds })
-        }
-        (false, false) => Some(Spacing::Uniform),
+        (Some(p), None) => p.map(Spacing::Positions),
+        (None, Some(Some((0.0, _)))) => Some(Spacing::Uniform),
+        (None, Some(r)) => r.map(|(std, bounds)| Spacing::Random { std, bounds }),
+        (None, None) => Some(Spacing::Uniform),
     };
     let pad_stiffness = per_support(s, "pad_stiffness", pad, Range::Positive);
     let sleeper_mass = per_support(s, "sleeper_mass", mass, Range::NonNegative);
-    let (spacing, pad_stiffness, sleeper_mass) = (spacing?, pad_stiffness?, sleeper_mass?);
-    let drawn = matches!(spacing, Spacing::Random { .. })
-        || [&pad_stiffness, &sleeper_mass].iter().any(|v| matches!(v, PerSupport::Random { .. }));
-    let seed = if drawn || s.has("seed") { s.usize("seed", None, 0, usize::MAX >> 1)? as u64 } else { 0 };
-    Some(LayoutSpec { spacing, pad_stiffness, sleeper_mass, seed })
+    let any_drawn = matches!(spacing, Some(Spacing::Random { .. }))
+        || [&pad_stiffness, &sleeper_mass].iter().any(|v| matches!(v, Some(PerSupport::Random { .. })));
+    let seed =
+        if any_drawn || s.has("seed") { s.usize("seed", None, 0, usize::MAX >> 1).map(|v| v as u64) } else { Some(0) };
+    Some(LayoutSpec { spacing: spacing?, pad_stiffness: pad_stiffness?, sleeper_mass: sleeper_mass?, seed: seed? })
 }
 
 /// The most supports a layout lists.
 const MAX_SUPPORTS: usize = 10_000;
 
 /// `<name>_std` and its bounds `<name>_min`, `<name>_max` (defaults: four
-/// standard deviations about `mean`, above a tenth of it).
-fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<(f64, (f64, f64))> {
-    let std = s.f64(&format!("{name}_std"), None, std_range)?;
-    let lo = s.f64(&format!("{name}_min"), Some((mean - 4.0 * std).max(0.1 * mean)), Range::NonNegative);
-    let hi = s.f64(&format!("{name}_max"), Some(mean + 4.0 * std), Range::Positive);
-    Some((std, (lo?, hi?)))
+/// standard deviations about `mean`, above a tenth of it), where
+/// `<name>_std` is given (`Some(None)` where a key is invalid); a zero
+/// deviation draws nothing (the bounds are read and the mean kept).
+#[allow(clippy::option_option)]
+fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<Option<(f64, (f64, f64))>> {
+    let key = format!("{name}_std");
+    if !s.has(&key) {
+        return None;
+    }
+    let std = s.f64(&key, None, std_range);
+    let spread = std.unwrap_or(0.0);
+    let lo = s.f64(&format!("{name}_min"), Some((mean - 4.0 * spread).max(0.1 * mean)), Range::NonNegative);
+    let hi = s.f64(&format!("{name}_max"), Some(mean + 4.0 * spread), Range::Positive);
+    Some(match (std, lo, hi) {
+        (Some(std), Some(lo), Some(hi)) => Some((std, (lo, hi))),
+        _ => None,
+    })
 }
 
 /// `<name>_pattern` (a value per support, repeated) or `<name>_std` with
-/// its bounds, not both; the configured value at every support otherwise.
+/// its bounds, not both; the configured value at every support otherwise
+/// (and with a zero deviation).
 fn per_support(s: &mut Section, name: &str, mean: f64, range: Range) -> Option<PerSupport> {
-    let (pattern, std) = (format!("{name}_pattern"), format!("{name}_std"));
-    match (s.has(&pattern), s.has(&std)) {
-        (true, true) => {
-            s.error(&std, format!("and track.{pattern} both set the supports' {name}: give one of them"));
+    let pattern = format!("{name}_pattern");
+    let listed = s.has(&pattern).then(|| s.f64_list(&pattern, Vec::new(), range, MAX_SUPPORTS));
+    let drawn = random(s, name, mean, Range::NonNegative);
+    match (listed, drawn) {
+        (Some(_), Some(_)) => {
+            s.error(
+                &format!("{name}_std"),
+                format!("and track.{pattern} both set the supports' {name}: give one of them"),
+            );
             None
         }
-        (true, false) => s.f64_list(&pattern, Vec::new(), range, MAX_SUPPORTS).map(PerSupport::Pattern),
-        (false, true) => {
-            random(s, name, mean, Range::NonNegative).map(|(std, bounds)| PerSupport::Random { std, bounds })
-        }
-        (false, false) => Some(PerSupport::Uniform),
+        (Some(p), None) => p.map(PerSupport::Pattern),
+        (None, Some(Some((0.0, _)))) => Some(PerSupport::Uniform),
+        (None, Some(r)) => r.map(|(std, bounds)| PerSupport::Random { std, bounds }),
+        (None, None) => Some(PerSupport::Uniform),
     }
 }
 
@@ -210,12 +231,13 @@ pub(super) fn layout(
     if spec.is_uniform() {
         return one_bay;
     }
-    let key = match (&spec.spacing, &spec.pad_stiffness) {
-        (Spacing::Positions(_), _) => "track.sleeper_positions",
-        (Spacing::Random { .. }, _) => "track.spacing_std",
-        (_, PerSupport::Pattern(_)) => "track.pad_stiffness_pattern",
-        (_, PerSupport::Random { .. }) => "track.pad_stiffness_std",
-        _ => "track.sleeper_mass_pattern",
+    let key = match (&spec.spacing, &spec.pad_stiffness, &spec.sleeper_mass) {
+        (Spacing::Positions(_), ..) => "track.sleeper_positions",
+        (Spacing::Random { .. }, ..) => "track.spacing_std",
+        (_, PerSupport::Pattern(_), _) => "track.pad_stiffness_pattern",
+        (_, PerSupport::Random { .. }, _) => "track.pad_stiffness_std",
+        (.., PerSupport::Pattern(_)) => "track.sleeper_mass_pattern",
+        _ => "track.sleeper_mass_std",
     };
     if !matches!(dynamics, Some(DynamicsKind::Discrete { .. })) {
         errors.push(ConfigError::new(

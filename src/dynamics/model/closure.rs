@@ -7,10 +7,11 @@
 //! `M = (alpha_w + 1 / k_H) I + A_zz`, `P = M^-1 r` (Grassie et al. 1982
 //! eq. 5 for one wheel; Wu and Thompson 2005 for several).
 
-use super::places::Places;
+use super::places::{Places, load_and_watched};
 use super::{BAY_PLACES, Directions, Track, Wheel};
 use crate::dynamics::coupling::contact_point::ContactLaw;
 use crate::dynamics::track::discrete3::Discrete3Error;
+use crate::dynamics::track::discrete3::quadrature_at;
 use crate::dynamics::track::section::Mat4;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -91,11 +92,9 @@ fn vertical_rail(track: &Track, wheels: &[Wheel], omega: f64) -> Result<Vec<Vec<
         }
         Track::Discrete { vertical, layout, .. } => {
             let positions = Places::new(layout, 0.0).positions();
-            if !layout.is_one_bay() {
-                let pairs = wheel_pairs(&positions, wheels);
-                let a = vertical.layout_receptances(layout, &pairs, omega).map_err(|source| {
-                    Discrete3Error::Quadrature { frequency: omega / (2.0 * std::f64::consts::PI), source }
-                })?;
+            if !vertical.is_one_bay(layout) {
+                let pairs = load_and_watched(&positions, &s);
+                let a = vertical.layout_receptances(layout, &pairs, omega).map_err(quadrature_at(omega))?;
                 return Ok(a.chunks(n * n).map(|c| split(c.to_vec())).collect());
             }
             let offsets: Vec<f64> = s.iter().map(|b| -b).collect();
@@ -106,17 +105,6 @@ fn vertical_rail(track: &Track, wheels: &[Wheel], omega: f64) -> Result<Vec<Vec<
             Ok(mirrored(computed, |a| a.clone()).into_iter().map(split).collect())
         }
     }
-}
-
-/// The (load, watched) places of every pair of wheels `[j n + l]` (wheel
-/// `j` watched, `l` loaded) with the leading wheel at each of `positions`
-/// (m).
-fn wheel_pairs(positions: &[f64], wheels: &[Wheel]) -> Vec<(f64, f64)> {
-    let n = wheels.len();
-    positions
-        .iter()
-        .flat_map(|x| (0..n * n).map(move |q| (x - wheels[q % n].behind, x - wheels[q / n].behind)))
-        .collect()
 }
 
 /// The places whose receptances are computed: all of them, or, where the
@@ -167,16 +155,17 @@ fn head_rail(track: &Track, wheels: &[Wheel], omega: f64, spin: bool) -> Result<
             let distances: Vec<f64> = (0..n * n).map(|p| wheels[p % n].behind - wheels[p / n].behind).collect();
             vec![head.heads(omega, &distances, spin)?]
         }
-        Track::Discrete { layout, head, .. } => {
+        Track::Discrete { vertical, layout, head, .. } => {
             let head = head.as_ref().expect("checked: the head's model in every direction");
             let positions = Places::new(layout, 0.0).positions();
-            if layout.is_one_bay() {
-                let pairs = wheel_pairs(&positions[..computed_places(wheels)], wheels);
+            let behind: Vec<f64> = wheels.iter().map(|w| w.behind).collect();
+            if vertical.is_one_bay(layout) {
+                let pairs = load_and_watched(&positions[..computed_places(wheels)], &behind);
                 let computed: Vec<Vec<Mat4>> =
                     head.heads(&pairs, omega, spin)?.chunks(n * n).map(|c| c.to_vec()).collect();
                 mirrored(computed, |blocks| blocks.iter().map(|a| mirror(a, ALONG)).collect())
             } else {
-                let pairs = wheel_pairs(&positions, wheels);
+                let pairs = load_and_watched(&positions, &behind);
                 head.layout_heads(layout, &pairs, omega, spin)?.chunks(n * n).map(|c| c.to_vec()).collect()
             }
         }

@@ -136,14 +136,14 @@ fn discrete(
             for m in 0..nodes {
                 let x = m as f64 * dx;
                 let (p, q, t) = places.locate(places.start() + x + behind[i]);
-                for (k, (places, seen)) in table.iter().zip(&met).enumerate().map(|(h, v)| (h + 1, v)) {
+                for (k, (responses, seen)) in table.iter().zip(&met).enumerate().map(|(h, v)| (h + 1, v)) {
                     let phase = Complex64::from_polar(1.0, 2.0 * PI * k as f64 * x / length);
                     let weight = if 2 * k == nodes { 1.0 } else { 2.0 } / nodes as f64;
                     for (c, channel) in out.iter_mut().enumerate() {
                         let row = channels * i + c;
                         let mut sum = Complex64::new(0.0, 0.0);
                         for (j, r) in seen.iter().enumerate() {
-                            let g = (1.0 - t) * places[p][(row, j)] + t * places[q][(row, j)];
+                            let g = (1.0 - t) * responses[p][(row, j)] + t * responses[q][(row, j)];
                             sum += if speed >= 0.0 { g } else { g.conj() } * r;
                         }
                         channel[m] += weight * (sum * phase).re;

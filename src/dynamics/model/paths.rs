@@ -5,10 +5,10 @@
 //! force (the position-dependent models of Hempelmann and Knothe 1996;
 //! Nielsen 2003 for a bogie).
 
-use super::places::Places;
+use super::places::{Places, load_and_watched};
 use super::{Track, Wheel};
 use crate::dynamics::track::discrete::DiscreteTrack;
-use crate::dynamics::track::discrete3::Discrete3Error;
+use crate::dynamics::track::discrete3::{Discrete3Error, quadrature_at};
 use crate::dynamics::track::layout::Layout;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -67,15 +67,12 @@ pub fn static_receptances(
     let omega = 2.0 * PI * STATIC_HZ;
     let positions = Places::new(layout, 0.0).positions();
     let real = |a: &[Complex64]| DMatrix::from_fn(n, n, |i, j| a[i * n + j].re);
-    if layout.is_one_bay() {
+    if track.is_one_bay(layout) {
         let offsets: Vec<f64> = behind.iter().map(|b| -b).collect();
         return Ok(track.vehicle_receptances(&positions, &offsets, omega).iter().map(|a| real(a)).collect());
     }
-    let pairs: Vec<(f64, f64)> =
-        positions.iter().flat_map(|x| (0..n * n).map(move |q| (x - behind[q % n], x - behind[q / n]))).collect();
-    let a = track
-        .layout_receptances(layout, &pairs, omega)
-        .map_err(|source| Discrete3Error::Quadrature { frequency: STATIC_HZ, source })?;
+    let pairs = load_and_watched(&positions, behind);
+    let a = track.layout_receptances(layout, &pairs, omega).map_err(quadrature_at(omega))?;
     Ok(a.chunks(n * n).map(real).collect())
 }
 

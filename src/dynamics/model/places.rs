@@ -60,6 +60,14 @@ impl Places {
     }
 }
 
+/// The (load, watched) places (m) of every pair of wheels `[j n + l]`
+/// (wheel `j` watched, `l` loaded; `behind` the leading wheel, m) with the
+/// leading wheel at each of `positions` (m).
+pub fn load_and_watched(positions: &[f64], behind: &[f64]) -> Vec<(f64, f64)> {
+    let n = behind.len();
+    positions.iter().flat_map(|x| (0..n * n).map(move |q| (x - behind[q % n], x - behind[q / n]))).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

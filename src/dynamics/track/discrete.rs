@@ -308,13 +308,20 @@ impl super::floquet::RailWaves<1> for VerticalWaves {
 }
 
 impl DiscreteTrack {
+    /// Whether `layout` is one bay of this track (its own spacing, pad and
+    /// sleeper): the one-bay models then serve it.
+    pub fn is_one_bay(&self, layout: &Layout) -> bool {
+        layout.is_one_bay_of((self.spacing, self.pad_stiffness, self.sleeper_mass))
+    }
+
     /// This track with support `m` of `layout`'s pad and sleeper.
     pub fn at_support(&self, layout: &Layout, m: usize) -> DiscreteTrack {
         let s = &layout.supports[m];
         DiscreteTrack { pad_stiffness: s.pad_stiffness, sleeper_mass: s.sleeper_mass, ..*self }
     }
 
-    /// The free rail's vertical waves (eq. 5) at `omega` (rad/s).
+    /// The free rail's vertical waves (eq. 5) at `omega` (rad/s); the
+    /// rail's loss factor (> 0) keeps them off the real axis.
     pub fn waves(&self, omega: f64) -> VerticalWaves {
         let r = &self.rail;
         let loss = Complex64::new(1.0, self.rail_loss_factor);
@@ -322,8 +329,12 @@ impl DiscreteTrack {
         let w2 = omega * omega;
         let (a, b, c) =
             (ei * kga, -(kga * r.rotary_inertia + r.mass * ei) * w2, -(kga - r.rotary_inertia * w2) * r.mass * w2);
+        // The roots without cancellation: q = -(b + sign root) / 2 with the
+        // sign that adds, s = q / a and c / q.
         let root = (b * b - 4.0 * a * c).sqrt();
-        let s = [(-b + root) / (2.0 * a), (-b - root) / (2.0 * a)];
+        let root = if (b.conj() * root).re >= 0.0 { root } else { -root };
+        let q = -0.5 * (b + root);
+        let s = [q / a, c / q];
         let k = s.map(|s| {
             let k = s.sqrt();
             if k.im < 0.0 { -k } else { k }

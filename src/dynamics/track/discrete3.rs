@@ -59,6 +59,12 @@ pub enum Discrete3Error {
     },
 }
 
+/// The error of a Floquet integral at angular frequency `omega` (rad/s)
+/// that did not converge.
+pub fn quadrature_at(omega: f64) -> impl Fn(QuadratureError) -> Discrete3Error {
+    move |source| Discrete3Error::Quadrature { frequency: omega / (2.0 * PI), source }
+}
+
 /// A place's factors in the lattice sums (eq. 2 of [`super::waves`]):
 /// `x = cells d + xr`, `exp(i lambda_m xr)` and `exp(i lambda_m (d - xr))`.
 struct Place {
@@ -150,7 +156,7 @@ impl Discrete3 {
                 (layout.supports[m].x, Section::new(&layout.track_of(&s.track, m), s.contact_offset).support(omega))
             })
             .collect();
-        let fail = |source| Discrete3Error::Quadrature { frequency: omega / (2.0 * PI), source };
+        let fail = quadrature_at(omega);
         let limits = (TOLERANCE, MAX_EVALUATIONS);
         if rotation {
             let (b, scale) = self.arm_map();

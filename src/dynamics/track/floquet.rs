@@ -47,7 +47,8 @@ pub trait RailWaves<const Q: usize> {
 }
 
 /// A support of the period: its position (m from the period's start) and
-/// dynamic stiffness in the rail's freedoms.
+/// dynamic stiffness in the rail's freedoms (N/m for the displacements,
+/// N m/rad for the rotations).
 pub type Supported<const Q: usize> = (f64, SMatrix<Complex64, Q, Q>);
 
 /// An offset `x = cells L + xr` (`0 <= xr < L`) in the lattice sums of

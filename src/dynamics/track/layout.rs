@@ -108,9 +108,11 @@ impl LayoutSpec {
         }
     }
 
-    /// Whether it is [`Self::uniform`].
+    /// Whether it lays out nothing (the seed aside): one bay of the
+    /// configured track.
     pub fn is_uniform(&self) -> bool {
-        *self == Self::uniform()
+        let u = Self::uniform();
+        (&self.spacing, &self.pad_stiffness, &self.sleeper_mass) == (&u.spacing, &u.pad_stiffness, &u.sleeper_mass)
     }
 }
 
@@ -194,11 +196,6 @@ impl Layout {
         Ok(if repeats_one_bay { one_bay } else { minimal })
     }
 
-    /// Whether it is one support per period.
-    pub fn is_one_bay(&self) -> bool {
-        self.supports.len() == 1
-    }
-
     /// The shortest period over which the supports repeat (the layout
     /// itself where they do not): `r` repetitions of the first `M / r`
     /// supports, each shifted by `period / r`.
@@ -225,17 +222,28 @@ impl Layout {
 
     /// The track of support `m`: the configured one with this support's
     /// pad (every direction scaled with its vertical stiffness) and
-    /// sleeper, its spacing the period.
+    /// sleeper.
     pub fn track_of(&self, track: &TrackConfig, m: usize) -> TrackConfig {
         let s = &self.supports[m];
         let scale = s.pad_stiffness / track.pad_stiffness;
         let mut t = *track;
-        t.sleeper_spacing = self.period;
         t.pad_stiffness = s.pad_stiffness;
         t.sleeper_mass = s.sleeper_mass;
         t.supports.pad_lateral_stiffness *= scale;
         t.supports.pad_longitudinal_stiffness *= scale;
         t
+    }
+
+    /// Whether it is one bay of spacing `spacing` (m) with the pad
+    /// `pad_stiffness` (N/m) and the sleeper `sleeper_mass` (kg): the
+    /// one-bay models then serve it.
+    pub fn is_one_bay_of(&self, (spacing, pad_stiffness, sleeper_mass): (f64, f64, f64)) -> bool {
+        self.period == spacing && self.supports == [Support { x: 0.0, pad_stiffness, sleeper_mass }]
+    }
+
+    /// Whether it is one bay of the configured `track`.
+    pub fn is_one_bay(&self, track: &TrackConfig) -> bool {
+        self.is_one_bay_of((track.sleeper_spacing, track.pad_stiffness, track.sleeper_mass))
     }
 
     /// The number of supports.

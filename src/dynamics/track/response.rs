@@ -8,7 +8,7 @@
 
 use super::TrackConfig;
 use super::discrete::DiscreteTrack;
-use super::discrete3::{Discrete3, Discrete3Error};
+use super::discrete3::{Discrete3, Discrete3Error, quadrature_at};
 use super::layout::Layout;
 use super::section::Mat4;
 use crate::dynamics::receptance::{TrackParams, WheelParams};
@@ -144,8 +144,8 @@ pub struct LayoutResponse {
     pub place: Vec<f64>,
     /// The vertical rail point receptance (m/N), (place, frequency).
     pub rail: Vec<Vec<Complex64>>,
-    /// The rail head's point receptances in every direction (m/N; 4 x 4
-    /// with the rotation about z), (place, frequency), where asked.
+    /// The rail head's point receptances in every direction (m/N; the
+    /// translations, padded to 4 x 4), (place, frequency), where asked.
     pub head: Option<Vec<Vec<Mat4>>>,
     /// Per span (after each support): its simply supported bending
     /// frequency (Hz), and the frequency (Hz) and magnitude (m/N) of its
@@ -174,9 +174,8 @@ pub fn layout_response(
     let by_frequency: Vec<Vec<Complex64>> = frequency
         .par_iter()
         .map(|f| {
-            vertical
-                .layout_receptances(layout, &pairs, 2.0 * PI * f)
-                .map_err(|source| Discrete3Error::Quadrature { frequency: *f, source })
+            let omega = 2.0 * PI * f;
+            vertical.layout_receptances(layout, &pairs, omega).map_err(quadrature_at(omega))
         })
         .collect::<Result<_, _>>()?;
     let rail: Vec<Vec<Complex64>> = (0..place.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect();
@@ -185,7 +184,7 @@ pub fn layout_response(
             let head = Discrete3::new(track, offset);
             let by_frequency: Vec<Vec<Mat4>> = frequency
                 .par_iter()
-                .map(|f| head.layout_heads(layout, &pairs, 2.0 * PI * f, true))
+                .map(|f| head.layout_heads(layout, &pairs, 2.0 * PI * f, false))
                 .collect::<Result<_, _>>()?;
             Some((0..place.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect())
         }
