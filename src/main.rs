@@ -88,6 +88,10 @@ enum Command {
         /// Replace the output file if it exists.
         #[arg(long)]
         overwrite: bool,
+        /// Frequencies of the sweep, log-spaced over 20-5000 Hz.
+        #[arg(long, default_value_t = corrugation::dynamics::track::response::SWEEP_POINTS as u64,
+              value_parser = clap::value_parser!(u64).range(2..=100_000))]
+        points: u64,
     },
     /// The linear growth spectrum of a growth study's passage: each Bloch
     /// class's modes (growth rate, wavelength, drift, pattern) and the
@@ -275,7 +279,7 @@ fn main() -> ExitCode {
             let jobs = jobs.map_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()), |j| j as usize);
             spectrum_cli::spectrum(&resolved, stored, part.map(|(k, n)| (k - 1, n)), jobs, &out)
         }
-        Command::Track { config, output, set, overwrite } => {
+        Command::Track { config, output, set, overwrite, points } => {
             let resolved = match load(&config, &set) {
                 Ok(r) => r,
                 Err(code) => return code,
@@ -284,13 +288,13 @@ fn main() -> ExitCode {
             if let Err(code) = new_output(&out, overwrite, false) {
                 return code;
             }
-            track(&resolved, &out)
+            track(&resolved, &out, points as usize)
         }
     }
 }
 
 /// `corrugation track`: the receptances of the configured track and wheel.
-fn track(resolved: &Resolved, out: &Path) -> ExitCode {
+fn track(resolved: &Resolved, out: &Path, points: usize) -> ExitCode {
     use corrugation::dynamics::receptance::{WheelParams, hertz_stiffness};
     // Before computing: the output can be written.
     if let Err(code) = writable(out) {
@@ -312,6 +316,7 @@ fn track(resolved: &Resolved, out: &Path) -> ExitCode {
         WheelParams { unsprung_mass: mass },
         k_h,
         &distances,
+        points,
     );
     // The head in three directions where the growth loop uses it (the
     // default, and a config without a growth study).

@@ -20,7 +20,8 @@ use std::f64::consts::PI;
 pub const SWEEP_FROM: f64 = 20.0;
 /// Highest frequency of the sweep (Hz).
 pub const SWEEP_TO: f64 = 5000.0;
-/// Log-spaced frequencies of the sweep (a ratio of 1.023 between neighbours).
+/// Log-spaced frequencies of the sweep by default (a ratio of 1.023
+/// between neighbours; `corrugation track --points`).
 pub const SWEEP_POINTS: usize = 241;
 
 /// The track's response.
@@ -63,18 +64,19 @@ pub struct TrackResponse {
 
 /// The response of `track` with `wheel` on a contact spring
 /// `contact_stiffness` (N/m), and the transfer receptances at `distances`
-/// (m) between wheels.
+/// (m) between wheels, at `points` frequencies log-spaced over
+/// [`SWEEP_FROM`]-[`SWEEP_TO`].
 pub fn track_response(
     track: &TrackConfig,
     wheel: WheelParams,
     contact_stiffness: f64,
     distances: &[f64],
+    points: usize,
 ) -> TrackResponse {
     let discrete = DiscreteTrack::new(track);
     let continuous: TrackParams = track.smeared();
-    let frequency: Vec<f64> = (0..SWEEP_POINTS)
-        .map(|k| SWEEP_FROM * (SWEEP_TO / SWEEP_FROM).powf(k as f64 / (SWEEP_POINTS - 1) as f64))
-        .collect();
+    let frequency: Vec<f64> =
+        (0..points).map(|k| SWEEP_FROM * (SWEEP_TO / SWEEP_FROM).powf(k as f64 / (points - 1) as f64)).collect();
     let d = track.sleeper_spacing;
     let position: Vec<f64> = (0..=4).map(|k| d * k as f64 / 8.0).collect();
     let by_frequency: Vec<Vec<Complex64>> =
