@@ -8,7 +8,7 @@ use crate::dynamics::receptance::{
     BALLAST_LOSS_FACTOR, BALLAST_STIFFNESS_PER_HALF_SLEEPER, HALF_SLEEPER_MASS, PAD_LOSS_FACTOR, PAD_STIFFNESS_PER_PAD,
     SLEEPER_SPACING,
 };
-use crate::dynamics::track::layout::{Layout, LayoutError, LayoutSpec, PerSupport, Spacing};
+use crate::dynamics::track::layout::{Layout, LayoutError, LayoutSpec, PerSupport, Spacing, Spread};
 use crate::dynamics::track::rail::RailSection;
 use crate::dynamics::track::{Damping, RAIL_LOSS_FACTOR, Supports3, TrackConfig};
 use crate::params::DynamicsKind;
@@ -142,14 +142,14 @@ fn layout_spec(s: &mut Section, (d, pad, mass): (f64, f64, f64)) -> Option<Layou
             None
         }
         (Some(p), None) => p.map(Spacing::Positions),
-        (None, Some(Some((0.0, _)))) => Some(Spacing::Uniform),
-        (None, Some(r)) => r.map(|(std, bounds)| Spacing::Random { std, bounds }),
+        (None, Some(Some(Spread { std: 0.0, .. }))) => Some(Spacing::Uniform),
+        (None, Some(r)) => r.map(Spacing::Random),
         (None, None) => Some(Spacing::Uniform),
     };
     let pad_stiffness = per_support(s, "pad_stiffness", pad, Range::Positive);
     let sleeper_mass = per_support(s, "sleeper_mass", mass, Range::NonNegative);
-    let any_drawn = matches!(spacing, Some(Spacing::Random { .. }))
-        || [&pad_stiffness, &sleeper_mass].iter().any(|v| matches!(v, Some(PerSupport::Random { .. })));
+    let any_drawn = matches!(spacing, Some(Spacing::Random(_)))
+        || [&pad_stiffness, &sleeper_mass].iter().any(|v| matches!(v, Some(PerSupport::Random(_))));
     let seed =
         if any_drawn || s.has("seed") { s.usize("seed", None, 0, usize::MAX >> 1).map(|v| v as u64) } else { Some(0) };
     Some(LayoutSpec { spacing: spacing?, pad_stiffness: pad_stiffness?, sleeper_mass: sleeper_mass?, seed: seed? })
@@ -163,7 +163,7 @@ const MAX_SUPPORTS: usize = 10_000;
 /// `<name>_std` is given (`Some(None)` where a key is invalid); a zero
 /// deviation draws nothing (the bounds are read and the mean kept).
 #[allow(clippy::option_option)]
-fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<Option<(f64, (f64, f64))>> {
+fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<Option<Spread>> {
     let key = format!("{name}_std");
     if !s.has(&key) {
         return None;
@@ -173,7 +173,7 @@ fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<Op
     let lo = s.f64(&format!("{name}_min"), Some((mean - 4.0 * spread).max(0.1 * mean)), Range::NonNegative);
     let hi = s.f64(&format!("{name}_max"), Some(mean + 4.0 * spread), Range::Positive);
     Some(match (std, lo, hi) {
-        (Some(std), Some(lo), Some(hi)) => Some((std, (lo, hi))),
+        (Some(std), Some(lo), Some(hi)) => Some(Spread { std, bounds: (lo, hi) }),
         _ => None,
     })
 }
@@ -194,8 +194,8 @@ fn per_support(s: &mut Section, name: &str, mean: f64, range: Range) -> Option<P
             None
         }
         (Some(p), None) => p.map(PerSupport::Pattern),
-        (None, Some(Some((0.0, _)))) => Some(PerSupport::Uniform),
-        (None, Some(r)) => r.map(|(std, bounds)| PerSupport::Random { std, bounds }),
+        (None, Some(Some(Spread { std: 0.0, .. }))) => Some(PerSupport::Uniform),
+        (None, Some(r)) => r.map(PerSupport::Random),
         (None, None) => Some(PerSupport::Uniform),
     }
 }
@@ -233,9 +233,9 @@ pub(super) fn layout(
     }
     let key = match (&spec.spacing, &spec.pad_stiffness, &spec.sleeper_mass) {
         (Spacing::Positions(_), ..) => "track.sleeper_positions",
-        (Spacing::Random { .. }, ..) => "track.spacing_std",
+        (Spacing::Random(_), ..) => "track.spacing_std",
         (_, PerSupport::Pattern(_), _) => "track.pad_stiffness_pattern",
-        (_, PerSupport::Random { .. }, _) => "track.pad_stiffness_std",
+        (_, PerSupport::Random(_), _) => "track.pad_stiffness_std",
         (.., PerSupport::Pattern(_)) => "track.sleeper_mass_pattern",
         _ => "track.sleeper_mass_std",
     };

@@ -18,9 +18,7 @@ pub struct Places {
 impl Places {
     /// The places of `layout` with its first support at `x0` (m).
     pub fn new(layout: &Layout, x0: f64) -> Places {
-        let mut bounds: Vec<f64> = layout.supports.iter().map(|s| s.x).collect();
-        bounds.push(layout.period);
-        Places { bounds, x0 }
+        Places { bounds: layout.bounds(), x0 }
     }
 
     /// The number of places.

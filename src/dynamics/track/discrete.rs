@@ -320,6 +320,14 @@ impl DiscreteTrack {
         DiscreteTrack { pad_stiffness: s.pad_stiffness, sleeper_mass: s.sleeper_mass, ..*self }
     }
 
+    /// `layout`'s supports at `omega` (rad/s): each one's place (m) and
+    /// dynamic stiffness (N/m, eq. 2 with its own pad and sleeper).
+    pub fn layout_supports(&self, layout: &Layout, omega: f64) -> Vec<Supported<1>> {
+        (0..layout.len())
+            .map(|m| (layout.supports[m].x, SMatrix::from_element(self.at_support(layout, m).support_stiffness(omega))))
+            .collect()
+    }
+
     /// The free rail's vertical waves (eq. 5) at `omega` (rad/s); the
     /// rail's loss factor (> 0) keeps them off the real axis.
     pub fn waves(&self, omega: f64) -> VerticalWaves {
@@ -359,9 +367,7 @@ impl DiscreteTrack {
         pairs: &[(f64, f64)],
         omega: f64,
     ) -> Result<Vec<Complex64>, QuadratureError> {
-        let supports: Vec<Supported<1>> = (0..layout.len())
-            .map(|m| (layout.supports[m].x, SMatrix::from_element(self.at_support(layout, m).support_stiffness(omega))))
-            .collect();
+        let supports = self.layout_supports(layout, omega);
         let one = SMatrix::<Complex64, 1, 1>::from_element(Complex64::new(1.0, 0.0));
         let out = floquet::response(
             &self.waves(omega),

@@ -151,11 +151,7 @@ impl Discrete3 {
     ) -> Result<Vec<Mat4>, Discrete3Error> {
         let waves = self.free_waves(omega)?;
         let s = &self.section;
-        let supports: Vec<Supported<6>> = (0..layout.len())
-            .map(|m| {
-                (layout.supports[m].x, Section::new(&layout.track_of(&s.track, m), s.contact_offset).support(omega))
-            })
-            .collect();
+        let supports = self.layout_supports(layout, omega);
         let fail = quadrature_at(omega);
         let limits = (TOLERANCE, MAX_EVALUATIONS);
         if rotation {
@@ -167,6 +163,18 @@ impl Discrete3 {
                 floquet::response(&waves, &supports, layout.period, &s.head_map(), pairs, limits).map_err(fail)?;
             Ok(out.iter().map(pad).collect())
         }
+    }
+
+    /// `layout`'s supports at `omega` (rad/s): each one's place (m) and
+    /// dynamic stiffness in the section's freedoms (eq. 2 of
+    /// [`super::section`] with its own pad and sleeper).
+    pub fn layout_supports(&self, layout: &Layout, omega: f64) -> Vec<Supported<6>> {
+        let s = &self.section;
+        (0..layout.len())
+            .map(|m| {
+                (layout.supports[m].x, Section::new(&layout.track_of(&s.track, m), s.contact_offset).support(omega))
+            })
+            .collect()
     }
 
     /// The head map with the rotation about `z` per [`ROTATION_ARM`], and

@@ -213,7 +213,7 @@ mod tests {
     use super::super::discrete::DiscreteTrack;
     use super::super::discrete3::Discrete3;
     use super::super::layout::Layout;
-    use super::super::section::{Mat4, Mat6, Section, translations};
+    use super::super::section::{Mat4, Mat6, translations};
     use super::*;
     use nalgebra::DMatrix;
 
@@ -338,12 +338,7 @@ mod tests {
         for hz in HZ {
             let w = omega(hz);
             let waves = vertical.waves(w);
-            let supports: Vec<Supported<1>> = (0..layout.len())
-                .map(|m| {
-                    let k = vertical.at_support(&layout, m).support_stiffness(w);
-                    (layout.supports[m].x, SMatrix::from_element(k))
-                })
-                .collect();
+            let supports = vertical.layout_supports(&layout, w);
             let floquet = vertical.layout_receptances(&layout, &pairs, w).unwrap();
             for (p, f) in pairs.iter().zip(&floquet) {
                 let s = in_space(&waves, &supports, layout.period, 60, *p)[(0, 0)];
@@ -367,9 +362,7 @@ mod tests {
         for hz in [600.0, 1500.0] {
             let w = omega(hz);
             let waves = head.free_waves(w).unwrap();
-            let supports: Vec<Supported<6>> = (0..layout.len())
-                .map(|m| (layout.supports[m].x, Section::new(&layout.track_of(&t, m), 0.01).support(w)))
-                .collect();
+            let supports = head.layout_supports(&layout, w);
             let floquet = head.layout_heads(&layout, &pairs, w, false).unwrap();
             for (p, f) in pairs.iter().zip(&floquet) {
                 let g: Mat6 = in_space(&waves, &supports, layout.period, 30, *p);

@@ -52,6 +52,37 @@ pub enum LayoutError {
     Bounds(String, String),
 }
 
+/// A random value's spread: the normal distribution's standard deviation
+/// and the bounds it is truncated to (the value's unit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spread {
+    /// Standard deviation.
+    pub std: f64,
+    /// Lower and upper bounds.
+    pub bounds: (f64, f64),
+}
+
+impl Spread {
+    /// Whether the bounds hold `mean` strictly: the error names
+    /// `<name>_min` (and `<name>_max`), the mean's key `mean_key` and the
+    /// values with `unit`.
+    fn holds(&self, mean: f64, (name, mean_key, unit): (&str, &str, &str)) -> Result<(), LayoutError> {
+        let (lo, hi) = self.bounds;
+        if lo < mean && mean < hi {
+            return Ok(());
+        }
+        Err(LayoutError::Bounds(
+            format!("{name}_min"),
+            format!(
+                "= {}{unit} and {name}_max = {}{unit} must hold the mean {mean_key} = {}{unit}",
+                show(lo),
+                show(hi),
+                show(mean)
+            ),
+        ))
+    }
+}
+
 /// How the supports of a period are placed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Spacing {
@@ -59,13 +90,8 @@ pub enum Spacing {
     Uniform,
     /// At these positions (m from the period's start, the first at 0).
     Positions(Vec<f64>),
-    /// Each bay's spacing drawn: standard deviation (m) and bounds (m).
-    Random {
-        /// Standard deviation (m).
-        std: f64,
-        /// Bounds (m).
-        bounds: (f64, f64),
-    },
+    /// Each bay's spacing drawn (m).
+    Random(Spread),
 }
 
 /// A support's value (pad stiffness, sleeper mass) along the period.
@@ -75,13 +101,8 @@ pub enum PerSupport {
     Uniform,
     /// These values, support after support, repeated.
     Pattern(Vec<f64>),
-    /// Each support's drawn: standard deviation and bounds (the value's unit).
-    Random {
-        /// Standard deviation.
-        std: f64,
-        /// Bounds.
-        bounds: (f64, f64),
-    },
+    /// Each support's drawn.
+    Random(Spread),
 }
 
 /// A layout as configured (`[track]`), before the period is known.
@@ -176,8 +197,8 @@ impl Layout {
         let positions: Vec<f64> = match &spec.spacing {
             Spacing::Uniform => (0..bays).map(|i| i as f64 * d).collect(),
             Spacing::Positions(p) => p.clone(),
-            Spacing::Random { std, bounds } => {
-                let spacings = random_spacings(&mut rng, d, (*std, *bounds), bays)?;
+            Spacing::Random(spread) => {
+                let spacings = random_spacings(&mut rng, d, spread, bays)?;
                 spacings.iter().scan(0.0, |x, s| Some(std::mem::replace(x, *x + s))).collect()
             }
         };
@@ -246,6 +267,12 @@ impl Layout {
         self.is_one_bay_of((track.sleeper_spacing, track.pad_stiffness, track.sleeper_mass))
     }
 
+    /// The supports' positions (m) and the period's end: each span's
+    /// start and end, pairwise.
+    pub fn bounds(&self) -> Vec<f64> {
+        self.supports.iter().map(|s| s.x).chain([self.period]).collect()
+    }
+
     /// The number of supports.
     pub fn len(&self) -> usize {
         self.supports.len()
@@ -260,23 +287,13 @@ impl Layout {
 /// `bays` spacings of mean `d` (m) drawn within their bounds and shifted
 /// by one constant to fill `bays d` exactly (drawn again where the shift
 /// leaves a bound).
-fn random_spacings(
-    rng: &mut ChaCha8Rng,
-    d: f64,
-    (std, (lo, hi)): (f64, (f64, f64)),
-    bays: usize,
-) -> Result<Vec<f64>, LayoutError> {
-    if !(lo < d && d < hi) {
-        return Err(LayoutError::Bounds(
-            "track.spacing_min".into(),
-            format!("= {lo} m and track.spacing_max = {hi} m must hold the mean spacing track.sleeper_spacing = {d} m"),
-        ));
-    }
+fn random_spacings(rng: &mut ChaCha8Rng, d: f64, spread: &Spread, bays: usize) -> Result<Vec<f64>, LayoutError> {
+    spread.holds(d, ("track.spacing", "track.sleeper_spacing", " m"))?;
+    let (std, (lo, hi)) = (spread.std, spread.bounds);
     for _ in 0..MAX_DRAWS {
-        let s: Vec<f64> =
-            (0..bays).map(|_| truncated(rng, d, (std, (lo, hi)))).collect::<Option<_>>().ok_or_else(|| {
-                LayoutError::Bounds("track.spacing_std".into(), format!("= {std} m: no sample within [{lo}, {hi}] m"))
-            })?;
+        let s: Vec<f64> = (0..bays).map(|_| truncated(rng, d, spread)).collect::<Option<_>>().ok_or_else(|| {
+            LayoutError::Bounds("track.spacing_std".into(), format!("= {std} m: no sample within [{lo}, {hi}] m"))
+        })?;
         let shift = (bays as f64 * d - s.iter().sum::<f64>()) / bays as f64;
         let s: Vec<f64> = s.iter().map(|v| v + shift).collect();
         if s.iter().all(|v| (lo..=hi).contains(v)) {
@@ -304,17 +321,13 @@ fn per_support(
     match which {
         PerSupport::Uniform => Ok(vec![mean; m]),
         PerSupport::Pattern(p) => Ok((0..m).map(|i| p[i % p.len()]).collect()),
-        PerSupport::Random { std, bounds: (lo, hi) } => {
-            if !(*lo < mean && mean < *hi) {
-                return Err(LayoutError::Bounds(
-                    format!("{key}_min"),
-                    format!("= {} and {key}_max = {} must hold the mean {key} = {}", show(*lo), show(*hi), show(mean)),
-                ));
-            }
-            (0..m).map(|_| truncated(rng, mean, (*std, (*lo, *hi)))).collect::<Option<_>>().ok_or_else(|| {
+        PerSupport::Random(spread) => {
+            spread.holds(mean, (key, key, ""))?;
+            let (std, (lo, hi)) = (spread.std, spread.bounds);
+            (0..m).map(|_| truncated(rng, mean, spread)).collect::<Option<_>>().ok_or_else(|| {
                 LayoutError::Bounds(
                     format!("{key}_std"),
-                    format!("= {}: no sample within [{}, {}]", show(*std), show(*lo), show(*hi)),
+                    format!("= {}: no sample within [{}, {}]", show(std), show(lo), show(hi)),
                 )
             })
         }
@@ -329,7 +342,8 @@ fn show(v: f64) -> String {
 /// A normal sample of `mean` and `(std, bounds)` within the bounds
 /// (rejection); `mean` where `std` is zero; `None` after [`MAX_DRAWS`]
 /// rejections.
-fn truncated(rng: &mut ChaCha8Rng, mean: f64, (std, (lo, hi)): (f64, (f64, f64))) -> Option<f64> {
+fn truncated(rng: &mut ChaCha8Rng, mean: f64, spread: &Spread) -> Option<f64> {
+    let (std, (lo, hi)) = (spread.std, spread.bounds);
     if std == 0.0 {
         return Some(mean);
     }
@@ -348,7 +362,7 @@ mod tests {
     use super::*;
 
     fn random(std: f64, seed: u64) -> LayoutSpec {
-        LayoutSpec { spacing: Spacing::Random { std, bounds: (0.45, 0.75) }, seed, ..LayoutSpec::uniform() }
+        LayoutSpec { spacing: Spacing::Random(Spread { std, bounds: (0.45, 0.75) }), seed, ..LayoutSpec::uniform() }
     }
 
     #[test]
@@ -373,11 +387,14 @@ mod tests {
     #[test]
     fn bounds_that_exclude_the_mean_are_refused_naming_the_key() {
         let t = TrackConfig::default();
-        let spec = LayoutSpec { spacing: Spacing::Random { std: 0.03, bounds: (0.62, 0.8) }, ..random(0.03, 1) };
+        let spec =
+            LayoutSpec { spacing: Spacing::Random(Spread { std: 0.03, bounds: (0.62, 0.8) }), ..random(0.03, 1) };
         let e = Layout::from_spec(&t, &spec, 2.4).unwrap_err().to_string();
         assert!(e.contains("track.spacing_min = 0.62"), "{e}");
-        let spec =
-            LayoutSpec { pad_stiffness: PerSupport::Random { std: 1e7, bounds: (1e6, 1e8) }, ..LayoutSpec::uniform() };
+        let spec = LayoutSpec {
+            pad_stiffness: PerSupport::Random(Spread { std: 1e7, bounds: (1e6, 1e8) }),
+            ..LayoutSpec::uniform()
+        };
         let e = Layout::from_spec(&t, &spec, 2.4).unwrap_err().to_string();
         assert!(e.contains("track.pad_stiffness_max"), "{e}");
     }

@@ -81,8 +81,7 @@ pub fn track_response(
     let position: Vec<f64> = (0..=4).map(|k| d * k as f64 / 8.0).collect();
     let by_frequency: Vec<Vec<Complex64>> =
         frequency.par_iter().map(|f| discrete.receptances(&position, 2.0 * PI * f)).collect();
-    let rail: Vec<Vec<Complex64>> =
-        (0..position.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect();
+    let rail = by_place(&by_frequency);
     let cont: Vec<Complex64> = frequency.iter().map(|f| continuous.rail_receptance(2.0 * PI * f)).collect();
     let source = vec![0.0, 0.5 * d];
     // [frequency][source][distance], turned into [source][distance][frequency].
@@ -134,6 +133,12 @@ pub fn track_response(
     }
 }
 
+/// Rows by frequency, each of values by place, turned into rows by place.
+fn by_place<T: Copy>(by_frequency: &[Vec<T>]) -> Vec<Vec<T>> {
+    let places = by_frequency.first().map_or(0, Vec::len);
+    (0..places).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect()
+}
+
 /// The track's response on a layout of several supports per period
 /// (`corrugation track` with the layout's keys): at every support and
 /// every mid-span.
@@ -169,8 +174,7 @@ pub fn layout_response(
     head_offset: Option<f64>,
 ) -> Result<LayoutResponse, Discrete3Error> {
     let vertical = DiscreteTrack::new(track);
-    let mut bounds: Vec<f64> = layout.supports.iter().map(|s| s.x).collect();
-    bounds.push(layout.period);
+    let bounds = layout.bounds();
     let place: Vec<f64> = bounds.windows(2).flat_map(|w| [w[0], 0.5 * (w[0] + w[1])]).collect();
     let pairs: Vec<(f64, f64)> = place.iter().map(|&x| (x, x)).collect();
     let by_frequency: Vec<Vec<Complex64>> = frequency
@@ -180,7 +184,7 @@ pub fn layout_response(
             vertical.layout_receptances(layout, &pairs, omega).map_err(quadrature_at(omega))
         })
         .collect::<Result<_, _>>()?;
-    let rail: Vec<Vec<Complex64>> = (0..place.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect();
+    let rail = by_place(&by_frequency);
     let head = match head_offset {
         Some(offset) => {
             let head = Discrete3::new(track, offset);
@@ -188,7 +192,7 @@ pub fn layout_response(
                 .par_iter()
                 .map(|f| head.layout_heads(layout, &pairs, 2.0 * PI * f, false))
                 .collect::<Result<_, _>>()?;
-            Some((0..place.len()).map(|p| by_frequency.iter().map(|row| row[p]).collect()).collect())
+            Some(by_place(&by_frequency))
         }
         None => None,
     };

@@ -65,21 +65,43 @@ impl<P> Blocks<P> {
     }
 }
 
+/// A block's first column and width for columns `c_min ..= c_max` of a
+/// grid `nx` wide (the width widened to the quanta).
+fn columns((c_min, c_max): (usize, usize), nx: usize) -> (usize, usize) {
+    let bx = (c_max - c_min + 1).next_multiple_of(BLOCK_QUANTUM).min(nx);
+    (c_min.min(nx - bx), bx)
+}
+
+/// The block from `origin` of `size`, where it has at most
+/// [`BLOCK_FRACTION`] of the `nx x ny` grid's elements.
+fn worth(
+    origin: (usize, usize),
+    (bx, by): (usize, usize),
+    (nx, ny): (usize, usize),
+) -> Option<((usize, usize), (usize, usize))> {
+    (((bx * by) as f64) <= BLOCK_FRACTION * (nx * ny) as f64).then_some((origin, (bx, by)))
+}
+
+/// The columns and rows the set's elements span.
+fn extent(set: &ContactSet) -> Option<((usize, usize), (usize, usize))> {
+    let (&c_min, &c_max) = (set.ix.iter().min()?, set.ix.iter().max()?);
+    let (&r_min, &r_max) = (set.iy.iter().min()?, set.iy.iter().max()?);
+    Some(((c_min, c_max), (r_min, r_max)))
+}
+
 /// The block of a folded grid of `nx x ny` elements, symmetric about the
 /// centre line, that holds columns `c_min ..= c_max` and rows `r_min ..
 /// ny - r_min` (widened to the quanta): its first column and row and its
 /// size, or `None` where it is not much smaller than the grid.
 pub(super) fn block_of(
-    (c_min, c_max): (usize, usize),
+    columns_held: (usize, usize),
     r_min: usize,
     (nx, ny): (usize, usize),
 ) -> Option<((usize, usize), (usize, usize))> {
-    let bx = (c_max - c_min + 1).next_multiple_of(BLOCK_QUANTUM).min(nx);
-    let c0 = c_min.min(nx - bx);
+    let (c0, bx) = columns(columns_held, nx);
     // Rows r0 .. ny - r0, symmetric: r0 down to an even count below.
     let r0 = r_min - r_min % (BLOCK_QUANTUM / 2);
-    let by = ny - 2 * r0;
-    (((bx * by) as f64) <= BLOCK_FRACTION * (nx * ny) as f64).then_some(((c0, r0), (bx, by)))
+    worth((c0, r0), (bx, ny - 2 * r0), (nx, ny))
 }
 
 /// The block of a grid of `nx x ny` elements that holds columns `c_min
@@ -87,14 +109,13 @@ pub(super) fn block_of(
 /// column and row and its size, or `None` where it is not much smaller
 /// than the grid.
 pub(super) fn full_block_of(
-    (c_min, c_max): (usize, usize),
+    columns_held: (usize, usize),
     (r_min, r_max): (usize, usize),
     (nx, ny): (usize, usize),
 ) -> Option<((usize, usize), (usize, usize))> {
-    let bx = (c_max - c_min + 1).next_multiple_of(BLOCK_QUANTUM).min(nx);
+    let (c0, bx) = columns(columns_held, nx);
     let by = (r_max - r_min + 1).next_multiple_of(BLOCK_QUANTUM).min(ny);
-    let (c0, r0) = (c_min.min(nx - bx), r_min.min(ny - by));
-    (((bx * by) as f64) <= BLOCK_FRACTION * (nx * ny) as f64).then_some(((c0, r0), (bx, by)))
+    worth((c0, r_min.min(ny - by)), (bx, by), (nx, ny))
 }
 
 impl Blocks<FullBlockProducts> {
@@ -107,9 +128,8 @@ impl Blocks<FullBlockProducts> {
         set: &ContactSet,
         shape: (usize, usize),
     ) -> Option<((usize, usize), Arc<FullBlockProducts>)> {
-        let (&c_min, &c_max) = (set.ix.iter().min()?, set.ix.iter().max()?);
-        let (&r_min, &r_max) = (set.iy.iter().min()?, set.iy.iter().max()?);
-        let (origin, size) = full_block_of((c_min, c_max), (r_min, r_max), shape)?;
+        let (columns, rows) = extent(set)?;
+        let (origin, size) = full_block_of(columns, rows, shape)?;
         let products = self.get(size, || {
             let block = kernel.block(size);
             (FftConvolution::single(&block), FftConvolution::circulant_inverse_single(&block))
@@ -128,9 +148,8 @@ impl Blocks<BlockProducts> {
         set: &ContactSet,
         shape: (usize, usize),
     ) -> Option<((usize, usize), Arc<BlockProducts>)> {
-        let (&c_min, &c_max) = (set.ix.iter().min()?, set.ix.iter().max()?);
-        let r_min = *set.iy.iter().min()?;
-        let (origin, size) = block_of((c_min, c_max), r_min, shape)?;
+        let (columns, (r_min, _)) = extent(set)?;
+        let (origin, size) = block_of(columns, r_min, shape)?;
         let products = self.get(size, || {
             let block = kernel.block(size);
             (
