@@ -25,10 +25,11 @@ passes=${PASSES:-3}
 points=${POINTS:-1921}
 length=$(echo "$bays * 0.6" | bc -l)
 common=(--set "rail.x_max=$length" --set "passage.end=$length" --set 'dynamics.directions="vertical"')
-failed=$(python3 -c "print([2e8] * ($bays - 1) + [2e7])")
+# Lists without spaces: each case's overrides split on spaces.
+failed=$(python3 -c "print(str([2e8] * ($bays - 1) + [2e7]).replace(' ', ''))")
 declare -A cases=(
   [uniform]=""
-  [mixed_pads]="track.pad_stiffness_pattern=[1e8, 3e8]"
+  [mixed_pads]="track.pad_stiffness_pattern=[1e8,3e8]"
   [failed_support]="track.pad_stiffness_pattern=$failed"
 )
 for std in 0.01 0.02 0.05; do
@@ -41,8 +42,6 @@ grow=(uniform mixed_pads failed_support "spacing_0.02_seed$first" "spacing_0.05_
 for name in "${!cases[@]}"; do
   sets=()
   for s in ${cases[$name]}; do sets+=(--set "$s"); done
-  # A pattern holds spaces: pass it whole.
-  [[ $name == mixed_pads || $name == failed_support ]] && sets=(--set "${cases[$name]}")
   "$bin" track "$config" -o "$out/track_$name.h5" --overwrite --points "$points" "${common[@]}" "${sets[@]}" \
     > "$out/track_$name.txt"
   if [[ " ${grow[*]} " == *" $name "* ]]; then
