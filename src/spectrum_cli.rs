@@ -233,23 +233,24 @@ fn summary(s: &Spectrum, out: &Path) {
         s.wall_seconds,
     );
     say!("fastest modes (dB per 1e5 wheel passages; drift in mm per 1e5 wheel passages):");
-    say!("  rate      wavelength  frequency  drift     purity  sleeper/mid-span  near");
+    let deepest = if s.supports.is_empty() { "" } else { "deepest in span  " };
+    say!("  rate      wavelength  frequency  drift     purity  sleeper/mid-span  {deepest}near");
     for k in 0..s.modes.len().min(PRINTED) {
         let m = &s.modes[k];
         let class = s.class_of(k);
-        let env = m.envelope(class, 0, &[0.0, 0.5 * s.stretch], s.supercell());
+        let deepest = s.deepest(k).map_or(String::new(), |(_, share)| format!("{share:5.2}             "));
         let near = s.near_resonance(k).map_or(String::new(), |i| {
             let (label, f) = &s.resonances[i];
             format!("{label} ({f:.0} Hz)")
         });
         say!(
-            "  {:+8.3}  {:7.2} mm  {:7.1} Hz  {:+8.3}  {:5.2}   {:5.2}             {near}",
+            "  {:+8.3}  {:7.2} mm  {:7.1} Hz  {:+8.3}  {:5.2}   {:5.2}             {deepest}{near}",
             m.growth_rate(),
             s.wavelength(k) * 1e3,
             s.frequency(k),
             m.drift(class, s.supercell()) * 1e5 * 1e3,
             m.purity(),
-            if env[1] > 0.0 { env[0] / env[1] } else { f64::NAN },
+            s.support_ratio(k),
         );
     }
     let forced = &s.forced_wear[0];

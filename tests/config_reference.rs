@@ -407,13 +407,16 @@ fn probes() -> Vec<(String, Table)> {
         (
             "a layout by positions and patterns",
             "[track]\nsleeper_positions = [0.0, 0.55]\npad_stiffness_pattern = [2e8, 3e8]\n\
-             sleeper_mass_pattern = [140.0, 120.0]",
+             sleeper_mass_pattern = [140.0, 120.0]\npad_loss_factor_pattern = [0.25, 0.4]\n\
+             ballast_stiffness_pattern = [1e8, 5e7]",
         ),
         (
             "a random layout",
             "[track]\nspacing_std = 0.02\nspacing_min = 0.5\nspacing_max = 0.7\npad_stiffness_std = 2e7\n\
              pad_stiffness_min = 1e8\npad_stiffness_max = 3e8\nsleeper_mass_std = 10.0\nsleeper_mass_min = 100.0\n\
-             sleeper_mass_max = 180.0\nseed = 3",
+             sleeper_mass_max = 180.0\npad_loss_factor_std = 0.05\npad_loss_factor_min = 0.1\n\
+             pad_loss_factor_max = 0.4\nballast_stiffness_std = 2e7\nballast_stiffness_min = 5e7\n\
+             ballast_stiffness_max = 1.5e8\nseed = 3",
         ),
     ] {
         let mut t = discrete.clone();

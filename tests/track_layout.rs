@@ -4,9 +4,9 @@
 //! its closure written out from the layout's receptances.
 use corrugation::config::load_str;
 use corrugation::dynamics::model::{Directions, Track, VehicleTrack, Wheel};
-use corrugation::dynamics::track::TrackConfig;
 use corrugation::dynamics::track::discrete::DiscreteTrack;
 use corrugation::dynamics::track::layout::Layout;
+use corrugation::dynamics::track::{Damping, TrackConfig};
 use corrugation::dynamics::wheelset::side::Wheel3;
 use num_complex::Complex64;
 use std::f64::consts::PI;
@@ -36,39 +36,53 @@ fn identical_bays_given_by_position_are_the_one_bay_track_exactly() {
 
 #[test]
 fn one_support_of_its_own_is_the_track_with_that_support() {
-    // A pad pattern of one value other than track.pad_stiffness: the
-    // layout's own support, not the configured track's.
-    let r = load(&["track.pad_stiffness_pattern=[3e8]"]).unwrap();
-    assert_eq!(r.scene.layout.len(), 1);
-    assert!(!r.scene.layout.is_one_bay(&r.scene.track));
-    let stiff = TrackConfig { pad_stiffness: 3e8, ..TrackConfig::default() };
+    // A pattern of one value other than the configured one, for each of
+    // the support's values: the layout's own support, not the configured
+    // track's.
+    let d = TrackConfig::default();
     let (k_h, speed, dx, nodes) = (1.8e9, 30.0, 1e-3, 600);
-    let model = |track: Track| {
+    let model = |track: TrackConfig, layout: Layout| {
         let wheel = Wheel::vertical(0.0, Wheel3::new(600.0, 0.46), k_h, 1e5);
+        let track = Track::Discrete { vertical: DiscreteTrack::new(&track), head: None, sleeper_x0: 0.0, layout };
         VehicleTrack::new(track, vec![wheel], Directions::Vertical, nodes, dx, speed).unwrap()
     };
-    let layout = model(Track::Discrete {
-        vertical: DiscreteTrack::new(&TrackConfig::default()),
-        head: None,
-        sleeper_x0: 0.0,
-        layout: r.scene.layout.clone(),
-    });
-    let own = model(Track::Discrete {
-        vertical: DiscreteTrack::new(&stiff),
-        head: None,
-        sleeper_x0: 0.0,
-        layout: Layout::uniform(&stiff),
-    });
-    let mut worst = 0.0f64;
-    for k in [3, 20, 21, 45] {
-        for place in [0, 5, 8] {
-            let (a, b) = (layout.response(k, place)[(0, 0)], own.response(k, place)[(0, 0)]);
-            worst = worst.max((a - b).norm() / b.norm());
+    let plain = model(d, Layout::uniform(&d));
+    for (set, own) in [
+        ("track.pad_stiffness_pattern=[3e8]", TrackConfig { pad_stiffness: 3e8, ..d }),
+        ("track.pad_loss_factor_pattern=[0.4]", TrackConfig { pad_damping: Damping::LossFactor(0.4), ..d }),
+        ("track.sleeper_mass_pattern=[100.0]", TrackConfig { sleeper_mass: 100.0, ..d }),
+        ("track.ballast_stiffness_pattern=[5e7]", TrackConfig { ballast_stiffness: 5e7, ..d }),
+    ] {
+        let r = load(&[set]).unwrap();
+        assert_eq!(r.scene.layout.len(), 1);
+        assert!(!r.scene.layout.is_one_bay(&r.scene.track), "{set}");
+        assert!(r.scene.layout.is_one_bay(&own), "{set}");
+        let layout = model(d, r.scene.layout.clone());
+        let own = model(own, Layout::uniform(&own));
+        let (mut worst, mut moved) = (0.0f64, 0.0f64);
+        for k in [3, 20, 21, 45] {
+            for place in [0, 5, 8] {
+                let (a, b) = (layout.response(k, place)[(0, 0)], own.response(k, place)[(0, 0)]);
+                worst = worst.max((a - b).norm() / b.norm());
+                let c = plain.response(k, place)[(0, 0)];
+                moved = moved.max((c - b).norm() / b.norm());
+            }
         }
+        // The one-bay model's truncated lattice sums against the layout's
+        // closed form: 1.5e-4 of the receptance; the support's own value
+        // moves it by far more.
+        assert!(worst < 1e-3, "{set}: {worst:e}");
+        assert!(moved > 1e-2, "{set}: the value moves the response by only {moved:e}");
     }
-    // The one-bay model's truncated lattice sums against the layout's
-    // closed form: 1.5e-4 of the receptance.
-    assert!(worst < 1e-3, "{worst:e}");
+}
+
+#[test]
+fn a_viscous_pad_takes_no_loss_factors() {
+    let viscous = DISCRETE.replace("pad_loss_factor = 0.25", "pad_damping = 2e4");
+    let sets = ["rail.x_max=1.2".to_string(), "passage.end=1.2".into(), "track.pad_loss_factor_pattern=[0.3]".into()];
+    let e = load_str(&viscous, "test.toml", &sets).expect_err("refused").errors;
+    let e = e.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n");
+    assert!(e.contains("track.pad_loss_factor_pattern: gives the pads loss factors"), "{e}");
 }
 
 #[test]
@@ -115,6 +129,15 @@ fn bad_layouts_are_refused_naming_the_key() {
             "track.sleeper_mass_std: lays out",
         ),
         (vec!["track.spacing_std=0.02", "track.seed=1", "rail.x_max=1.5", "passage.end=1.5"], "rail.x_max:"),
+        (
+            vec!["track.ballast_stiffness_std=1e7", "track.seed=1", "track.ballast_stiffness_min=1.2e8"],
+            "track.ballast_stiffness_min: = 1.2e8 and track.ballast_stiffness_max",
+        ),
+        (vec!["track.pad_loss_factor_pattern=[0.3, 11.0]"], "track.pad_loss_factor_pattern"),
+        (
+            vec!["track.pad_loss_factor_pattern=[0.3]", "track.pad_loss_factor_std=0.05", "track.seed=1"],
+            "track.pad_loss_factor_std: and track.pad_loss_factor_pattern both",
+        ),
     ] {
         let e = error(&set);
         assert!(e.contains(expect), "{set:?}: expected `{expect}` in:\n{e}");

@@ -8,7 +8,7 @@ use crate::dynamics::receptance::{
     BALLAST_LOSS_FACTOR, BALLAST_STIFFNESS_PER_HALF_SLEEPER, HALF_SLEEPER_MASS, PAD_LOSS_FACTOR, PAD_STIFFNESS_PER_PAD,
     SLEEPER_SPACING,
 };
-use crate::dynamics::track::layout::{Layout, LayoutError, LayoutSpec, PerSupport, Spacing, Spread};
+use crate::dynamics::track::layout::{Layout, LayoutError, LayoutSpec, PerSupport, Property, Spacing, Spread};
 use crate::dynamics::track::rail::RailSection;
 use crate::dynamics::track::{Damping, RAIL_LOSS_FACTOR, Supports3, TrackConfig};
 use crate::params::DynamicsKind;
@@ -101,12 +101,17 @@ pub(super) fn read(
     }
     // The layout's keys are read whatever the rest holds (their bounds'
     // defaults about the configured means, or the defaults).
-    let means = (
-        spacing.unwrap_or(SLEEPER_SPACING),
+    let means = [
         pad.unwrap_or(PAD_STIFFNESS_PER_PAD),
         sleeper.unwrap_or(HALF_SLEEPER_MASS),
-    );
-    let layout = layout_spec(&mut s, means);
+        match pad_damping {
+            Some(Damping::LossFactor(eta)) => eta,
+            Some(Damping::Viscous(_)) => f64::NAN,
+            None => PAD_LOSS_FACTOR,
+        },
+        ballast.unwrap_or(BALLAST_STIFFNESS_PER_HALF_SLEEPER),
+    ];
+    let layout = layout_spec(&mut s, spacing.unwrap_or(SLEEPER_SPACING), means);
     resolved.insert("track".into(), Value::Table(s.finish()));
     let track = TrackConfig {
         rail_name: RailSection::PRESETS.into_iter().find(|p| Some(*p) == name.as_deref())?,
@@ -125,13 +130,13 @@ pub(super) fn read(
 
 /// The layout's keys: the sleepers' positions (`sleeper_positions`, m from
 /// the stretch's start, or `spacing_std` with `spacing_min` and
-/// `spacing_max`), the pads' (`pad_stiffness_pattern` or
-/// `pad_stiffness_std` with its bounds) and the sleepers'
-/// (`sleeper_mass_pattern` or `sleeper_mass_std` with its bounds), and the
-/// `seed` of the random forms; `means` the configured spacing, pad
-/// stiffness and sleeper mass. Bounds default to four standard deviations
-/// about the mean (above a tenth of it).
-fn layout_spec(s: &mut Section, (d, pad, mass): (f64, f64, f64)) -> Option<LayoutSpec> {
+/// `spacing_max`), each [`Property`]'s per support (`<name>_pattern` or
+/// `<name>_std` with its bounds), and the `seed` of the random forms; `d`
+/// the configured spacing (m), `means` the configured values in the order
+/// of [`Property::ALL`] (NaN: a viscous pad's loss factor, which a layout
+/// cannot set). Bounds default to four standard deviations about the mean
+/// (above a tenth of it).
+fn layout_spec(s: &mut Section, d: f64, means: [f64; 4]) -> Option<LayoutSpec> {
     let positions = s
         .has("sleeper_positions")
         .then(|| s.f64_list("sleeper_positions", Vec::new(), Range::NonNegative, MAX_SUPPORTS));
@@ -146,13 +151,20 @@ fn layout_spec(s: &mut Section, (d, pad, mass): (f64, f64, f64)) -> Option<Layou
         (None, Some(r)) => r.map(Spacing::Random),
         (None, None) => Some(Spacing::Uniform),
     };
-    let pad_stiffness = per_support(s, "pad_stiffness", pad, Range::Positive);
-    let sleeper_mass = per_support(s, "sleeper_mass", mass, Range::NonNegative);
-    let any_drawn = matches!(spacing, Some(Spacing::Random(_)))
-        || [&pad_stiffness, &sleeper_mass].iter().any(|v| matches!(v, Some(PerSupport::Random(_))));
+    let values = Property::ALL.map(|p| {
+        let range = match p {
+            Property::PadStiffness | Property::BallastStiffness => Range::Positive,
+            Property::SleeperMass => Range::NonNegative,
+            Property::PadLossFactor => Range::Closed(0.0, 10.0),
+        };
+        per_support(s, p.name(), means[p as usize], range)
+    });
+    let any_drawn =
+        matches!(spacing, Some(Spacing::Random(_))) || values.iter().any(|v| matches!(v, Some(PerSupport::Random(_))));
     let seed =
         if any_drawn || s.has("seed") { s.usize("seed", None, 0, usize::MAX >> 1).map(|v| v as u64) } else { Some(0) };
-    Some(LayoutSpec { spacing: spacing?, pad_stiffness: pad_stiffness?, sleeper_mass: sleeper_mass?, seed: seed? })
+    let [pad, mass, loss, ballast] = values;
+    Some(LayoutSpec { spacing: spacing?, values: [pad?, mass?, loss?, ballast?], seed: seed? })
 }
 
 /// The most supports a layout lists.
@@ -185,6 +197,11 @@ fn per_support(s: &mut Section, name: &str, mean: f64, range: Range) -> Option<P
     let pattern = format!("{name}_pattern");
     let listed = s.has(&pattern).then(|| s.f64_list(&pattern, Vec::new(), range, MAX_SUPPORTS));
     let drawn = random(s, name, mean, Range::NonNegative);
+    if mean.is_nan() && (listed.is_some() || drawn.is_some()) {
+        let key = if listed.is_some() { pattern } else { format!("{name}_std") };
+        s.error(&key, "gives the pads loss factors: the pads are damped viscously (track.pad_damping)".into());
+        return None;
+    }
     match (listed, drawn) {
         (Some(_), Some(_)) => {
             s.error(
@@ -231,17 +248,21 @@ pub(super) fn layout(
     if spec.is_uniform() {
         return one_bay;
     }
-    let key = match (&spec.spacing, &spec.pad_stiffness, &spec.sleeper_mass) {
-        (Spacing::Positions(_), ..) => "track.sleeper_positions",
-        (Spacing::Random(_), ..) => "track.spacing_std",
-        (_, PerSupport::Pattern(_), _) => "track.pad_stiffness_pattern",
-        (_, PerSupport::Random(_), _) => "track.pad_stiffness_std",
-        (.., PerSupport::Pattern(_)) => "track.sleeper_mass_pattern",
-        _ => "track.sleeper_mass_std",
+    let key = match &spec.spacing {
+        Spacing::Positions(_) => "track.sleeper_positions".to_string(),
+        Spacing::Random(_) => "track.spacing_std".to_string(),
+        Spacing::Uniform => Property::ALL
+            .into_iter()
+            .find_map(|p| match spec.value(p) {
+                PerSupport::Uniform => None,
+                PerSupport::Pattern(_) => Some(format!("track.{}_pattern", p.name())),
+                PerSupport::Random(_) => Some(format!("track.{}_std", p.name())),
+            })
+            .expect("not uniform"),
     };
     if !matches!(dynamics, Some(DynamicsKind::Discrete { .. })) {
         errors.push(ConfigError::new(
-            key,
+            &key,
             "lays out the discrete track's supports: it needs a growth study with dynamics.model = \"discrete\"".into(),
         ));
         return one_bay;

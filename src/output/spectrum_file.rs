@@ -7,11 +7,15 @@
 //!   `frequency` (Hz at the scene's speed), `drift` (m per 1e5 wheel
 //!   passages, + in the direction of travel), `bloch_wavenumber` (1/m, the
 //!   class's `kappa`), `purity` (1, the largest harmonic's share),
-//!   `support_ratio` (1, the envelope at the stretch's start over its middle:
-//!   over the sleeper against mid-span on a one-bay stretch with a sleeper at
-//!   its start), `eigenvalue_real` and `eigenvalue_imag` (1 per wheel
+//!   `support_ratio` (1, the envelope's mean over the discrete track's
+//!   supports over its mean at mid-span; on a continuous track at the
+//!   stretch's start over its middle), `eigenvalue_real` and `eigenvalue_imag` (1 per wheel
 //!   passage), with two rails `rail_share` (1, on the first rail);
 //! * dimensions (`mode`, `position`): `envelope` (1, rms 1 over the stretch);
+//! * on the discrete track, dimension `support`: the supports' positions
+//!   (m from the stretch's start); per mode `deepest` (m, where the
+//!   pattern is deepest) and `deepest_in_span` (1, that place's share of
+//!   its support interval: 0 at the support before it, 0.5 mid-span);
 //! * dimension `wavelength` (the stretch's harmonics `L / n`, given by
 //!   `forced_wavelength`: the name `wavelength` is the modes'; netCDF stores
 //!   that variable as `_nc4_non_coord_wavelength`, which xarray and netCDF
@@ -104,13 +108,10 @@ pub fn write_spectrum_file(
             ("purity", per_mode(&|k| s.modes[k].purity()), "1", "share of the mode's energy in its largest harmonic"),
             (
                 "support_ratio",
-                per_mode(&|k| {
-                    let e = s.modes[k].envelope(s.class_of(k), 0, &[0.0, 0.5 * s.stretch], supercell);
-                    if e[1] > 0.0 { e[0] / e[1] } else { f64::NAN }
-                }),
+                per_mode(&|k| s.support_ratio(k)),
                 "1",
-                "envelope of the pattern at the stretch's start over its middle (a one-bay stretch with a sleeper at \
-                 its start: over the sleeper against mid-span)",
+                "envelope of the pattern: its mean over the discrete track's supports over its mean at mid-span (on a \
+                 continuous track: at the stretch's start over its middle)",
             ),
             (
                 "eigenvalue_real",
@@ -170,6 +171,32 @@ pub fn write_spectrum_file(
             "1",
             "local amplitude of the mode's pattern along the stretch (first rail; rms 1)",
         )?;
+        if !s.supports.is_empty() {
+            g.coord_f64(
+                "support",
+                &s.supports,
+                "m",
+                "the discrete track's supports along the stretch from its start",
+                false,
+            )?;
+            let deepest: Vec<(f64, f64)> = (0..n).map(|k| s.deepest(k).expect("the track has supports")).collect();
+            for (name, values, units, long) in [
+                (
+                    "deepest",
+                    deepest.iter().map(|d| d.0).collect::<Array1<f64>>(),
+                    "m",
+                    "where the mode's pattern is deepest (first rail), from the stretch's start",
+                ),
+                (
+                    "deepest_in_span",
+                    deepest.iter().map(|d| d.1).collect(),
+                    "1",
+                    "that place's share of its support interval (0: the support before it; 0.5: mid-span)",
+                ),
+            ] {
+                g.var_f64(name, &["mode"], values.view().into_dyn(), units, long)?;
+            }
+        }
         let waves = Array1::from(s.wavelengths.clone());
         g.var_f64(
             "forced_wavelength",

@@ -29,13 +29,16 @@
 //! keys), group `layout` (attribute `period`, m) with dimensions
 //! `frequency` (Hz), `support` (m from the period's start) and `place` (m:
 //! each support, then the mid-span after it): `pad_stiffness(support)`
-//! (N/m), `sleeper_mass(support)` (kg), each span's `span_frequency`,
+//! (N/m), `pad_loss_factor(support)` (1; where the pads are damped by a
+//! loss factor), `sleeper_mass(support)` (kg), `ballast_stiffness(support)`
+//! (N/m), each span's `span_frequency`,
 //! `pinned_pinned_frequency` (Hz) and `pinned_pinned_receptance` (m/N) on
 //! `support` (the span after it), the vertical `receptance_real(place,
 //! frequency)` and `_imag`, and with the head in three directions
 //! `head_receptance_real(place, frequency, response, force)` and `_imag`.
 
 use super::netcdf::{NcError, write_atomically};
+use crate::dynamics::track::Damping;
 use crate::dynamics::track::head::HeadResponse;
 use crate::dynamics::track::response::{LayoutResponse, TrackResponse};
 use crate::dynamics::track::section::Mat4;
@@ -171,20 +174,34 @@ fn write_layout(g: &super::netcdf::NcGroup, frequency: &[f64], l: &LayoutRespons
     let x: Vec<f64> = supports.iter().map(|s| s.x).collect();
     g.coord_f64("support", &x, "m", "support position from the period's start", false)?;
     let column = |v: Vec<f64>| Array1::from(v);
-    g.var_f64(
-        "pad_stiffness",
-        &["support"],
-        column(supports.iter().map(|s| s.pad_stiffness).collect()).view().into_dyn(),
-        "N/m",
-        "the support's pad stiffness",
-    )?;
-    g.var_f64(
-        "sleeper_mass",
-        &["support"],
-        column(supports.iter().map(|s| s.sleeper_mass).collect()).view().into_dyn(),
-        "kg",
-        "the support's sleeper mass per rail",
-    )?;
+    let mut values: Vec<(&str, Vec<f64>, &str, &str)> = vec![
+        ("pad_stiffness", supports.iter().map(|s| s.pad_stiffness).collect(), "N/m", "the support's pad stiffness"),
+        (
+            "sleeper_mass",
+            supports.iter().map(|s| s.sleeper_mass).collect(),
+            "kg",
+            "the support's sleeper mass per rail",
+        ),
+        (
+            "ballast_stiffness",
+            supports.iter().map(|s| s.ballast_stiffness).collect(),
+            "N/m",
+            "the ballast's stiffness under the support's sleeper end",
+        ),
+    ];
+    let loss: Option<Vec<f64>> = supports
+        .iter()
+        .map(|s| match s.pad_damping {
+            Damping::LossFactor(eta) => Some(eta),
+            Damping::Viscous(_) => None,
+        })
+        .collect();
+    if let Some(loss) = loss {
+        values.push(("pad_loss_factor", loss, "1", "the support's pad loss factor"));
+    }
+    for (name, v, units, long) in values {
+        g.var_f64(name, &["support"], column(v).view().into_dyn(), units, long)?;
+    }
     for (name, k, units, long) in [
         ("span_frequency", 0, "Hz", "first bending frequency of the span after the support, simply supported"),
         ("pinned_pinned_frequency", 1, "Hz", "peak of the span's mid-span receptance within a factor 1.5 of it"),

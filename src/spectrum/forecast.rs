@@ -424,6 +424,7 @@ pub(crate) mod fixture {
             base_wear: vec![vec![0.0; h]],
             mean_wear: vec![0.0],
             positions: Vec::new(),
+            supports: Vec::new(),
             rails: 1,
             linear_contact: true,
             passage_equivalents: 0.0,

@@ -41,7 +41,7 @@ pub mod modes;
 pub mod outlook;
 
 use crate::build::{DynamicsError, study_grid};
-use crate::params::Scene;
+use crate::params::{DynamicsKind, Scene};
 use crate::passage::PassageError;
 use bloch::{Class, Harmonic, Slot};
 use measure::Responses;
@@ -137,6 +137,10 @@ pub struct Spectrum {
     pub mean_wear: Vec<f64>,
     /// Positions along the stretch of the modes' envelopes (m from its start).
     pub positions: Vec<f64>,
+    /// The discrete track's supports along the stretch (m from its start:
+    /// the layout's period repeated over the stretch, the first support at
+    /// 0); empty on a continuous track.
+    pub supports: Vec<f64>,
     /// Rails in the model (1 or 2).
     pub rails: usize,
     /// Whether the passages took the linear profile contact (else the
@@ -233,12 +237,28 @@ pub fn linear_spectrum(
     Spectrum::from_responses(scene, params, responses)
 }
 
+/// `scene`'s discrete supports along a stretch of `stretch` (m) from its
+/// start (its first support there): the layout's period repeated; none on
+/// a continuous track.
+fn supports_along(scene: &Scene, stretch: f64) -> Vec<f64> {
+    let discrete = scene.growth.as_ref().is_some_and(|g| matches!(g.dynamics, DynamicsKind::Discrete { .. }));
+    if !discrete {
+        return Vec::new();
+    }
+    let layout = &scene.layout;
+    let periods = ((stretch / layout.period).round() as usize).max(1);
+    (0..periods).flat_map(|r| layout.supports.iter().map(move |s| r as f64 * layout.period + s.x)).collect()
+}
+
 /// How near a resonance a mode's frequency must be to be named after it
 /// (relative).
 pub const RESONANCE_BAND: f64 = 0.1;
 
 /// Points along the stretch at which a mode's envelope is given.
 pub const ENVELOPE_POINTS: usize = 120;
+
+/// Points per support interval at which a mode's deepest place is sought.
+pub const SPAN_POINTS: usize = 64;
 
 impl Spectrum {
     /// The spectrum of the measured `responses` (every slot of every class
@@ -273,6 +293,7 @@ impl Spectrum {
             base_wear: r.base.iter().map(amplitude).collect(),
             mean_wear: r.mean_wear,
             positions: (0..points).map(|k| stretch * k as f64 / points as f64).collect(),
+            supports: supports_along(scene, stretch),
             rails: r.rails,
             linear_contact: r.linear_contact,
             passage_equivalents: (r.passages * r.cells) as f64,
@@ -297,6 +318,45 @@ impl Spectrum {
     pub fn wavelength(&self, k: usize) -> f64 {
         let h = self.class_of(k).basis[self.modes[k].dominant].index;
         self.supercell() / h.unsigned_abs() as f64
+    }
+
+    /// The support intervals along the stretch (m from its start: each
+    /// support and the next, the last ending at the first's next image).
+    fn spans(&self) -> Vec<(f64, f64)> {
+        let ends = self.supports.iter().skip(1).copied().chain(self.supports.first().map(|x| x + self.stretch));
+        self.supports.iter().copied().zip(ends).collect()
+    }
+
+    /// Mode `k`'s envelope over the supports against mid-span: its mean at
+    /// the supports over its mean at the spans' middles (one bay with a
+    /// support at the stretch's start: over the sleeper against mid-span;
+    /// on a continuous track: at the stretch's start over its middle).
+    pub fn support_ratio(&self, k: usize) -> f64 {
+        let spans = if self.supports.is_empty() { vec![(0.0, self.stretch)] } else { self.spans() };
+        let at: Vec<f64> = spans.iter().map(|s| s.0).chain(spans.iter().map(|s| 0.5 * (s.0 + s.1))).collect();
+        let e = self.modes[k].envelope(self.class_of(k), 0, &at, self.supercell());
+        let (supports, middles) = e.split_at(spans.len());
+        let middle = middles.iter().sum::<f64>();
+        if middle > 0.0 { supports.iter().sum::<f64>() / middle } else { f64::NAN }
+    }
+
+    /// Where mode `k`'s pattern is deepest on the first rail, on the
+    /// discrete track: the place (m from the stretch's start) and its
+    /// share of its support interval (0 at the support before it, 0.5
+    /// mid-span), sought at [`SPAN_POINTS`] places per interval; None on a
+    /// continuous track.
+    pub fn deepest(&self, k: usize) -> Option<(f64, f64)> {
+        let spans = self.spans();
+        let places: Vec<(f64, f64)> = spans
+            .iter()
+            .flat_map(|&(a, b)| {
+                (0..SPAN_POINTS)
+                    .map(move |i| (a + (b - a) * i as f64 / SPAN_POINTS as f64, i as f64 / SPAN_POINTS as f64))
+            })
+            .collect();
+        let x: Vec<f64> = places.iter().map(|p| p.0).collect();
+        let e = self.modes[k].envelope(self.class_of(k), 0, &x, self.supercell());
+        (0..e.len()).max_by(|&a, &b| e[a].total_cmp(&e[b])).map(|i| places[i])
     }
 
     /// Mode `k`'s frequency at the scene's speed (Hz).
@@ -331,5 +391,54 @@ impl Spectrum {
             .filter(|(_, (_, r))| (f / r - 1.0).abs() <= RESONANCE_BAND)
             .min_by(|a, b| (f / a.1.1).ln().abs().total_cmp(&(f / b.1.1).ln().abs()))
             .map(|(i, _)| i)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::forecast::fixture::diagonal;
+    use super::*;
+
+    /// A mode of two harmonics `n` and `n + 1` of equal amplitude on a
+    /// stretch `L`: its envelope `|1 + exp(2 pi i x / L)| = 2 |cos(pi x /
+    /// L)|`, deepest at 0 and nil at `L / 2`.
+    fn beating(supports: Vec<f64>) -> Spectrum {
+        let mut s = diagonal(1.2, &[1e-6; 20], &[Complex64::default(); 20]);
+        let basis = &s.classes[0].basis;
+        let at = |index: i64| basis.iter().position(|b| b.index == index).unwrap();
+        let mut vector = vec![Complex64::default(); basis.len()];
+        vector[at(15)] = Complex64::new(0.5f64.sqrt(), 0.0);
+        vector[at(16)] = Complex64::new(0.5f64.sqrt(), 0.0);
+        s.modes = vec![Mode {
+            class: 0,
+            eigenvalue: Complex64::new(1e-6, 0.0),
+            dominant: at(15),
+            dual: vector.clone(),
+            vector,
+        }];
+        s.supports = supports;
+        s
+    }
+
+    #[test]
+    fn the_support_ratio_and_the_deepest_place_follow_the_supports() {
+        // Supports at 0 and 0.6 m: the envelope 2 and 0 there, sqrt 2 at
+        // both mid-spans: the ratio (2 + 0) / 2 over sqrt 2.
+        let s = beating(vec![0.0, 0.6]);
+        assert!((s.support_ratio(0) - 0.5f64.sqrt()).abs() < 1e-12, "{}", s.support_ratio(0));
+        let (x, share) = s.deepest(0).unwrap();
+        assert!(x.abs() < 1e-12 && share == 0.0, "{x} {share}");
+        // Supports at 0.3 and 0.9 m: the envelope sqrt 2 at both, 0 and 2 at
+        // the mid-spans 0.6 and 1.2 (the stretch's start again) m: deepest
+        // in the middle of the second span.
+        let s = beating(vec![0.3, 0.9]);
+        assert!((s.support_ratio(0) - 2.0f64.sqrt()).abs() < 1e-12, "{}", s.support_ratio(0));
+        let (x, share) = s.deepest(0).unwrap();
+        assert!((x - 1.2).abs() < 1e-12 && share == 0.5, "{x} {share}");
+        // On a continuous track: at the stretch's start over its middle,
+        // and no supports to be deepest between.
+        let s = beating(Vec::new());
+        assert!(s.support_ratio(0).is_nan() || s.support_ratio(0) > 1e6);
+        assert_eq!(s.deepest(0), None);
     }
 }

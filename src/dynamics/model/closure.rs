@@ -11,7 +11,7 @@ use super::places::{Places, load_and_watched};
 use super::{BAY_PLACES, Directions, Track, Wheel};
 use crate::dynamics::coupling::contact_point::ContactLaw;
 use crate::dynamics::track::discrete3::Discrete3Error;
-use crate::dynamics::track::discrete3::quadrature_at;
+use crate::dynamics::track::discrete3::layout_at;
 use crate::dynamics::track::section::Mat4;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -94,7 +94,7 @@ fn vertical_rail(track: &Track, wheels: &[Wheel], omega: f64) -> Result<Vec<Vec<
             let positions = Places::new(layout, 0.0).positions();
             if !vertical.is_one_bay(layout) {
                 let pairs = load_and_watched(&positions, &s);
-                let a = vertical.layout_receptances(layout, &pairs, omega).map_err(quadrature_at(omega))?;
+                let a = vertical.layout_receptances(layout, &pairs, omega).map_err(layout_at(omega))?;
                 return Ok(a.chunks(n * n).map(|c| split(c.to_vec())).collect());
             }
             let offsets: Vec<f64> = s.iter().map(|b| -b).collect();

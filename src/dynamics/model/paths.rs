@@ -8,7 +8,7 @@
 use super::places::{Places, load_and_watched};
 use super::{Track, Wheel};
 use crate::dynamics::track::discrete::DiscreteTrack;
-use crate::dynamics::track::discrete3::{Discrete3Error, quadrature_at};
+use crate::dynamics::track::discrete3::{Discrete3Error, layout_at};
 use crate::dynamics::track::layout::Layout;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
@@ -57,7 +57,7 @@ pub(super) fn wheel_paths(
 /// ([`Places`]) on `layout`'s period of `track`.
 ///
 /// # Errors
-/// Where a layout's Floquet integral does not converge.
+/// Where a layout's semi-infinite track does not converge.
 pub fn static_receptances(
     track: &DiscreteTrack,
     layout: &Layout,
@@ -72,7 +72,7 @@ pub fn static_receptances(
         return Ok(track.vehicle_receptances(&positions, &offsets, omega).iter().map(|a| real(a)).collect());
     }
     let pairs = load_and_watched(&positions, behind);
-    let a = track.layout_receptances(layout, &pairs, omega).map_err(quadrature_at(omega))?;
+    let a = track.layout_receptances(layout, &pairs, omega).map_err(layout_at(omega))?;
     Ok(a.chunks(n * n).map(real).collect())
 }
 

@@ -44,12 +44,11 @@
 //! run over `|j| <= J` with the tail of `T(kappa, 0)` (`alpha^ ~ 1 /
 //! (kGA k^2)`) added in closed form; the integral is the midpoint rule.
 
-use super::floquet::{self, Supported};
-use super::layout::Layout;
+use super::layout::{Layout, Support};
 use super::rail::RailSection;
+use super::scattering::{self, ScatteringError, Supported};
 use super::{Damping, TrackConfig};
-use crate::quadrature::QuadratureError;
-use nalgebra::SMatrix;
+use nalgebra::{SMatrix, SVector};
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -297,31 +296,44 @@ pub struct VerticalWaves {
     pub c: [Complex64; 2],
 }
 
-impl super::floquet::RailWaves<1> for VerticalWaves {
+impl super::scattering::RailWaves<1> for VerticalWaves {
     fn wavenumbers(&self) -> Vec<Complex64> {
         self.k.to_vec()
     }
 
-    fn residues(&self) -> Vec<SMatrix<Complex64, 1, 1>> {
-        self.c.iter().map(|c| SMatrix::from_element(*c)).collect()
+    fn factors(&self) -> Vec<(SVector<Complex64, 1>, SVector<Complex64, 1>)> {
+        self.c.iter().map(|c| (SVector::from_element(*c), SVector::from_element(Complex64::new(1.0, 0.0)))).collect()
     }
 }
 
 impl DiscreteTrack {
-    /// Whether `layout` is one bay of this track (its own spacing, pad and
-    /// sleeper): the one-bay models then serve it.
+    /// Whether `layout` is one bay of this track (its own spacing, pad,
+    /// sleeper and ballast): the one-bay models then serve it.
     pub fn is_one_bay(&self, layout: &Layout) -> bool {
-        layout.is_one_bay_of((self.spacing, self.pad_stiffness, self.sleeper_mass))
+        let support = Support {
+            x: 0.0,
+            pad_stiffness: self.pad_stiffness,
+            pad_damping: self.pad_damping,
+            sleeper_mass: self.sleeper_mass,
+            ballast_stiffness: self.ballast_stiffness,
+        };
+        layout.is_one_bay_of(self.spacing, support)
     }
 
-    /// This track with support `m` of `layout`'s pad and sleeper.
+    /// This track with support `m` of `layout`'s pad, sleeper and ballast.
     pub fn at_support(&self, layout: &Layout, m: usize) -> DiscreteTrack {
         let s = &layout.supports[m];
-        DiscreteTrack { pad_stiffness: s.pad_stiffness, sleeper_mass: s.sleeper_mass, ..*self }
+        DiscreteTrack {
+            pad_stiffness: s.pad_stiffness,
+            pad_damping: s.pad_damping,
+            sleeper_mass: s.sleeper_mass,
+            ballast_stiffness: s.ballast_stiffness,
+            ..*self
+        }
     }
 
     /// `layout`'s supports at `omega` (rad/s): each one's place (m) and
-    /// dynamic stiffness (N/m, eq. 2 with its own pad and sleeper).
+    /// dynamic stiffness (N/m, eq. 2 with its own pad, sleeper and ballast).
     pub fn layout_supports(&self, layout: &Layout, omega: f64) -> Vec<Supported<1>> {
         (0..layout.len())
             .map(|m| (layout.supports[m].x, SMatrix::from_element(self.at_support(layout, m).support_stiffness(omega))))
@@ -353,39 +365,26 @@ impl DiscreteTrack {
         VerticalWaves { k, c }
     }
 
-    /// The receptances (m/N) on `layout`, each support with its own pad
-    /// and sleeper: the rail's
-    /// displacement at `x1` under a unit force at `x0` for each `(x0, x1)`
-    /// of `pairs` (m from the layout's start) at angular frequency `omega`
-    /// (rad/s), eq. 1 of [`super::floquet`] with the waves of eq. 5.
+    /// The receptances (m/N) on `layout`, each support with its own pad,
+    /// sleeper and ballast: the rail's displacement at `x1` under a unit
+    /// force at `x0` for each `(x0, x1)` of `pairs` (m from the layout's
+    /// start) at angular frequency `omega` (rad/s), by the waves'
+    /// scattering ([`super::scattering`]) with the waves of eq. 5.
     ///
     /// # Errors
-    /// Where the Floquet integral does not converge.
+    /// Where the semi-infinite track does not converge (an undamped track).
     pub fn layout_receptances(
         &self,
         layout: &Layout,
         pairs: &[(f64, f64)],
         omega: f64,
-    ) -> Result<Vec<Complex64>, QuadratureError> {
+    ) -> Result<Vec<Complex64>, ScatteringError> {
         let supports = self.layout_supports(layout, omega);
         let one = SMatrix::<Complex64, 1, 1>::from_element(Complex64::new(1.0, 0.0));
-        let out = floquet::response(
-            &self.waves(omega),
-            &supports,
-            layout.period,
-            &one,
-            pairs,
-            (LAYOUT_TOLERANCE, LAYOUT_EVALUATIONS),
-        )?;
+        let out = scattering::response(&self.waves(omega), &supports, layout.period, &one, pairs)?;
         Ok(out.into_iter().map(|g| g[(0, 0)]).collect())
     }
 }
-
-/// Relative tolerance of a layout's Floquet integral.
-pub const LAYOUT_TOLERANCE: f64 = 1e-6;
-
-/// The most integrand evaluations per frequency of a layout's integral.
-const LAYOUT_EVALUATIONS: usize = 200_000;
 
 /// The supports' lattice sums at the place `x` (m from a support):
 /// `T(kappa, x) = sum_j alpha^(kappa_j) exp(i kappa_j x)` and `T(kappa, -x)`,

@@ -23,8 +23,8 @@
 //! receptance). The head's receptance is `B^T G B`.
 
 use super::TrackConfig;
-use super::floquet::{self, Supported};
 use super::layout::Layout;
+use super::scattering::{self, ScatteringError, Supported};
 use super::section::{Map64, Mat3, Mat4, Mat6, Section, pad, project};
 use super::waves::{RootsError, Waves};
 use crate::quadrature::{QuadratureError, integrate};
@@ -57,6 +57,20 @@ pub enum Discrete3Error {
         /// Why.
         source: QuadratureError,
     },
+    /// A layout's semi-infinite track did not converge.
+    #[error("the track layout's response at {frequency} Hz: {source}")]
+    Layout {
+        /// Frequency (Hz).
+        frequency: f64,
+        /// Why.
+        source: ScatteringError,
+    },
+}
+
+/// The error of a layout's response at angular frequency `omega` (rad/s)
+/// that did not converge.
+pub fn layout_at(omega: f64) -> impl Fn(ScatteringError) -> Discrete3Error {
+    move |source| Discrete3Error::Layout { frequency: omega / (2.0 * PI), source }
 }
 
 /// The error of a Floquet integral at angular frequency `omega` (rad/s)
@@ -141,7 +155,7 @@ impl Discrete3 {
 
     /// [`Self::heads`] on `layout` (its supports each with their own pad
     /// and sleeper, [`Layout::track_of`]; places in m from the layout's
-    /// start): eq. 1 of [`super::floquet`].
+    /// start), by the waves' scattering ([`super::scattering`]).
     pub fn layout_heads(
         &self,
         layout: &Layout,
@@ -152,15 +166,13 @@ impl Discrete3 {
         let waves = self.free_waves(omega)?;
         let s = &self.section;
         let supports = self.layout_supports(layout, omega);
-        let fail = quadrature_at(omega);
-        let limits = (TOLERANCE, MAX_EVALUATIONS);
+        let fail = layout_at(omega);
         if rotation {
             let (b, scale) = self.arm_map();
-            let out = floquet::response(&waves, &supports, layout.period, &b, pairs, limits).map_err(fail)?;
+            let out = scattering::response(&waves, &supports, layout.period, &b, pairs).map_err(fail)?;
             Ok(out.into_iter().map(|a| Mat4::from_fn(|r, c| a[(r, c)] * (scale[r] * scale[c]))).collect())
         } else {
-            let out =
-                floquet::response(&waves, &supports, layout.period, &s.head_map(), pairs, limits).map_err(fail)?;
+            let out = scattering::response(&waves, &supports, layout.period, &s.head_map(), pairs).map_err(fail)?;
             Ok(out.iter().map(pad).collect())
         }
     }

@@ -1,7 +1,10 @@
-//! The rail on a layout of supports ([`super::layout`]): the periodic
-//! structure whose period holds several supports, each with its own
-//! position and stiffness, by the Floquet method of
-//! [`super::discrete3`] with the period's supports solved together.
+//! The tests' second method for the rail on a layout of supports
+//! ([`super::layout`]), independent of the waves' scattering the program
+//! uses ([`super::scattering`]): the periodic structure whose period holds
+//! several supports, each with its own position and stiffness, by the
+//! Floquet method of [`super::discrete3`] with the period's supports
+//! solved together. Its cost grows as the square of the supports or faster
+//! (every support against every other, per Bloch wavenumber).
 //!
 //! # Equations
 //! With the free rail's Green's matrix `G(x)` and its lattice sums over
@@ -20,36 +23,13 @@
 //! adaptive ([`crate::quadrature`]) to a relative tolerance of the largest
 //! entry.
 
+pub use super::scattering::{RailWaves, Supported};
 use crate::quadrature::{QuadratureError, integrate};
 use faer::Mat;
 use faer::linalg::solvers::Solve;
 use nalgebra::SMatrix;
 use num_complex::Complex64;
 use std::f64::consts::PI;
-
-/// The free rail's waves in `Q` freedoms at one frequency: `G(x) = sum_m
-/// M_m exp(i lambda_m x)` for `x >= 0`, `G(-x) = G(x)^T` ([`super::waves`]
-/// eq. 1).
-pub trait RailWaves<const Q: usize> {
-    /// The wavenumbers `lambda_m` (rad/m, `Im > 0`).
-    fn wavenumbers(&self) -> Vec<Complex64>;
-    /// Their residues `M_m`.
-    fn residues(&self) -> Vec<SMatrix<Complex64, Q, Q>>;
-
-    /// `G(x)`: the response at `x` (m) to a unit load at 0.
-    fn green(&self, x: f64) -> SMatrix<Complex64, Q, Q> {
-        let mut g = SMatrix::<Complex64, Q, Q>::zeros();
-        for (l, m) in self.wavenumbers().iter().zip(self.residues()) {
-            g += m * (Complex64::i() * l * x.abs()).exp();
-        }
-        if x < 0.0 { g.transpose() } else { g }
-    }
-}
-
-/// A support of the period: its position (m from the period's start) and
-/// dynamic stiffness in the rail's freedoms (N/m for the displacements,
-/// N m/rad for the rotations).
-pub type Supported<const Q: usize> = (f64, SMatrix<Complex64, Q, Q>);
 
 /// An offset `x = cells L + xr` (`0 <= xr < L`) in the lattice sums of
 /// [`super::waves`] eq. 2: per wave `exp(i lambda_m xr)` and `exp(i
@@ -205,198 +185,4 @@ pub fn response<const Q: usize, const N: usize>(
         .zip(taken)
         .map(|(&(x0, x1), t)| bt * waves.green(x1 - x0) * b - t / Complex64::new(2.0 * PI, 0.0))
         .collect())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::super::TrackConfig;
-    use super::super::discrete::DiscreteTrack;
-    use super::super::discrete3::Discrete3;
-    use super::super::layout::Layout;
-    use super::super::section::{Mat4, Mat6, translations};
-    use super::*;
-    use nalgebra::DMatrix;
-
-    const HZ: [f64; 4] = [150.0, 600.0, 1500.0, 3000.0];
-
-    fn omega(hz: f64) -> f64 {
-        2.0 * PI * hz
-    }
-
-    /// An irregular layout of three bays: spacings 0.55, 0.70 and 0.55 m,
-    /// the second pad twice as stiff, the third sleeper lighter.
-    fn irregular(t: &TrackConfig) -> Layout {
-        let mut l = Layout::at_positions(t, 1.8, &[0.0, 0.55, 1.25]).unwrap();
-        l.supports[1].pad_stiffness *= 2.0;
-        l.supports[2].sleeper_mass *= 0.7;
-        l
-    }
-
-    fn relative(a: Complex64, b: Complex64) -> f64 {
-        (a - b).norm() / b.norm()
-    }
-
-    #[test]
-    fn one_support_per_period_is_the_discrete_track() {
-        // Vertically against the lattice sums of discrete.rs (their own
-        // truncation and midpoint rule); in every direction against
-        // discrete3.rs's one-support integral.
-        let t = TrackConfig::default();
-        let layout = Layout::uniform(&t);
-        let vertical = DiscreteTrack::new(&t);
-        let head = Discrete3::new(&t, 0.01);
-        let pairs = [(0.0, 0.0), (0.15, 0.15), (0.3, 0.3), (0.1, 0.45)];
-        let (mut ev, mut eh) = (0.0f64, 0.0f64);
-        for hz in HZ {
-            let w = omega(hz);
-            let lay = vertical.layout_receptances(&layout, &pairs, w).unwrap();
-            let own: Vec<Complex64> =
-                pairs.iter().map(|&(x0, x1)| vertical.transfer_receptances(x0, &[x1 - x0], w)[0]).collect();
-            for (a, b) in lay.iter().zip(&own) {
-                ev = ev.max(relative(*a, *b));
-            }
-            let lay = head.layout_heads(&layout, &pairs, w, true).unwrap();
-            let own = head.heads(&pairs, w, true).unwrap();
-            for (a, b) in lay.iter().zip(&own) {
-                eh = eh.max((a - b).norm() / b.norm());
-            }
-        }
-        // Vertically 1.5e-4: the lattice sums' truncation (a few 1e-4 of
-        // the receptance, discrete.rs); in every direction one integral,
-        // to rounding.
-        assert!(ev < 1e-3, "vertical: {ev:e}");
-        assert!(eh < 1e-10, "every direction: {eh:e}");
-    }
-
-    #[test]
-    fn identical_bays_are_one_bay() {
-        let t = TrackConfig::default();
-        let three = Layout::at_positions(&t, 1.8, &[0.0, 0.6, 1.2]).unwrap();
-        let one = Layout::uniform(&t);
-        let vertical = DiscreteTrack::new(&t);
-        let head = Discrete3::new(&t, 0.01);
-        // The same places seen from another bay of the three.
-        let pairs = [(0.1, 0.1), (0.2, 0.5), (0.3, 1.0)];
-        let shifted: Vec<(f64, f64)> = pairs.iter().map(|&(a, b)| (a + 0.6, b + 0.6)).collect();
-        let (mut ev, mut eh) = (0.0f64, 0.0f64);
-        for hz in HZ {
-            let w = omega(hz);
-            let a = vertical.layout_receptances(&three, &shifted, w).unwrap();
-            let b = vertical.layout_receptances(&one, &pairs, w).unwrap();
-            for (a, b) in a.iter().zip(&b) {
-                ev = ev.max(relative(*a, *b));
-            }
-            let a = head.layout_heads(&three, &shifted, w, false).unwrap();
-            let b = head.layout_heads(&one, &pairs, w, false).unwrap();
-            for (a, b) in a.iter().zip(&b) {
-                eh = eh.max((a - b).norm() / b.norm());
-            }
-        }
-        assert!(ev < 1e-5 && eh < 1e-5, "vertical {ev:e}, every direction {eh:e}");
-    }
-
-    /// The rail's response on `periods` copies each side of the layout's
-    /// supports, solved in space: `w_s + sum_t G(p_s - p_t) K_t w_t = G(p_s
-    /// - x0)`, the response at `x1` `G(x1 - x0) - sum_t G(x1 - p_t) K_t w_t`.
-    fn in_space<const Q: usize>(
-        waves: &impl RailWaves<Q>,
-        supports: &[Supported<Q>],
-        period: f64,
-        periods: i32,
-        (x0, x1): (f64, f64),
-    ) -> SMatrix<Complex64, Q, Q> {
-        let all: Vec<&Supported<Q>> = (-periods..=periods).flat_map(|_| supports.iter()).collect();
-        let place: Vec<f64> =
-            (-periods..=periods).flat_map(|n| supports.iter().map(move |(x, _)| x + n as f64 * period)).collect();
-        let n = all.len();
-        let mut a = DMatrix::<Complex64>::identity(Q * n, Q * n);
-        let mut rhs = DMatrix::<Complex64>::zeros(Q * n, Q);
-        for s in 0..n {
-            for t in 0..n {
-                let block = waves.green(place[s] - place[t]) * all[t].1;
-                let mut v = a.view_mut((Q * s, Q * t), (Q, Q));
-                v += block;
-            }
-            rhs.view_mut((Q * s, 0), (Q, Q)).copy_from(&waves.green(place[s] - x0));
-        }
-        let w = a.lu().solve(&rhs).unwrap();
-        let mut g = waves.green(x1 - x0);
-        for t in 0..n {
-            let wt = SMatrix::<Complex64, Q, Q>::from_fn(|r, c| w[(Q * t + r, c)]);
-            g -= waves.green(x1 - place[t]) * all[t].1 * wt;
-        }
-        g
-    }
-
-    #[test]
-    fn an_irregular_layout_against_its_supports_solved_in_space() {
-        let t = TrackConfig::default();
-        let layout = irregular(&t);
-        let vertical = DiscreteTrack::new(&t);
-        let pairs = [(0.0, 0.0), (0.3, 0.3), (0.9, 0.9), (0.2, 1.4)];
-        let mut e = 0.0f64;
-        for hz in HZ {
-            let w = omega(hz);
-            let waves = vertical.waves(w);
-            let supports = vertical.layout_supports(&layout, w);
-            let floquet = vertical.layout_receptances(&layout, &pairs, w).unwrap();
-            for (p, f) in pairs.iter().zip(&floquet) {
-                let s = in_space(&waves, &supports, layout.period, 60, *p)[(0, 0)];
-                e = e.max(relative(*f, s));
-            }
-        }
-        // Measured 1.6e-10 (the integral's tolerance is 1e-6).
-        assert!(e < 1e-6, "vertical: {e:e}");
-    }
-
-    #[test]
-    fn an_irregular_layout_in_every_direction_against_its_supports_solved_in_space() {
-        let t = TrackConfig::default();
-        let layout = irregular(&t);
-        let head = Discrete3::new(&t, 0.01);
-        // The lateral and longitudinal waves carry little damping: the
-        // sum in space converges slowly with its length (7.0e-3, 1.2e-3,
-        // 5.6e-4 at 10, 20, 30 periods each side).
-        let pairs = [(0.3, 0.3), (0.2, 1.4)];
-        let mut e = 0.0f64;
-        for hz in [600.0, 1500.0] {
-            let w = omega(hz);
-            let waves = head.free_waves(w).unwrap();
-            let supports = head.layout_supports(&layout, w);
-            let floquet = head.layout_heads(&layout, &pairs, w, false).unwrap();
-            for (p, f) in pairs.iter().zip(&floquet) {
-                let g: Mat6 = in_space(&waves, &supports, layout.period, 30, *p);
-                let s = head.section.head(&g);
-                e = e.max((translations(f) - s).norm() / s.norm());
-            }
-        }
-        assert!(e < 1e-3, "every direction: {e:e}");
-    }
-
-    #[test]
-    fn an_irregular_layout_is_reciprocal_and_passive_in_every_direction() {
-        let t = TrackConfig::default();
-        let layout = irregular(&t);
-        let head = Discrete3::new(&t, 0.01);
-        let places = [0.0, 0.2, 0.55, 0.9, 1.6];
-        for hz in HZ {
-            let w = omega(hz);
-            let pairs: Vec<(f64, f64)> = places.iter().flat_map(|&a| places.iter().map(move |&b| (a, b))).collect();
-            let g = head.layout_heads(&layout, &pairs, w, true).unwrap();
-            let n = places.len();
-            for i in 0..n {
-                for j in 0..n {
-                    let (a, b) = (&g[i * n + j], &g[j * n + i]);
-                    let e = (a - b.transpose()).norm() / a.norm();
-                    assert!(e < 1e-9, "{hz} Hz, places {i}, {j}: G(x1; x0) - G(x0; x1)^T at {e:e}");
-                }
-                // Passive (exp(+i w t)): (A - A^H) / 2i is negative
-                // semidefinite at a point.
-                let a: &Mat4 = &g[i * n + i];
-                let h = (a - a.adjoint()) / Complex64::new(0.0, 2.0);
-                let top = h.map(|v| v.re).symmetric_eigenvalues().max();
-                assert!(top <= 1e-9 * a.norm(), "{hz} Hz at {} m: the dissipation's eigenvalue {top:e}", places[i]);
-            }
-        }
-    }
 }

@@ -16,7 +16,7 @@
 //! they fill the period exactly (the sample's spread unchanged) and drawn
 //! again where the shift leaves a bound.
 
-use super::TrackConfig;
+use super::{Damping, TrackConfig};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -28,8 +28,85 @@ pub struct Support {
     /// Pad stiffness (N/m); the pad's lateral and longitudinal stiffnesses
     /// scale with it (a stiffer pad is stiffer every way).
     pub pad_stiffness: f64,
+    /// Pad damping (a per-support loss factor, or the configured damping).
+    pub pad_damping: Damping,
     /// Sleeper mass per rail (kg).
     pub sleeper_mass: f64,
+    /// Ballast stiffness under the sleeper end (N/m); its lateral and
+    /// longitudinal stiffnesses scale with it.
+    pub ballast_stiffness: f64,
+}
+
+impl Support {
+    /// The configured track's support at `x` (m).
+    pub fn of(track: &TrackConfig, x: f64) -> Support {
+        Support {
+            x,
+            pad_stiffness: track.pad_stiffness,
+            pad_damping: track.pad_damping,
+            sleeper_mass: track.sleeper_mass,
+            ballast_stiffness: track.ballast_stiffness,
+        }
+    }
+
+    /// Whether it is `other` but for the position.
+    fn same_as(&self, other: &Support) -> bool {
+        Support { x: other.x, ..*self } == *other
+    }
+}
+
+/// A value a layout gives each support: its config key's stem
+/// (`track.<name>_pattern`, `track.<name>_std`) and its unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Property {
+    /// Pad stiffness (N/m).
+    PadStiffness,
+    /// Sleeper mass (kg).
+    SleeperMass,
+    /// Pad loss factor (1); only where the pads are damped by a loss factor.
+    PadLossFactor,
+    /// Ballast stiffness (N/m).
+    BallastStiffness,
+}
+
+impl Property {
+    /// Every property, in the order their random values are drawn (after
+    /// the spacings).
+    pub const ALL: [Property; 4] =
+        [Property::PadStiffness, Property::SleeperMass, Property::PadLossFactor, Property::BallastStiffness];
+
+    /// The config key's stem.
+    pub fn name(self) -> &'static str {
+        match self {
+            Property::PadStiffness => "pad_stiffness",
+            Property::SleeperMass => "sleeper_mass",
+            Property::PadLossFactor => "pad_loss_factor",
+            Property::BallastStiffness => "ballast_stiffness",
+        }
+    }
+
+    /// The configured track's value (`None`: a viscous pad has no loss
+    /// factor).
+    pub fn configured(self, track: &TrackConfig) -> Option<f64> {
+        match self {
+            Property::PadStiffness => Some(track.pad_stiffness),
+            Property::SleeperMass => Some(track.sleeper_mass),
+            Property::PadLossFactor => match track.pad_damping {
+                Damping::LossFactor(eta) => Some(eta),
+                Damping::Viscous(_) => None,
+            },
+            Property::BallastStiffness => Some(track.ballast_stiffness),
+        }
+    }
+
+    fn set(self, s: &mut Support, v: f64) {
+        match self {
+            Property::PadStiffness => s.pad_stiffness = v,
+            Property::SleeperMass => s.sleeper_mass = v,
+            Property::PadLossFactor => s.pad_damping = Damping::LossFactor(v),
+            Property::BallastStiffness => s.ballast_stiffness = v,
+        }
+    }
 }
 
 /// The supports of one period of the track.
@@ -94,7 +171,7 @@ pub enum Spacing {
     Random(Spread),
 }
 
-/// A support's value (pad stiffness, sleeper mass) along the period.
+/// A support's value ([`Property`]) along the period.
 #[derive(Debug, Clone, PartialEq)]
 pub enum PerSupport {
     /// The configured value at every support.
@@ -110,10 +187,8 @@ pub enum PerSupport {
 pub struct LayoutSpec {
     /// The supports' positions.
     pub spacing: Spacing,
-    /// The pads' stiffnesses (N/m).
-    pub pad_stiffness: PerSupport,
-    /// The sleepers' masses (kg).
-    pub sleeper_mass: PerSupport,
+    /// Each [`Property`]'s values, in the order of [`Property::ALL`].
+    pub values: [PerSupport; 4],
     /// The generator's seed (random forms).
     pub seed: u64,
 }
@@ -121,19 +196,25 @@ pub struct LayoutSpec {
 impl LayoutSpec {
     /// One bay of the configured track, repeated (the default).
     pub fn uniform() -> LayoutSpec {
-        LayoutSpec {
-            spacing: Spacing::Uniform,
-            pad_stiffness: PerSupport::Uniform,
-            sleeper_mass: PerSupport::Uniform,
-            seed: 0,
-        }
+        LayoutSpec { spacing: Spacing::Uniform, values: std::array::from_fn(|_| PerSupport::Uniform), seed: 0 }
+    }
+
+    /// `property`'s values.
+    pub fn value(&self, property: Property) -> &PerSupport {
+        &self.values[property as usize]
+    }
+
+    /// This spec with `property`'s values `v`.
+    pub fn with(mut self, property: Property, v: PerSupport) -> LayoutSpec {
+        self.values[property as usize] = v;
+        self
     }
 
     /// Whether it lays out nothing (the seed aside): one bay of the
     /// configured track.
     pub fn is_uniform(&self) -> bool {
         let u = Self::uniform();
-        (&self.spacing, &self.pad_stiffness, &self.sleeper_mass) == (&u.spacing, &u.pad_stiffness, &u.sleeper_mass)
+        (&self.spacing, &self.values) == (&u.spacing, &u.values)
     }
 }
 
@@ -143,11 +224,7 @@ const MAX_DRAWS: usize = 10_000;
 impl Layout {
     /// One bay of the configured track.
     pub fn uniform(track: &TrackConfig) -> Layout {
-        Layout { period: track.sleeper_spacing, supports: vec![Self::configured(track, 0.0)] }
-    }
-
-    fn configured(track: &TrackConfig, x: f64) -> Support {
-        Support { x, pad_stiffness: track.pad_stiffness, sleeper_mass: track.sleeper_mass }
+        Layout { period: track.sleeper_spacing, supports: vec![Support::of(track, 0.0)] }
     }
 
     /// Supports at `positions` (m, over one period of `period` m, the first
@@ -177,7 +254,7 @@ impl Layout {
                 "the last sleeper at {last} m must lie before the period's end, {period} m (the next period's first sleeper)"
             )));
         }
-        Ok(Layout { period, supports: positions.iter().map(|&x| Self::configured(track, x)).collect() })
+        Ok(Layout { period, supports: positions.iter().map(|&x| Support::of(track, x)).collect() })
     }
 
     /// The layout of `spec` over a period of `length` (m, a whole number of
@@ -205,10 +282,21 @@ impl Layout {
         let period = if matches!(spec.spacing, Spacing::Positions(_)) { length } else { bays as f64 * d };
         let mut layout = Layout::at_positions(track, period, &positions)?;
         let m = layout.len();
-        let pads = per_support(&mut rng, &spec.pad_stiffness, track.pad_stiffness, m, "track.pad_stiffness")?;
-        let masses = per_support(&mut rng, &spec.sleeper_mass, track.sleeper_mass, m, "track.sleeper_mass")?;
-        for ((s, pad), mass) in layout.supports.iter_mut().zip(pads).zip(masses) {
-            (s.pad_stiffness, s.sleeper_mass) = (pad, mass);
+        for property in Property::ALL {
+            let which = spec.value(property);
+            if *which == PerSupport::Uniform {
+                continue;
+            }
+            let key = format!("track.{}", property.name());
+            let mean = property.configured(track).ok_or_else(|| {
+                LayoutError::Bounds(
+                    format!("{key}{}", if matches!(which, PerSupport::Pattern(_)) { "_pattern" } else { "_std" }),
+                    "gives the pads loss factors: the pads are damped viscously (track.pad_damping)".into(),
+                )
+            })?;
+            for (s, v) in layout.supports.iter_mut().zip(per_support(&mut rng, which, mean, m, &key)?) {
+                property.set(s, v);
+            }
         }
         let minimal = layout.minimal();
         let one_bay = Layout::uniform(track);
@@ -230,9 +318,7 @@ impl Layout {
             let repeats = self.supports.iter().enumerate().all(|(i, s)| {
                 let first = &self.supports[i % len];
                 let shift = (i / len) as f64 * cell;
-                (s.x - (first.x + shift)).abs() <= 1e-12 * self.period
-                    && s.pad_stiffness == first.pad_stiffness
-                    && s.sleeper_mass == first.sleeper_mass
+                (s.x - (first.x + shift)).abs() <= 1e-12 * self.period && s.same_as(first)
             });
             if repeats {
                 return Layout { period: cell, supports: self.supports[..len].to_vec() };
@@ -242,29 +328,30 @@ impl Layout {
     }
 
     /// The track of support `m`: the configured one with this support's
-    /// pad (every direction scaled with its vertical stiffness) and
-    /// sleeper.
+    /// pad, sleeper and ballast (the pad's and the ballast's stiffnesses in
+    /// the other directions scaled with their vertical ones).
     pub fn track_of(&self, track: &TrackConfig, m: usize) -> TrackConfig {
         let s = &self.supports[m];
-        let scale = s.pad_stiffness / track.pad_stiffness;
+        let (pad, ballast) = (s.pad_stiffness / track.pad_stiffness, s.ballast_stiffness / track.ballast_stiffness);
         let mut t = *track;
-        t.pad_stiffness = s.pad_stiffness;
-        t.sleeper_mass = s.sleeper_mass;
-        t.supports.pad_lateral_stiffness *= scale;
-        t.supports.pad_longitudinal_stiffness *= scale;
+        (t.pad_stiffness, t.pad_damping, t.sleeper_mass, t.ballast_stiffness) =
+            (s.pad_stiffness, s.pad_damping, s.sleeper_mass, s.ballast_stiffness);
+        t.supports.pad_lateral_stiffness *= pad;
+        t.supports.pad_longitudinal_stiffness *= pad;
+        t.supports.ballast_lateral_stiffness *= ballast;
+        t.supports.ballast_longitudinal_stiffness *= ballast;
         t
     }
 
-    /// Whether it is one bay of spacing `spacing` (m) with the pad
-    /// `pad_stiffness` (N/m) and the sleeper `sleeper_mass` (kg): the
-    /// one-bay models then serve it.
-    pub fn is_one_bay_of(&self, (spacing, pad_stiffness, sleeper_mass): (f64, f64, f64)) -> bool {
-        self.period == spacing && self.supports == [Support { x: 0.0, pad_stiffness, sleeper_mass }]
+    /// Whether it is one bay of spacing `spacing` (m) with the support
+    /// `support`: the one-bay models then serve it.
+    pub fn is_one_bay_of(&self, spacing: f64, support: Support) -> bool {
+        self.period == spacing && self.supports == [Support { x: 0.0, ..support }]
     }
 
     /// Whether it is one bay of the configured `track`.
     pub fn is_one_bay(&self, track: &TrackConfig) -> bool {
-        self.is_one_bay_of((track.sleeper_spacing, track.pad_stiffness, track.sleeper_mass))
+        self.is_one_bay_of(track.sleeper_spacing, Support::of(track, 0.0))
     }
 
     /// The supports' positions (m) and the period's end: each span's
@@ -391,10 +478,8 @@ mod tests {
             LayoutSpec { spacing: Spacing::Random(Spread { std: 0.03, bounds: (0.62, 0.8) }), ..random(0.03, 1) };
         let e = Layout::from_spec(&t, &spec, 2.4).unwrap_err().to_string();
         assert!(e.contains("track.spacing_min = 0.62"), "{e}");
-        let spec = LayoutSpec {
-            pad_stiffness: PerSupport::Random(Spread { std: 1e7, bounds: (1e6, 1e8) }),
-            ..LayoutSpec::uniform()
-        };
+        let spec = LayoutSpec::uniform()
+            .with(Property::PadStiffness, PerSupport::Random(Spread { std: 1e7, bounds: (1e6, 1e8) }));
         let e = Layout::from_spec(&t, &spec, 2.4).unwrap_err().to_string();
         assert!(e.contains("track.pad_stiffness_max"), "{e}");
     }
@@ -403,7 +488,7 @@ mod tests {
     fn a_pattern_repeats_and_a_uniform_stretch_is_one_bay() {
         let t = TrackConfig::default();
         assert_eq!(Layout::from_spec(&t, &LayoutSpec::uniform(), 3.0).unwrap(), Layout::uniform(&t));
-        let spec = LayoutSpec { pad_stiffness: PerSupport::Pattern(vec![1e8, 3e8]), ..LayoutSpec::uniform() };
+        let spec = LayoutSpec::uniform().with(Property::PadStiffness, PerSupport::Pattern(vec![1e8, 3e8]));
         let l = Layout::from_spec(&t, &spec, 2.4).unwrap();
         assert_eq!(l.len(), 2, "two bays repeat over four");
         assert_eq!(l.supports[1].pad_stiffness, 3e8);

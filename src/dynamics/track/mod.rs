@@ -24,11 +24,13 @@
 pub mod continuous3;
 pub mod discrete;
 pub mod discrete3;
-pub mod floquet;
+#[cfg(test)]
+mod floquet;
 pub mod head;
 pub mod layout;
 pub mod rail;
 pub mod response;
+pub mod scattering;
 pub mod section;
 pub mod waves;
 

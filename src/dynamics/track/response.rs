@@ -8,7 +8,7 @@
 
 use super::TrackConfig;
 use super::discrete::DiscreteTrack;
-use super::discrete3::{Discrete3, Discrete3Error, quadrature_at};
+use super::discrete3::{Discrete3, Discrete3Error, layout_at};
 use super::layout::Layout;
 use super::section::Mat4;
 use crate::dynamics::receptance::{TrackParams, WheelParams};
@@ -166,7 +166,7 @@ pub struct LayoutResponse {
 /// the centre line where given.
 ///
 /// # Errors
-/// Where a Floquet integral does not converge.
+/// Where the semi-infinite track does not converge (an undamped track).
 pub fn layout_response(
     track: &TrackConfig,
     layout: &Layout,
@@ -181,7 +181,7 @@ pub fn layout_response(
         .par_iter()
         .map(|f| {
             let omega = 2.0 * PI * f;
-            vertical.layout_receptances(layout, &pairs, omega).map_err(quadrature_at(omega))
+            vertical.layout_receptances(layout, &pairs, omega).map_err(layout_at(omega))
         })
         .collect::<Result<_, _>>()?;
     let rail = by_place(&by_frequency);

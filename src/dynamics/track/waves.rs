@@ -53,7 +53,13 @@ pub struct Waves {
     pub lambda: [Complex64; 6],
     /// Their residues `M_m` (m/N and the section's other units).
     pub modes: [Mat6; 6],
+    /// The residues' factors `M_m = phi_m psi_m^T`: `phi_m = i V_m`, `psi_m`
+    /// the row `(V^-1 [0; A2^-1])_m`.
+    pub factors: [(Vec6, Vec6); 6],
 }
+
+/// A vector in the section's freedoms.
+pub type Vec6 = nalgebra::SVector<Complex64, 6>;
 
 impl Waves {
     /// The waves of `K(k) = a2 k^2 + a1 k + a0` (`a2` diagonal) at angular
@@ -81,8 +87,13 @@ impl Waves {
         if upper.len() != 6 {
             return Err(RootsError { frequency: omega / (2.0 * std::f64::consts::PI), upper: upper.len() });
         }
-        let mode = |m: usize| Mat6::from_fn(|a, b| Complex64::i() * v[(a, m)] * x[(m, b)]);
-        Ok(Waves { lambda: std::array::from_fn(|k| lambda[upper[k]]), modes: std::array::from_fn(|k| mode(upper[k])) })
+        let factor = |m: usize| (Vec6::from_fn(|a, _| Complex64::i() * v[(a, m)]), Vec6::from_fn(|b, _| x[(m, b)]));
+        let factors: [(Vec6, Vec6); 6] = std::array::from_fn(|k| factor(upper[k]));
+        Ok(Waves {
+            lambda: std::array::from_fn(|k| lambda[upper[k]]),
+            modes: std::array::from_fn(|k| factors[k].0 * factors[k].1.transpose()),
+            factors,
+        })
     }
 
     /// `G(x)` of eq. 1 (the section's response at `x` (m) to a unit load at 0).
@@ -111,9 +122,13 @@ impl Waves {
     }
 }
 
-impl super::floquet::RailWaves<6> for Waves {
+impl super::scattering::RailWaves<6> for Waves {
     fn wavenumbers(&self) -> Vec<Complex64> {
         self.lambda.to_vec()
+    }
+
+    fn factors(&self) -> Vec<(Vec6, Vec6)> {
+        self.factors.to_vec()
     }
 
     fn residues(&self) -> Vec<Mat6> {
