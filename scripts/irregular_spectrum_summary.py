@@ -3,8 +3,9 @@
 Reads out/irregular_spectrum/ (or the folder given): each spectrum file's
 supports (the spans' spread) and its fastest-growing mode (rate,
 wavelength, frequency, the envelope over the supports against mid-span,
-and where in its span the pattern is deepest). Prints a Markdown table;
-writes summary.csv.
+and where the pattern is deepest: the place, its span (1 the first, after
+the support at the stretch's start) and its share of the span). Prints a
+Markdown table; writes summary.csv.
 """
 
 import csv
@@ -22,12 +23,18 @@ def fastest(path):
         supports = g["support"][:]
         spans = np.diff(np.append(supports, g.attrs["stretch"]))
         k = int(np.argmax(g["growth_rate"][:]))
+        deepest = float(g["deepest"][k])
+        span = int(np.searchsorted(supports, deepest, side="right")) - 1
         return {
             "span_std_mm": 1e3 * float(np.std(spans, ddof=1)) if len(spans) > 1 else 0.0,
             "rate_db_per_1e5": float(g["growth_rate"][k]),
-            "wavelength_mm": 1e3 * float(g["wavelength"][k]),
+            # The modes' `wavelength` as h5py names it (a variable named like
+            # the forced pattern's dimension, docs/src/reference/spectrum-file.md).
+            "wavelength_mm": 1e3 * float(g["_nc4_non_coord_wavelength"][k]),
             "frequency_hz": float(g["frequency"][k]),
             "support_ratio": float(g["support_ratio"][k]),
+            "deepest_m": deepest,
+            "deepest_span": span + 1,
             "deepest_in_span": float(g["deepest_in_span"][k]),
             "growing_modes": int(np.sum(g["growth_rate"][:] > 0.0)),
         }

@@ -233,7 +233,7 @@ fn summary(s: &Spectrum, out: &Path) {
         s.wall_seconds,
     );
     say!("fastest modes (dB per 1e5 wheel passages; drift in mm per 1e5 wheel passages):");
-    let deepest = if s.supports.is_empty() { "" } else { "deepest in span  " };
+    let deepest = if s.supports.is_empty() { "" } else { "deepest in span   " };
     say!("  rate      wavelength  frequency  drift     purity  sleeper/mid-span  {deepest}near");
     for k in 0..s.modes.len().min(PRINTED) {
         let m = &s.modes[k];

@@ -13,6 +13,7 @@ use corrugation::dynamics::track::TrackConfig;
 use corrugation::dynamics::track::continuous3::Continuous3;
 use corrugation::dynamics::track::discrete::DiscreteTrack;
 use corrugation::dynamics::track::discrete3::{Discrete3, ROTATION_ARM};
+use corrugation::dynamics::track::scattering::RailWaves;
 use corrugation::dynamics::track::section::{Mat4, Mat6, Section, translations};
 use nalgebra::SMatrix;
 use num_complex::Complex64;

@@ -140,7 +140,7 @@ fn layout_spec(s: &mut Section, d: f64, means: [f64; 4]) -> Option<LayoutSpec> {
     let positions = s
         .has("sleeper_positions")
         .then(|| s.f64_list("sleeper_positions", Vec::new(), Range::NonNegative, MAX_SUPPORTS));
-    let drawn = random(s, "spacing", d, Range::Closed(0.0, 0.2));
+    let drawn = random(s, "spacing", d, (Range::Closed(0.0, 0.2), Range::Positive));
     let spacing = match (positions, drawn) {
         (Some(_), Some(_)) => {
             s.error("spacing_std", "and track.sleeper_positions both place the sleepers: give one of them".into());
@@ -175,7 +175,7 @@ const MAX_SUPPORTS: usize = 10_000;
 /// `<name>_std` is given (`Some(None)` where a key is invalid); a zero
 /// deviation draws nothing (the bounds are read and the mean kept).
 #[allow(clippy::option_option)]
-fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<Option<Spread>> {
+fn random(s: &mut Section, name: &str, mean: f64, (std_range, value_range): (Range, Range)) -> Option<Option<Spread>> {
     let key = format!("{name}_std");
     if !s.has(&key) {
         return None;
@@ -183,7 +183,7 @@ fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<Op
     let std = s.f64(&key, None, std_range);
     let spread = std.unwrap_or(0.0);
     let lo = s.f64(&format!("{name}_min"), Some((mean - 4.0 * spread).max(0.1 * mean)), Range::NonNegative);
-    let hi = s.f64(&format!("{name}_max"), Some(mean + 4.0 * spread), Range::Positive);
+    let hi = s.f64(&format!("{name}_max"), Some(mean + 4.0 * spread), value_range);
     Some(match (std, lo, hi) {
         (Some(std), Some(lo), Some(hi)) => Some(Spread { std, bounds: (lo, hi) }),
         _ => None,
@@ -196,7 +196,9 @@ fn random(s: &mut Section, name: &str, mean: f64, std_range: Range) -> Option<Op
 fn per_support(s: &mut Section, name: &str, mean: f64, range: Range) -> Option<PerSupport> {
     let pattern = format!("{name}_pattern");
     let listed = s.has(&pattern).then(|| s.f64_list(&pattern, Vec::new(), range, MAX_SUPPORTS));
-    let drawn = random(s, name, mean, Range::NonNegative);
+    // A viscous pad's loss factor (NaN) draws about a finite stand-in, so
+    // that only the refusal below is reported.
+    let drawn = random(s, name, if mean.is_nan() { 1.0 } else { mean }, (Range::NonNegative, range));
     if mean.is_nan() && (listed.is_some() || drawn.is_some()) {
         let key = if listed.is_some() { pattern } else { format!("{name}_std") };
         s.error(&key, "gives the pads loss factors: the pads are damped viscously (track.pad_damping)".into());

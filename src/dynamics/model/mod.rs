@@ -337,15 +337,28 @@ impl TrackDynamics for VehicleTrack {
         }
     }
 
-    /// On the discrete track the pinned-pinned resonance; on the
+    /// On the discrete track the pinned-pinned resonance (on a layout, of
+    /// each of its span lengths); on the
     /// continuous track vertically the leading wheel's resonances on it
     /// ([`ReceptanceModel`]'s labels); in every direction the leading
     /// wheel's own.
     fn describe_resonances(&self) -> Vec<(String, f64)> {
         let mut out = Vec::new();
         match (&self.track, self.directions) {
-            (Track::Discrete { vertical, .. }, _) => {
-                out.push(("pinned-pinned: the rail between two sleepers".into(), vertical.pinned_pinned_frequency()))
+            (Track::Discrete { vertical, layout, .. }, _) => {
+                // Each of the layout's span lengths (to the millimetre).
+                let mut spans: Vec<f64> = layout.bounds().windows(2).map(|w| (1e3 * (w[1] - w[0])).round()).collect();
+                spans.sort_by(f64::total_cmp);
+                spans.dedup();
+                if spans == [(1e3 * vertical.spacing).round()] {
+                    let label = "pinned-pinned: the rail between two sleepers";
+                    out.push((label.into(), vertical.pinned_pinned_frequency()));
+                } else {
+                    for mm in spans {
+                        let span = DiscreteTrack { spacing: 1e-3 * mm, ..*vertical };
+                        out.push((format!("pinned-pinned: a span of {mm:.0} mm"), span.pinned_pinned_frequency()));
+                    }
+                }
             }
             (Track::Continuous { vertical, .. }, Directions::Vertical) => {
                 let lead = &self.wheels[0];

@@ -24,6 +24,7 @@
 //! (tests/rail_head.rs).
 
 use super::TrackConfig;
+use super::scattering::RailWaves;
 use super::section::{Mat3, Mat4, Mat6, Section, pad};
 use super::waves::{RootsError, Waves};
 use num_complex::Complex64;

@@ -24,7 +24,7 @@
 
 use super::TrackConfig;
 use super::layout::Layout;
-use super::scattering::{self, ScatteringError, Supported};
+use super::scattering::{self, RailWaves, ScatteringError, Supported};
 use super::section::{Map64, Mat3, Mat4, Mat6, Section, pad, project};
 use super::waves::{RootsError, Waves};
 use crate::quadrature::{QuadratureError, integrate};
@@ -153,8 +153,8 @@ impl Discrete3 {
         }
     }
 
-    /// [`Self::heads`] on `layout` (its supports each with their own pad
-    /// and sleeper, [`Layout::track_of`]; places in m from the layout's
+    /// [`Self::heads`] on `layout` (its supports each with their own pad,
+    /// sleeper and ballast, [`Layout::track_of`]; places in m from the layout's
     /// start), by the waves' scattering ([`super::scattering`]).
     pub fn layout_heads(
         &self,
@@ -179,7 +179,7 @@ impl Discrete3 {
 
     /// `layout`'s supports at `omega` (rad/s): each one's place (m) and
     /// dynamic stiffness in the section's freedoms (eq. 2 of
-    /// [`super::section`] with its own pad and sleeper).
+    /// [`super::section`] with its own pad, sleeper and ballast).
     pub fn layout_supports(&self, layout: &Layout, omega: f64) -> Vec<Supported<6>> {
         let s = &self.section;
         (0..layout.len())

@@ -1,5 +1,5 @@
 //! A track layout: the supports of one period of the stretch, each at its
-//! own position with its own pad and sleeper, repeated along the rail
+//! own position with its own pad, sleeper and ballast, repeated along the rail
 //! (periodic over the whole period, so that the growth loop and the
 //! spectrum stay periodic). One bay of identical supports is the track the
 //! program has always had; several bays describe irregular track: the
@@ -9,8 +9,8 @@
 //! layouts give the pad stiffness, sleeper mass and sleeper distance per
 //! support, constant, periodic or random).
 //!
-//! A random layout draws each bay's spacing, pad stiffness and sleeper
-//! mass from normal distributions truncated to their bounds (rejection,
+//! A random layout draws each bay's spacing and each support's values
+//! from normal distributions truncated to their bounds (rejection,
 //! with a ChaCha8 generator seeded by the layout's seed: the same seed,
 //! the same layout); the spacings are then shifted by one constant so that
 //! they fill the period exactly (the sample's spread unchanged) and drawn
@@ -228,7 +228,7 @@ impl Layout {
     }
 
     /// Supports at `positions` (m, over one period of `period` m, the first
-    /// at 0, ascending), each with the configured pad and sleeper.
+    /// at 0, ascending), each the configured track's support.
     ///
     /// # Errors
     /// Where the positions are not ascending in `[0, period)` with the
@@ -262,7 +262,9 @@ impl Layout {
     /// reduced to its shortest repeating period; one bay of the configured
     /// track where it repeats that (the same layout as [`Self::uniform`],
     /// bit for bit). Random values are drawn in order: the spacings, then
-    /// the pads', then the sleepers'.
+    /// each [`Property`]'s in the order of [`Property::ALL`] (a seed
+    /// gives the layouts it gave before the pad loss factor and ballast
+    /// could be drawn).
     ///
     /// # Errors
     /// Where the positions are not those of a period, or random values'

@@ -91,6 +91,11 @@ pub struct ScatteringError {
 /// The most doublings of the period (`2^60` periods).
 const MAX_DOUBLINGS: usize = 60;
 
+/// The reflections' relative change per doubling at which the
+/// semi-infinite track has converged (the transmission through the
+/// periods below rounding).
+const CONVERGED: f64 = 1e-15;
+
 type Mat = DMatrix<Complex64>;
 
 /// A segment's scattering matrix (eq. 2): `b^- = r a^- + t' b^+`, `a^+ = t
@@ -172,7 +177,7 @@ impl Track<'_> {
     fn locate(&self, x: f64) -> i64 {
         let m = self.x.len() as i64;
         let cells = (x / self.period).floor();
-        let xr = x - cells * self.period;
+        let xr = (x - cells * self.period).clamp(0.0, self.period);
         let s = self.x.partition_point(|&v| v <= xr).max(1) as i64 - 1;
         cells as i64 * m + s
     }
@@ -188,8 +193,7 @@ impl Track<'_> {
     /// support `g`.
     fn reflections(&self, x: f64, g: i64) -> (Mat, Mat) {
         let (xs, site) = self.at(g);
-        let (next, _) = self.at(g + 1);
-        let (_, next_site) = self.at(g + 1);
+        let (next, next_site) = self.at(g + 1);
         let ahead = self.diagonal(next - x);
         let behind = self.diagonal(x - xs);
         (&ahead * &next_site.before * &ahead, &behind * &site.left * &behind)
@@ -237,8 +241,8 @@ impl Track<'_> {
 
 /// `B^T G(x1; x0) B` (the rail's freedoms mapped by `b` to the loads'
 /// `N`) for each pair `(x0, x1)` of `pairs` (m: the load's place and the
-/// watched place) on the supports `supports` repeated every `period` (m),
-/// eqs. 1-4.
+/// watched place) on the supports `supports` (ascending, the first at 0)
+/// repeated every `period` (m), eqs. 1-4.
 ///
 /// # Errors
 /// Where the semi-infinite track does not converge (an undamped track).
@@ -253,6 +257,7 @@ pub fn response<const Q: usize, const N: usize>(
     b: &SMatrix<Complex64, Q, N>,
     pairs: &[(f64, f64)],
 ) -> Result<Vec<SMatrix<Complex64, N, N>>, ScatteringError> {
+    debug_assert!(supports.first().is_some_and(|s| s.0 == 0.0), "the first support at the period's start");
     let lambda = waves.wavenumbers();
     let factors = waves.factors();
     let w = lambda.len();
@@ -280,43 +285,43 @@ pub fn response<const Q: usize, const N: usize>(
         (0..m).map(|s| if s + 1 < m { supports[s + 1].0 - supports[s].0 } else { period - supports[s].0 }).collect();
     // The period from just before support 0, doubled to the semi-infinite
     // track (eq. 3's fixed points).
-    let mut whole = scatter[0].then(&Scattering::span(decay(&lambda, spans[0])));
-    for s in 1..m {
-        whole = whole.then(&scatter[s]).then(&Scattering::span(decay(&lambda, spans[s])));
+    let mut whole = Scattering::span(Mat::identity(w, w));
+    for (sc, &d) in scatter.iter().zip(&spans) {
+        whole = whole.then(sc).then(&Scattering::span(decay(&lambda, d)));
     }
-    let mut change = f64::INFINITY;
     let mut doublings = 0;
-    while change > 1e-15 {
-        if doublings == MAX_DOUBLINGS {
-            return Err(ScatteringError { doublings, change });
-        }
+    loop {
         let next = whole.then(&whole);
         let moved = |a: &Mat, b: &Mat| (a - b).norm() / b.norm().max(f64::MIN_POSITIVE);
-        change = moved(&next.r, &whole.r).max(moved(&next.r_back, &whole.r_back));
-        whole = next;
-        doublings += 1;
+        let change = moved(&next.r, &whole.r).max(moved(&next.r_back, &whole.r_back));
+        (whole, doublings) = (next, doublings + 1);
+        if change <= CONVERGED {
+            break;
+        }
+        if doublings == MAX_DOUBLINGS || !change.is_finite() {
+            return Err(ScatteringError { doublings, change });
+        }
     }
     // R just before support 0 and L there; the sweeps (eq. 3).
     // Backwards: R just after each support, the support's `ahead`, R
     // just before it.
-    let mut after: Vec<(Mat, Mat, Mat)> = Vec::with_capacity(m);
+    let mut after: Vec<(Mat, Mat)> = Vec::with_capacity(m);
     let mut r_before = whole.r.clone();
-    for s in (0..m).rev() {
-        let e = decay(&lambda, spans[s]);
+    for (sc, &d) in scatter.iter().zip(&spans).rev() {
+        let e = decay(&lambda, d);
         let right = &e * &r_before * &e;
-        let sc = &scatter[s];
         let ahead = inverse(&(&id - &sc.r_back * &right)) * &sc.t;
         r_before = &sc.r + &sc.t_back * &right * &ahead;
-        after.push((right, ahead, r_before.clone()));
+        after.push((ahead, r_before.clone()));
     }
     after.reverse();
     // Forwards: L just after each support, the support's `behind`.
     let mut sites = Vec::with_capacity(m);
     let mut l_before = whole.r_back.clone();
-    for ((s, sc), (_, ahead, before)) in scatter.into_iter().enumerate().zip(after) {
+    for ((sc, &d), (ahead, before)) in scatter.into_iter().zip(&spans).zip(after) {
         let behind = inverse(&(&id - &sc.r * &l_before)) * &sc.t_back;
         let left = &sc.r_back + &sc.t * &l_before * &behind;
-        let e = decay(&lambda, spans[s]);
+        let e = decay(&lambda, d);
         l_before = &e * &left * &e;
         sites.push(Site { before, left, ahead, behind });
     }

@@ -96,15 +96,6 @@ impl Waves {
         })
     }
 
-    /// `G(x)` of eq. 1 (the section's response at `x` (m) to a unit load at 0).
-    pub fn green(&self, x: f64) -> Mat6 {
-        let mut g = Mat6::zeros();
-        for (l, m) in self.lambda.iter().zip(&self.modes) {
-            g += m * (Complex64::i() * l * x.abs()).exp();
-        }
-        if x < 0.0 { g.transpose() } else { g }
-    }
-
     /// The lattice sum `T(kappa, x)` of eq. 2 for supports every `d` (m),
     /// at `x` (m from a support, any sign).
     pub fn lattice(&self, kappa: f64, x: f64, d: f64) -> Mat6 {
