@@ -13,6 +13,11 @@ use corrugation::contact::transient::elastic::ExactElastic;
 use corrugation::contact::transient::{ElasticModel, StepSolver, Transient};
 use corrugation::contact::{Creepage, EllipseMesh, PressureShape, StepInput, TangentialSolver};
 use corrugation::creep_coefficients::creep_coefficients;
+use corrugation::dynamics::model::places::Places;
+use corrugation::dynamics::track::TrackConfig;
+use corrugation::dynamics::track::discrete::DiscreteTrack;
+use corrugation::dynamics::track::discrete3::Discrete3;
+use corrugation::dynamics::track::layout::{Layout, LayoutSpec, Spacing, Spread};
 use corrugation::hertz::{Curvatures, Elastic, HertzShape};
 use corrugation::passage::run_passage;
 use corrugation::rail_grid::RailGrid;
@@ -244,5 +249,30 @@ fn fixed_grid(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, fastsim, wear_step, transient_step, fixed_grid, passage);
+/// One harmonic's tables of a track layout (the rail's receptances at the
+/// 16 places of every support interval, one wheel), vertically and in
+/// every direction, against the supports of the period: the waves'
+/// scattering costs one pass over the supports plus each place's own
+/// (linear in the supports).
+fn layout_tables(c: &mut Criterion) {
+    let t = TrackConfig::default();
+    let mut g = c.benchmark_group("layout_tables_1khz");
+    g.sample_size(20);
+    let omega = 2.0 * std::f64::consts::PI * 1000.0;
+    let (vertical, head) = (DiscreteTrack::new(&t), Discrete3::new(&t, 0.01));
+    for bays in [1usize, 2, 5, 10, 20] {
+        let spec =
+            LayoutSpec { spacing: Spacing::Random(Spread { std: 0.02, bounds: (0.5, 0.7) }), ..LayoutSpec::uniform() };
+        let layout = Layout::from_spec(&t, &LayoutSpec { seed: 1, ..spec }, bays as f64 * 0.6).unwrap();
+        let pairs: Vec<(f64, f64)> = Places::new(&layout, 0.0).positions().iter().map(|&x| (x, x)).collect();
+        g.bench_function(format!("vertical_{bays}_bays"), |b| {
+            b.iter(|| vertical.layout_receptances(black_box(&layout), &pairs, omega).unwrap())
+        });
+        g.bench_function(format!("every_direction_{bays}_bays"), |b| {
+            b.iter(|| head.layout_heads(black_box(&layout), &pairs, omega, true).unwrap())
+        });
+    }
+}
+
+criterion_group!(benches, fastsim, wear_step, transient_step, fixed_grid, passage, layout_tables);
 criterion_main!(benches);

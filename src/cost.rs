@@ -49,13 +49,12 @@ pub struct DirectionsCost {
 /// growth_discrete.toml with the steady creep slopes (one wheel or one
 /// wheelset: the places past mid-bay the mirror images of those before).
 const DISCRETE3_PER_HARMONIC: f64 = 0.0085;
-/// The growth of a track layout's tables in every direction per harmonic
-/// with its supports `M`, as `M^LAYOUT_EXPONENT` times one bay's (the
-/// Floquet integral solves the period's supports together, for 16 places
-/// per bay): fitted to growth_discrete over 2, 3 and 5 bays of random
-/// spacing (`scripts/layout_cost.sh`: 4.4, 15 and 32 times one bay's per
-/// harmonic).
-const LAYOUT_EXPONENT: f64 = 2.2;
+/// CPU seconds per harmonic of a track layout's head receptances in every
+/// direction at the 16 places of each support interval (the waves'
+/// scattering, one wheel): a base and a share per support of the period,
+/// fitted to `cargo bench --bench kernels -- layout_tables` (0.31, 0.40,
+/// 0.76, 1.17 and 2.45 ms for 1, 2, 5, 10 and 20 bays).
+const LAYOUT3_PER_HARMONIC: (f64, f64) = (2e-4, 1.1e-4);
 /// The same on the continuous track (a 12 x 12 eigenproblem).
 const CONTINUOUS3_PER_HARMONIC: f64 = 2e-4;
 
@@ -296,7 +295,7 @@ fn directions_cost(
     };
     let per_harmonic = match gr.dynamics {
         DynamicsKind::Discrete { .. } if !s.layout.is_one_bay(&s.track) => {
-            DISCRETE3_PER_HARMONIC * (s.layout.len() as f64).powf(LAYOUT_EXPONENT)
+            LAYOUT3_PER_HARMONIC.0 + LAYOUT3_PER_HARMONIC.1 * s.layout.len() as f64
         }
         DynamicsKind::Discrete { .. } => DISCRETE3_PER_HARMONIC,
         _ => CONTINUOUS3_PER_HARMONIC,
