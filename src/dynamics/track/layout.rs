@@ -56,7 +56,7 @@ impl Support {
 }
 
 /// A value a layout gives each support: its config key's stem
-/// (`track.<name>_pattern`, `track.<name>_std`) and its unit.
+/// (`track.<name>_pattern`, `track.<name>_std`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Property {
     /// Pad stiffness (N/m).
