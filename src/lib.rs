@@ -13,6 +13,7 @@ pub mod config;
 pub mod contact;
 pub mod cost;
 pub mod creep_coefficients;
+pub mod curving;
 pub mod dynamics;
 pub mod growth;
 pub mod harmonics;

@@ -13,6 +13,7 @@ mod contact_dynamics;
 mod contact_vehicle;
 mod creep_response;
 mod creepage_control;
+mod curving;
 mod discrete_dynamics;
 mod discrete_track;
 mod falling_friction;
