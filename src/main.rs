@@ -93,6 +93,23 @@ enum Command {
               value_parser = clap::value_parser!(u64).range(2..=100_000))]
         points: u64,
     },
+    /// A curve's steady curving from its [curve] section: the contact
+    /// geometry against the lateral shift (rolling-radius difference,
+    /// contact angles, equivalent conicity) and every wheel's load,
+    /// creepages, spin, contact and flange contact.
+    Curve {
+        /// Scene config (TOML) with a [curve] section.
+        config: PathBuf,
+        /// Output file (default: out/ and the config's name with _curve.h5).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Override a config key (repeatable).
+        #[arg(long = "set", value_name = "SECTION.KEY=VALUE")]
+        set: Vec<String>,
+        /// Replace the output file if it exists.
+        #[arg(long)]
+        overwrite: bool,
+    },
     /// The linear growth spectrum of a growth study's passage: each Bloch
     /// class's modes (growth rate, wavelength, drift, pattern) and the
     /// smooth rail's forced pattern.
@@ -279,6 +296,17 @@ fn main() -> ExitCode {
             let jobs = jobs.map_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()), |j| j as usize);
             spectrum_cli::spectrum(&resolved, stored, part.map(|(k, n)| (k - 1, n)), jobs, &out)
         }
+        Command::Curve { config, output, set, overwrite } => {
+            let out = output.unwrap_or_else(|| default_output(&config, "curve", "_curve"));
+            if let Err(code) = new_output(&out, overwrite, false) {
+                return code;
+            }
+            let resolved = match load(&config, &set) {
+                Ok(r) => r,
+                Err(code) => return code,
+            };
+            curve(&resolved, &config, &out)
+        }
         Command::Track { config, output, set, overwrite, points } => {
             let resolved = match load(&config, &set) {
                 Ok(r) => r,
@@ -289,6 +317,79 @@ fn main() -> ExitCode {
                 return code;
             }
             track(&resolved, &out, points as usize)
+        }
+    }
+}
+
+/// `corrugation curve`: prints and writes the steady curving of the
+/// config's `[curve]`.
+fn curve(resolved: &Resolved, config: &Path, out: &Path) -> ExitCode {
+    use corrugation::curving::geometry::Side;
+    let Some(setup) = &resolved.curve else {
+        say!(
+            "error: {} has no [curve] section (radius, cant, the vehicle and profiles): nothing to curve",
+            config.display()
+        );
+        return ExitCode::from(2);
+    };
+    if let Err(code) = writable(out) {
+        return code;
+    }
+    let c = &setup.curve;
+    say!(
+        "curve R = {} m, cant {:.1} mm, {:.1} km/h: cant deficiency {:.1} mm; {} iterations",
+        c.radius,
+        c.cant * 1e3,
+        c.speed * 3.6,
+        c.cant_deficiency() * 1e3,
+        setup.state.iterations
+    );
+    if let Some((y, yaw)) = setup.state.frame {
+        say!("bogie frame: lateral shift {:+.2} mm (towards the high rail), yaw {:+.2} mrad", -y * 1e3, yaw * 1e3);
+    }
+    say!(
+        "{:<14} {:>8} {:>10} {:>10} {:>8} {:>7} {:>8} {:>9} {:>6} {:>7}",
+        "wheel",
+        "N (kN)",
+        "creep x",
+        "creep y",
+        "spin 1/m",
+        "y (mm)",
+        "AoA mrad",
+        "angle deg",
+        "flange",
+        "2-point"
+    );
+    let names = ["leading", "trailing"];
+    for (i, w) in setup.state.wheelsets.iter().enumerate() {
+        for (side, rail) in [(Side::Left, "low"), (Side::Right, "high")] {
+            let p = w.on(side);
+            let name = if setup.state.wheelsets.len() > 1 { format!("{} {rail}", names[i]) } else { rail.to_string() };
+            let followed = i == setup.wheelset && side == setup.rail;
+            say!(
+                "{:<14} {:>8.2} {:>10.3e} {:>10.3e} {:>8.3} {:>+7.2} {:>+8.2} {:>9.1} {:>6} {:>7}{}",
+                name,
+                p.normal_force * 1e-3,
+                p.creepage.x,
+                -p.creepage.y,
+                -p.creepage.spin,
+                -w.shift * 1e3,
+                w.angle_of_attack() * 1e3,
+                p.contact_angle().to_degrees(),
+                if p.on_flange() { "yes" } else { "no" },
+                if p.two_point() { "yes" } else { "no" },
+                if followed { "  <- the study's rail" } else { "" }
+            );
+        }
+    }
+    match corrugation::output::curve_file::write_curve_file(out, setup, &resolved.toml) {
+        Ok(()) => {
+            say!("wrote {}", out.display());
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            say!("error: cannot write {}: {e}", out.display());
+            ExitCode::from(1)
         }
     }
 }

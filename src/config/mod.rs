@@ -11,6 +11,7 @@
 mod auto;
 mod consistency;
 pub mod contact;
+pub mod curve;
 mod friction;
 mod growth;
 mod levels;
@@ -110,6 +111,8 @@ pub struct Resolved {
     /// Notes on values that look like unit mistakes (a number written
     /// without its unit outside the key's usual range); the run goes on.
     pub warnings: Vec<String>,
+    /// The `[curve]` section's steady curving, where the config has one.
+    pub curve: Option<curve::CurveSetup>,
 }
 
 /// Reads and validates the config file at `path` with `--set` overrides
@@ -187,17 +190,29 @@ pub fn load_str_with(
     overridden_step_sets_both(&mut root, overrides);
     let mut warnings = Vec::new();
     plausibility(&root, "", &mut warnings);
-    let (scene, resolved) = read_scene(root, records, &mut errors);
+    let dir = match records {
+        RecordSource::Dir(d) => d.clone(),
+        RecordSource::Stored(_) => std::path::PathBuf::from("."),
+    };
+    let curve = curve::apply(&mut root, &dir, &mut errors);
+    let (scene, mut resolved) = read_scene(root, records, &mut errors);
+    let curve = curve.map(|(table, setup)| {
+        resolved.insert("curve".into(), Value::Table(table));
+        setup
+    });
     match scene {
-        Some(scene) if errors.is_empty() => {
-            Ok(Resolved { scene, toml: toml::to_string(&resolved).expect("resolved config serialises"), warnings })
-        }
+        Some(scene) if errors.is_empty() => Ok(Resolved {
+            scene,
+            toml: toml::to_string(&resolved).expect("resolved config serialises"),
+            warnings,
+            curve: curve.flatten(),
+        }),
         _ => Err(fail(errors)),
     }
 }
 
 /// The sections of a config, in the order they are documented.
-pub const SECTIONS: [&str; 18] = [
+pub const SECTIONS: [&str; 19] = [
     "material",
     "geometry",
     "rolling",
@@ -216,6 +231,7 @@ pub const SECTIONS: [&str; 18] = [
     "second_rail",
     "track",
     "spectrum",
+    "curve",
 ];
 
 /// On the fixed grid the step is the element: `--set contact.dx` or

@@ -174,6 +174,8 @@ pub struct Geometry {
     rail_axis: [f64; 2],
     /// Each tape circle's distance from the wheelset's centre (m).
     tape: [f64; 2],
+    /// Each rail's surface sampled every [`SEARCH_STEP`]: `(Y, Z)` (m).
+    rail_samples: [Vec<(f64, f64)>; 2],
 }
 
 impl Geometry {
@@ -192,7 +194,20 @@ impl Geometry {
             rail_axis[side as usize] = side.outwards() * (0.5 * track.gauge - gauge_face);
         }
         let tape = [0, 1].map(|i| 0.5 * wheelset.flange_back - wheelset.wheels[i].range().0);
-        Ok(Geometry { wheelset, track, rail_axis, tape })
+        let mut g = Geometry { wheelset, track, rail_axis, tape, rail_samples: [Vec::new(), Vec::new()] };
+        for side in Side::BOTH {
+            let axis = g.rail_axis[side as usize];
+            let (lo, hi) = g.track.rails[side as usize].range();
+            let (lo, hi) = if side == Side::Left { (axis + lo, axis + hi) } else { (axis - hi, axis - lo) };
+            let n = ((hi - lo) / SEARCH_STEP).ceil() as usize;
+            g.rail_samples[side as usize] = (0..=n)
+                .filter_map(|k| {
+                    let y = lo + (hi - lo) * k as f64 / n as f64;
+                    g.rail_height(side, y).map(|z| (y, z))
+                })
+                .collect();
+        }
+        Ok(g)
     }
 
     /// The wheelset's shape.
@@ -267,16 +282,7 @@ impl Geometry {
     /// The local minima of the gap on `side`, one per valley (minima
     /// separated by less than 1 um of rise are one), closest first.
     pub fn closest(&self, side: Side, pose: &Pose) -> Vec<Closest> {
-        let axis = self.rail_axis[side as usize];
-        let (lo, hi) = self.track.rails[side as usize].range();
-        let (lo, hi) = if side == Side::Left { (axis + lo, axis + hi) } else { (axis - hi, axis - lo) };
-        let n = ((hi - lo) / SEARCH_STEP).ceil() as usize;
-        let samples: Vec<(f64, f64)> = (0..=n)
-            .filter_map(|k| {
-                let y = lo + (hi - lo) * k as f64 / n as f64;
-                self.gap(side, pose, y).map(|g| (y, g))
-            })
-            .collect();
+        let samples = self.samples(side, pose);
         let mut minima: Vec<(usize, f64)> = Vec::new();
         for k in 1..samples.len().saturating_sub(1) {
             let (g0, g1, g2) = (samples[k - 1].1, samples[k].1, samples[k + 1].1);
@@ -324,7 +330,12 @@ impl Geometry {
                 gd = g(d);
             }
         }
-        let y = 0.5 * (a + b);
+        self.at(side, pose, 0.5 * (a + b))
+    }
+
+    /// The geometry at track position `y` (m): the gap, the rail's slope and
+    /// curvature, the wheel's radius there.
+    pub fn at(&self, side: Side, pose: &Pose, y: f64) -> Option<Closest> {
         let h = CURVATURE_STEP;
         let (gm, g0, gp) = (self.gap(side, pose, y - h)?, self.gap(side, pose, y)?, self.gap(side, pose, y + h)?);
         let (rm, r0, rp) = (self.rail_height(side, y - h)?, self.rail_height(side, y)?, self.rail_height(side, y + h)?);
@@ -341,6 +352,14 @@ impl Geometry {
             rolling_radius: radius,
             wheel_lateral: q,
         })
+    }
+
+    /// The gap sampled every [`SEARCH_STEP`] across the rail.
+    fn samples(&self, side: Side, pose: &Pose) -> Vec<(f64, f64)> {
+        self.rail_samples[side as usize]
+            .iter()
+            .filter_map(|&(y, z)| self.wheel_point(side, pose, y).map(|(w, _)| (y, w - z)))
+            .collect()
     }
 }
 

@@ -7,3 +7,6 @@ pub mod conicity;
 pub mod geometry;
 pub mod profile;
 pub mod rigid;
+pub mod steady;
+pub mod table;
+pub mod vehicle;

@@ -2,6 +2,7 @@
 //! run-file layout (book: docs/src/reference/run-file.md) ([`run_file`]).
 
 pub mod checkpoint;
+pub mod curve_file;
 mod field_units;
 pub mod forecast_group;
 mod h5ds;

@@ -11,6 +11,7 @@
 //!   (m), positive towards the field side (the gauge face at negative
 //!   values).
 
+pub mod cone;
 pub mod measured;
 pub mod rail60e1;
 pub mod s1002;
@@ -37,6 +38,8 @@ pub enum ProfileError {
 #[derive(Debug, Clone, PartialEq)]
 enum Shape {
     S1002,
+    /// A cone of this slope on S1002's flange.
+    Cone(f64),
     Rail60E1,
     Measured(Arc<measured::Spline>),
 }
@@ -52,6 +55,12 @@ impl Profile {
     /// The S1002 wheel.
     pub fn s1002() -> Profile {
         Profile { shape: Shape::S1002, name: "S1002".into() }
+    }
+
+    /// A conical wheel of tread slope `slope` (1) on S1002's flange (see
+    /// [`cone`]).
+    pub fn cone(slope: f64) -> Profile {
+        Profile { shape: Shape::Cone(slope), name: format!("cone 1:{}", crate::numerics::round_sig(1.0 / slope, 4)) }
     }
 
     /// The 60E1 (UIC60) rail head.
@@ -80,6 +89,7 @@ impl Profile {
         let mm = u * 1e3;
         let h = match &self.shape {
             Shape::S1002 => s1002::height_mm(mm),
+            Shape::Cone(slope) => cone::height_mm(*slope, mm),
             Shape::Rail60E1 => rail60e1::height_mm(mm),
             Shape::Measured(s) => s.value(mm),
         };
@@ -89,7 +99,7 @@ impl Profile {
     /// The lateral range the profile covers (m).
     pub fn range(&self) -> (f64, f64) {
         let (a, b) = match &self.shape {
-            Shape::S1002 => (s1002::BOUNDS[0], s1002::BOUNDS[8]),
+            Shape::S1002 | Shape::Cone(_) => (s1002::BOUNDS[0], s1002::BOUNDS[8]),
             Shape::Rail60E1 => {
                 let (u, _) = rail60e1::flank_start();
                 let reach = u + 1.0; // 20 mm down the 1:20 flank
