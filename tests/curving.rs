@@ -187,3 +187,187 @@ fn standard_pair_is_symmetric_with_its_conicity() {
     let conicity = radius_difference(&shifts, &table).equivalent_conicity(3e-3).unwrap();
     assert!((conicity - 0.177).abs() < 0.002, "{conicity}");
 }
+
+use corrugation::config::{load_file, load_str};
+use corrugation::curving::vehicle::GRAVITY;
+use corrugation::output::netcdf::{read_f64, read_i8};
+use std::path::Path;
+
+/// configs/curve_pure_rolling.toml: a free wheelset of 1:20 cones at R =
+/// 3000 m and balanced cant runs in pure rolling: its lateral shift gives
+/// the rolling-radius difference 2 b r0 / R within 1 % (b half the contact
+/// points' spacing), the longitudinal creepages vanish (< 1e-6), and the
+/// study's keys are the followed wheel's state bit for bit.
+#[test]
+fn pure_rolling_config_balances_the_curvature() {
+    let r = load_file(Path::new("configs/curve_pure_rolling.toml"), &[]).unwrap();
+    let setup = r.curve.as_ref().unwrap();
+    let w = &setup.state.wheelsets[0];
+    let (l, h) = (w.on(Side::Left), w.on(Side::Right));
+    let dr = h.contact.rolling_radius - l.contact.rolling_radius;
+    let b = 0.5 * (l.contact.lateral - h.contact.lateral);
+    let expected = 2.0 * b * 0.46 / setup.curve.radius;
+    assert!((dr / expected - 1.0).abs() < 0.01, "dr {dr:e} against 2 b r0 / R {expected:e}");
+    for p in [l, h] {
+        assert!(p.creepage.x.abs() < 1e-6, "creepage {:e}", p.creepage.x);
+    }
+    assert!(w.shift < 0.0, "the wheelset moves to the high rail: {}", w.shift);
+    // The study runs on the low wheel's state (the study's axes: y to the right).
+    assert_eq!(r.scene.loads.normal_force.to_bits(), l.normal_force.to_bits());
+    assert_eq!(r.scene.creepage_y.to_bits(), (-l.creepage.y).to_bits());
+    assert_eq!(r.scene.spin.to_bits(), (-l.creepage.spin).to_bits());
+}
+
+/// The metro bogie (configs/curve_metro.toml, R = 300 m): every wheelset's
+/// forces balance (residual below 1e-5 of the axle load), the creep force
+/// within mu N on every wheel, and the whole bogie carries the curve's
+/// lateral load: the sum of the contact forces' lateral components equals
+/// the uncompensated centrifugal force of both axle loads (1e-4 of the axle
+/// load). The leading wheelset runs under-radial against the high rail's
+/// gauge corner (angle of attack > 0, contact angle > 0.3 rad); the
+/// trailing one nearly radial, towards the low rail.
+#[test]
+fn metro_bogie_balances_its_forces() {
+    let r = load_file(Path::new("configs/curve_metro.toml"), &[]).unwrap();
+    let s = r.curve.as_ref().unwrap();
+    assert!(s.state.residual < 1e-5, "{}", s.state.residual);
+    let mut lateral = 0.0;
+    for w in &s.state.wheelsets {
+        for p in &w.patches {
+            let creep = p.force_x.hypot(p.force_lateral);
+            assert!(creep <= 0.4 * p.normal_force * (1.0 + 1e-9), "{creep} > mu N");
+            lateral += p.force_yz().0;
+        }
+    }
+    let load = 2.0 * s.loads.axle_load / GRAVITY * s.curve.lateral_acceleration();
+    assert!((lateral - load).abs() < 1e-4 * s.loads.axle_load, "{lateral} against {load}");
+    let (lead, trail) = (&s.state.wheelsets[0], &s.state.wheelsets[1]);
+    assert!(lead.angle_of_attack() > 3e-3 && trail.angle_of_attack().abs() < 1e-3, "{lead:?}");
+    assert!(lead.on(Side::Right).contact_angle() > 0.3);
+    assert!(trail.shift > 0.0);
+}
+
+/// A growth study's state from `[curve]` equals the same study with the
+/// state given by hand (the resolved config without `[curve]`): the same
+/// scene, and its passage bit for bit.
+#[test]
+fn a_study_from_the_curve_equals_the_state_given_by_hand() {
+    let from_curve = load_file(Path::new("configs/curve_pure_rolling.toml"), &[]).unwrap();
+    let mut table: toml::Table = from_curve.toml.parse().unwrap();
+    table.remove("curve");
+    let by_hand = load_str(&toml::to_string(&table).unwrap(), "by hand", &[]).unwrap();
+    assert!(by_hand.curve.is_none());
+    assert_eq!(from_curve.scene, by_hand.scene);
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a.h5"), dir.path().join("b.h5"));
+    corrugation::run::run_scene(&from_curve, &a, &mut |_| {}).unwrap();
+    corrugation::run::run_scene(&by_hand, &b, &mut |_| {}).unwrap();
+    for (group, var) in [
+        ("contact/pass_00000", "normal_force"),
+        ("contact/pass_00000", "longitudinal_force"),
+        ("contact/pass_00000", "spin"),
+        ("rail", "wear"),
+    ] {
+        let (x, y) = (read_f64(&a, group, var).unwrap(), read_f64(&b, group, var).unwrap());
+        assert!(!x.is_empty() && x.shape() == y.shape(), "{var}");
+        assert!(x.iter().zip(y.iter()).all(|(p, q)| p.to_bits() == q.to_bits()), "{var}");
+    }
+}
+
+/// A growth study with `[curve]` resumes bit for bit: its stored config
+/// holds the keys the curve set, with the values the curve gives them.
+#[test]
+fn a_curve_study_resumes_bit_for_bit() {
+    let growth = include_str!("../configs/growth_fastsim.toml");
+    // The keys the curve sets are absent.
+    let text: String = growth
+        .lines()
+        .filter(|l| {
+            let k = l.split('=').next().unwrap_or("").trim();
+            !["wheel_radius", "wheel_profile_radius", "rail_head_radius", "normal_force", "longitudinal_force"]
+                .contains(&k)
+        })
+        .map(|l| format!("{l}\n"))
+        .collect::<String>()
+        + "\n[curve]\nradius = 1000.0\ncant = 0.05\nvehicle = \"wheelset\"\nwheel_profile = \"cone 1:20\"\naxle_load = 120e3\n";
+    let set: Vec<String> = [
+        "contact.elements_x=6",
+        "contact.elements_y=6",
+        "rail.dx=5e-4",
+        "rail.dy=1e-3",
+        "passage.step_length=5e-4",
+        "growth.adaptive=false",
+        "growth.contact_history=[]",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let with = |n: &str| [set.clone(), vec![format!("growth.passes={n}")]].concat();
+    let dir = tempfile::tempdir().unwrap();
+    let full = dir.path().join("full.h5");
+    let part = dir.path().join("part.h5");
+    corrugation::run::run_scene(&load_str(&text, "curve", &with("3")).unwrap(), &full, &mut |_| {}).unwrap();
+    corrugation::run::run_scene(&load_str(&text, "curve", &with("2")).unwrap(), &part, &mut |_| {}).unwrap();
+    corrugation::run::resume(&part, Some(1), None, &mut |_| {}).unwrap();
+    let (x, y) = (read_f64(&full, "rail", "profile").unwrap(), read_f64(&part, "rail", "profile").unwrap());
+    assert_eq!(x.shape(), y.shape());
+    assert!(x.iter().zip(y.iter()).all(|(p, q)| p.to_bits() == q.to_bits()));
+}
+
+/// Bad curves are refused, each naming its key: a radius out of range, a
+/// trailing wheelset of a single wheelset, a key the curve sets given
+/// otherwise, a wheel profile file that is not a profile (its line), and a
+/// gauge the wheels do not fit.
+#[test]
+fn bad_curves_name_their_key() {
+    let base = std::fs::read_to_string("configs/curve_pure_rolling.toml").unwrap();
+    let refuse = |text: &str, set: &[&str], key: &str, words: &str| {
+        let set: Vec<String> = set.iter().map(|s| s.to_string()).collect();
+        let e = load_str(text, "bad", &set).unwrap_err().to_string();
+        assert!(e.contains(key) && e.contains(words), "{key}: {e}");
+    };
+    refuse(&base, &["curve.radius=5"], "curve.radius", "[20, 100000]");
+    refuse(&base, &["curve.wheelset=\"trailing\""], "curve.wheelset", "bogie");
+    refuse(&base, &["rolling.spin=0.5"], "rolling.spin", "set by [curve]");
+    refuse(&base, &["curve.gauge=1.30"], "curve", "contact table fails");
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("wheel.csv");
+    std::fs::write(&file, "0, 0\n1, 0\n1, 0.1\n2, 0\n3, 0\n").unwrap();
+    let text = base.replace("\"cone 1:20\"", &format!("{:?}", file.display().to_string()));
+    refuse(&text, &[], "curve.wheel_profile", "line 3");
+}
+
+/// `corrugation curve` writes the groups and variables its readers use, and
+/// refuses a config without `[curve]` (exit 2, nothing written).
+#[test]
+fn the_curve_command_writes_its_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("c.h5");
+    let bin = env!("CARGO_BIN_EXE_corrugation");
+    let run = std::process::Command::new(bin)
+        .args(["curve", "configs/curve_pure_rolling.toml", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let shift = read_f64(&out, "geometry", "lateral_shift").unwrap();
+    let dr = read_f64(&out, "geometry", "rolling_radius_difference").unwrap();
+    assert_eq!(shift.len(), dr.len());
+    for v in ["contact_angle_left", "contact_angle_right"] {
+        assert_eq!(read_f64(&out, "geometry", v).unwrap().len(), shift.len());
+    }
+    let conicity = read_f64(&out, "geometry", "equivalent_conicity").unwrap();
+    assert!(conicity.iter().all(|c| *c > 0.0 && *c < 1.0));
+    for v in ["normal_force", "creepage_x", "creepage_y", "spin", "lateral_shift", "angle_of_attack"] {
+        assert_eq!(read_f64(&out, "curving", v).unwrap().len(), 2, "{v}");
+    }
+    assert_eq!(read_i8(&out, "curving", "flange_contact").unwrap().len(), 2);
+    let none = std::process::Command::new(bin)
+        .args(["curve", "configs/paper_steady.toml", "-o"])
+        .arg(dir.path().join("none.h5"))
+        .output()
+        .unwrap();
+    assert_eq!(none.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&none.stderr).contains("[curve]"));
+    assert!(!dir.path().join("none.h5").exists());
+}

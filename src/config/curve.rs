@@ -28,13 +28,26 @@ use crate::hertz::Elastic;
 use std::path::Path;
 use toml::{Table, Value};
 
+/// The keys `[curve]` sets that have no default: reported missing only
+/// when the curve itself could be solved.
+pub const SETS: [&str; 8] = [
+    "load.normal_force",
+    "load.longitudinal_force",
+    "rolling.creepage_x",
+    "rolling.creepage_y",
+    "rolling.spin",
+    "geometry.wheel_radius",
+    "geometry.wheel_profile_radius",
+    "geometry.rail_head_radius",
+];
+
 /// A curve and its steady curving, as the config gives it.
 #[derive(Debug, Clone)]
 pub struct CurveSetup {
     /// The profiles, placed.
     pub geometry: Geometry,
     /// The contact table.
-    pub table: ContactTable,
+    pub table: std::sync::Arc<ContactTable>,
     /// The curve.
     pub curve: Curve,
     /// The vehicle.
@@ -137,9 +150,10 @@ pub(super) fn apply(
     let axle_load = s.f64("axle_load", None, Range::Closed(1e3, 5e5));
     let centre_height = s.f64("centre_height", Some(1.0), Range::Closed(0.0, 4.0));
     let traction = s.f64("traction", Some(0.0), Range::Finite);
-    let wheelset = s.choice("wheelset", Some("leading"), &["leading", "trailing"]);
+    let mut wheelset = s.choice("wheelset", Some("leading"), &["leading", "trailing"]);
     if !bogie && wheelset.as_deref() == Some("trailing") {
         s.error("wheelset", "= \"trailing\" needs curve.vehicle = \"bogie\" (a single wheelset leads)".into());
+        wheelset = None;
     }
     let followed = s.choice("rail", Some("low"), &["low", "high"]);
     let resolved = s.finish();
@@ -213,7 +227,7 @@ pub(super) fn apply(
             return Some((resolved, None));
         }
     };
-    let table = match ContactTable::new(&geometry, TABLE.0, TABLE.1) {
+    let table = match ContactTable::cached(&geometry, TABLE.0, TABLE.1) {
         Ok(t) => t,
         Err(e) => {
             fail(errors, format!("the contact table fails: {e} (check curve.gauge and curve.flange_back)"));

@@ -200,6 +200,10 @@ pub fn load_str_with(
         resolved.insert("curve".into(), Value::Table(table));
         setup
     });
+    if matches!(curve, Some(None)) {
+        // A curve that failed (its own errors say why) sets no keys.
+        errors.retain(|e| !(curve::SETS.contains(&e.key.as_str()) && e.message.starts_with("missing")));
+    }
     match scene {
         Some(scene) if errors.is_empty() => Ok(Resolved {
             scene,

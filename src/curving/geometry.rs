@@ -161,7 +161,7 @@ pub enum GeometryError {
 }
 
 /// Grid step of the search for the closest points (m).
-const SEARCH_STEP: f64 = 5e-5;
+const SEARCH_STEP: f64 = 1e-4;
 /// Step of the gap's second difference (m).
 const CURVATURE_STEP: f64 = 1e-4;
 

@@ -55,7 +55,7 @@ impl Geometry {
         };
         self.lowest(Side::Left, &at(0.0))?;
         self.lowest(Side::Right, &at(0.0))?;
-        let tol = Tolerance { residual: 1e-13, x_rel: 0.0, x_abs: 1e-12, max_iter: 200 };
+        let tol = Tolerance { residual: 1e-12, x_rel: 0.0, x_abs: 1e-10, max_iter: 200 };
         let roll = brent(-MAX_ROLL, MAX_ROLL, difference, tol).map_err(|_| GeometryError::NoRoll(MAX_ROLL, y * 1e3))?;
         let left = self.lowest(Side::Left, &at(roll))?;
         // Lower the wheelset onto the rails.

@@ -9,6 +9,7 @@
 
 use super::geometry::{Closest, Geometry, GeometryError, Side};
 use rayon::prelude::*;
+use std::sync::{Arc, LazyLock, Mutex};
 
 /// One wheel's rigid contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -114,6 +115,25 @@ impl ContactTable {
             })
             .collect();
         Ok(ContactTable { rows: rows?, step })
+    }
+
+    /// The table of [`ContactTable::new`], shared with earlier calls for
+    /// the same geometry in this process (the last 8 geometries are kept):
+    /// a config read again (its overrides, a resumed run) reuses it.
+    pub fn cached(g: &Geometry, half_range: f64, step: f64) -> Result<Arc<ContactTable>, GeometryError> {
+        type Cache = Mutex<Vec<(String, Arc<ContactTable>)>>;
+        static CACHE: LazyLock<Cache> = LazyLock::new(|| Mutex::new(Vec::new()));
+        let key = format!("{:?} {:?} {half_range:e} {step:e}", g.wheelset(), g.track());
+        if let Some((_, t)) = CACHE.lock().expect("cache lock").iter().find(|(k, _)| *k == key) {
+            return Ok(t.clone());
+        }
+        let table = Arc::new(ContactTable::new(g, half_range, step)?);
+        let mut cache = CACHE.lock().expect("cache lock");
+        if cache.len() >= 8 {
+            cache.remove(0);
+        }
+        cache.push((key, table.clone()));
+        Ok(table)
     }
 
     /// The rows.
