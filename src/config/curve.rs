@@ -21,7 +21,7 @@ use super::ConfigError;
 use super::reader::{Range, Section};
 use crate::curving::geometry::{Geometry, Side, TrackShape, WheelsetShape};
 use crate::curving::profile::Profile;
-use crate::curving::steady::{ContactModel, Patch, Problem, SteadyState, TABLE};
+use crate::curving::steady::{ContactModel, CreepLaw, Patch, Problem, SteadyState, TABLE};
 use crate::curving::table::ContactTable;
 use crate::curving::vehicle::{Curve, Loads, Primary, Vehicle};
 use crate::hertz::Elastic;
@@ -244,7 +244,11 @@ pub(super) fn apply(
         Vehicle::Wheelset
     };
     let loads = Loads { axle_load, centre_height, traction };
-    let contact = ContactModel { elastic: Elastic { young_modulus: young, poisson_ratio: nu }, friction: mu };
+    let contact = ContactModel {
+        elastic: Elastic { young_modulus: young, poisson_ratio: nu },
+        friction: mu,
+        creep: CreepLaw::Fastsim,
+    };
     let problem = Problem { geometry: &geometry, table: &table, curve, vehicle, loads, contact };
     let state = match problem.solve() {
         Ok(s) => s,

@@ -46,7 +46,7 @@ use nalgebra::{DMatrix, DVector};
 /// normal forces (relative to the axle load).
 const PER_WHEELSET: usize = 5;
 /// Force balance to which the solution converges, relative to the axle load.
-const TOLERANCE: f64 = 1e-5;
+const TOLERANCE: f64 = 1e-4;
 /// Newton iterations per continuation step.
 const MAX_ITERATIONS: usize = 60;
 /// Contact angle above which a contact is on the flange (rad, 45 degrees).
@@ -59,6 +59,20 @@ pub struct ContactModel {
     pub elastic: Elastic,
     /// Coulomb friction coefficient (1).
     pub friction: f64,
+    /// The creep forces' law.
+    pub creep: CreepLaw,
+}
+
+/// How the creep forces follow from the creepages.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CreepLaw {
+    /// FASTSIM on the Hertz ellipse (24 x 24 elements), saturating at mu N.
+    Fastsim,
+    /// Kalker's linear theory, unsaturated: `F_x = -G a b C11 xi_x`, `F_y =
+    /// -G a b (C22 xi_y + sqrt(a b) C23 phi)` (Kalker, *Three-dimensional
+    /// elastic bodies in rolling contact*, 1990): the linear curving
+    /// theory's law, for checks at small creepages.
+    Linear,
 }
 
 /// One contact patch of the solution.
@@ -313,11 +327,23 @@ impl Problem<'_> {
         if let Ok(patch) = shape.patch(normal_force) {
             let nu = self.contact.elastic.poisson_ratio;
             let coefficients = creep_coefficients(patch.aspect().clamp(0.1, 10.0), nu).expect("aspect clamped");
-            let fastsim =
-                Fastsim::new(24, 24, PressureShape::Hertz, coefficients, self.contact.elastic.shear_modulus());
-            let solution = fastsim.solve_creepage(&patch, creepage, self.contact.friction, self.curve.speed);
-            (semi_axes, approach, force_x, force_lateral) =
-                ((patch.a, patch.b), patch.approach, solution.force_x, solution.force_y);
+            let g = self.contact.elastic.shear_modulus();
+            let (fx, fy) = match self.contact.creep {
+                CreepLaw::Fastsim => {
+                    let fastsim = Fastsim::new(24, 24, PressureShape::Hertz, coefficients, g);
+                    let solution = fastsim.solve_creepage(&patch, creepage, self.contact.friction, self.curve.speed);
+                    (solution.force_x, solution.force_y)
+                }
+                CreepLaw::Linear => {
+                    let gab = g * patch.a * patch.b;
+                    let c = coefficients;
+                    (
+                        -gab * c.c11 * creepage.x,
+                        -gab * (c.c22 * creepage.y + (patch.a * patch.b).sqrt() * c.c23 * creepage.spin),
+                    )
+                }
+            };
+            (semi_axes, approach, force_x, force_lateral) = ((patch.a, patch.b), patch.approach, fx, fy);
         }
         Patch { side, contact: *c, normal_force, semi_axes, approach, conformal, creepage, force_x, force_lateral }
     }
