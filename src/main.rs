@@ -324,7 +324,6 @@ fn main() -> ExitCode {
 /// `corrugation curve`: prints and writes the steady curving of the
 /// config's `[curve]`.
 fn curve(resolved: &Resolved, config: &Path, out: &Path) -> ExitCode {
-    use corrugation::curving::geometry::Side;
     let Some(setup) = &resolved.curve else {
         say!(
             "error: {} has no [curve] section (radius, cant, the vehicle and profiles): nothing to curve",
@@ -360,27 +359,23 @@ fn curve(resolved: &Resolved, config: &Path, out: &Path) -> ExitCode {
         "flange",
         "2-point"
     );
-    let names = ["leading", "trailing"];
-    for (i, w) in setup.state.wheelsets.iter().enumerate() {
-        for (side, rail) in [(Side::Left, "low"), (Side::Right, "high")] {
-            let p = w.on(side);
-            let name = if setup.state.wheelsets.len() > 1 { format!("{} {rail}", names[i]) } else { rail.to_string() };
-            let followed = i == setup.wheelset && side == setup.rail;
-            say!(
-                "{:<14} {:>8.2} {:>10.3e} {:>10.3e} {:>8.3} {:>+7.2} {:>+8.2} {:>9.1} {:>6} {:>7}{}",
-                name,
-                p.normal_force * 1e-3,
-                p.creepage.x,
-                -p.creepage.y,
-                -p.creepage.spin,
-                -w.shift * 1e3,
-                w.angle_of_attack() * 1e3,
-                p.contact_angle().to_degrees(),
-                if p.on_flange() { "yes" } else { "no" },
-                if p.two_point() { "yes" } else { "no" },
-                if followed { "  <- the study's rail" } else { "" }
-            );
-        }
+    let followed = setup.patches().0;
+    for (name, w, p) in setup.state.wheels() {
+        let (creepage_y, spin, _) = p.study_axes(false);
+        say!(
+            "{:<14} {:>8.2} {:>10.3e} {:>10.3e} {:>8.3} {:>+7.2} {:>+8.2} {:>9.1} {:>6} {:>7}{}",
+            name,
+            p.normal_force * 1e-3,
+            p.creepage.x,
+            creepage_y,
+            spin,
+            -w.shift * 1e3,
+            w.angle_of_attack() * 1e3,
+            p.contact_angle().to_degrees(),
+            if p.on_flange() { "yes" } else { "no" },
+            if p.two_point() { "yes" } else { "no" },
+            if std::ptr::eq(p, followed) { "  <- the study's rail" } else { "" }
+        );
     }
     match corrugation::output::curve_file::write_curve_file(out, setup, &resolved.toml) {
         Ok(()) => {

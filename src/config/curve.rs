@@ -72,12 +72,11 @@ impl CurveSetup {
     }
 }
 
-/// A number from another section, as given (a number or a quantity).
-fn raw(root: &Table, section: &str, key: &str, unit: &str) -> Option<f64> {
-    match root.get(section)?.get(key)? {
-        Value::String(t) => super::quantity::parse_quantity(t, unit).ok(),
-        v => v.as_float().or(v.as_integer().map(|i| i as f64)),
-    }
+/// A number from another section, as given (a number or a quantity in its
+/// key's unit).
+fn raw(root: &Table, section: &str, key: &str) -> Option<f64> {
+    let unit = super::units::key_units(&format!("{section}.{key}")).unwrap_or("1");
+    super::quantity::number(root.get(section)?.get(key)?, unit)
 }
 
 /// A profile by name ("S1002", "cone 1:N", "60E1") or file (relative to
@@ -158,11 +157,11 @@ pub(super) fn apply(
     let followed = s.choice("rail", Some("low"), &["low", "high"]);
     let resolved = s.finish();
 
-    let speed = raw(root, "rolling", "speed", "m/s");
+    let speed = raw(root, "rolling", "speed");
     let (young, nu, mu) = (
-        raw(root, "material", "young_modulus", "Pa"),
-        raw(root, "material", "poisson_ratio", "1"),
-        raw(root, "material", "friction_coefficient", "1"),
+        raw(root, "material", "young_modulus"),
+        raw(root, "material", "poisson_ratio"),
+        raw(root, "material", "friction_coefficient"),
     );
     let creepage_control = root.get("load").and_then(|l| l.get("control")).and_then(Value::as_str) == Some("creepage");
     let (
@@ -270,65 +269,68 @@ pub(super) fn apply(
     };
     let (first, second) = setup.patches();
     let has_second = root.contains_key("second_rail");
-    let mut set = |section: &str, key: &str, value: f64| {
+    let mut set = |key: &str, value: f64| {
+        let (section, name) = key.split_once('.').expect("section.key");
         let table = root.entry(section).or_insert_with(|| Value::Table(Table::new()));
         let Some(table) = table.as_table_mut() else { return };
-        let given = table.get(key).map(|v| match v {
-            Value::String(t) => super::quantity::parse_quantity(t, "1").ok(),
-            v => v.as_float().or(v.as_integer().map(|i| i as f64)),
-        });
-        match given {
+        let unit = super::units::key_units(key).unwrap_or("1");
+        match table.get(name).map(|v| super::quantity::number(v, unit)) {
             Some(Some(g)) if g.to_bits() == value.to_bits() => {}
             Some(_) => errors.push(ConfigError::new(
-                &format!("{section}.{key}"),
+                key,
                 format!("is set by [curve] (to {value:e}); remove it, or the [curve] section"),
             )),
             None => {
-                table.insert(key.into(), Value::Float(value));
+                table.insert(name.into(), Value::Float(value));
             }
         }
     };
-    // The study's axes: y to the right, spin about the downward normal;
-    // the high rail as the mirror image's first rail.
-    let turn = |p: &Patch| {
-        if setup.rail == Side::Left { (-p.creepage.y, -p.creepage.spin) } else { (p.creepage.y, p.creepage.spin) }
-    };
-    let (cy, spin) = turn(first);
-    set("load", "normal_force", first.normal_force);
-    set("rolling", "creepage_y", cy);
-    set("rolling", "spin", spin);
-    if creepage_control {
-        set("rolling", "creepage_x", first.creepage.x);
-    } else {
-        set("load", "longitudinal_force", first.force_x);
-    }
-    let c = &first.contact;
-    set("geometry", "wheel_radius", c.rolling_radius / c.normal.1);
-    let (a, b) = c.curvatures;
-    let b = if first.conformal { a * 1e-3 } else { b };
-    let rail_curvature = c.rail_curvature.max(1e-9);
-    let wheel_curvature = 2.0 * b - rail_curvature;
-    set("geometry", "rail_head_radius", if rail_curvature <= 1e-9 { f64::INFINITY } else { 1.0 / rail_curvature });
-    set(
-        "geometry",
-        "wheel_profile_radius",
-        if wheel_curvature.abs() < 1e-9 { f64::INFINITY } else { 1.0 / wheel_curvature },
-    );
-    if has_second {
-        // The other wheel, in the same axes (its own mirror for the high rail).
-        let (cy, spin) = if setup.rail == Side::Left {
-            (-second.creepage.y, -second.creepage.spin)
-        } else {
-            (second.creepage.y, second.creepage.spin)
-        };
-        set("second_rail", "normal_force", second.normal_force);
-        set("second_rail", "creepage_y", cy);
-        set("second_rail", "spin", spin);
+    // Each rail's steady state in the study's axes (y to the right, spin
+    // about the downward normal); the high rail as the mirror image's first
+    // rail.
+    let rails = [
+        (
+            first,
+            [
+                "load.normal_force",
+                "rolling.creepage_y",
+                "rolling.spin",
+                "rolling.creepage_x",
+                "load.longitudinal_force",
+            ],
+        ),
+        (
+            second,
+            [
+                "second_rail.normal_force",
+                "second_rail.creepage_y",
+                "second_rail.spin",
+                "second_rail.creepage_x",
+                "second_rail.longitudinal_force",
+            ],
+        ),
+    ];
+    for (p, [normal, creepage_y, spin, creepage_x, longitudinal]) in rails.into_iter().take(1 + usize::from(has_second))
+    {
+        let (y, phi, _) = p.study_axes(setup.rail == Side::Right);
+        set(normal, p.normal_force);
+        set(creepage_y, y);
+        set(spin, phi);
         if creepage_control {
-            set("second_rail", "creepage_x", second.creepage.x);
+            set(creepage_x, p.creepage.x);
         } else {
-            set("second_rail", "longitudinal_force", second.force_x);
+            set(longitudinal, p.force_x);
         }
     }
+    // The followed wheel's contact curvatures (the Hertz problem's).
+    let c = &first.contact;
+    set("geometry.wheel_radius", c.rolling_radius / c.normal.1);
+    let rail_curvature = c.rail_curvature.max(1e-9);
+    let wheel_curvature = 2.0 * first.curvatures.1 - rail_curvature;
+    set("geometry.rail_head_radius", if rail_curvature <= 1e-9 { f64::INFINITY } else { 1.0 / rail_curvature });
+    set(
+        "geometry.wheel_profile_radius",
+        if wheel_curvature.abs() < 1e-9 { f64::INFINITY } else { 1.0 / wheel_curvature },
+    );
     Some((resolved, Some(setup)))
 }

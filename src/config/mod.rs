@@ -254,11 +254,7 @@ fn overridden_step_sets_both(root: &mut Table, overrides: &[String]) {
     // reported as such, and the file's key stays).
     let given = if other.0 == "passage" { ("contact", "dx") } else { ("passage", "step_length") };
     let value = root.get(given.0).and_then(|t| t.get(given.1));
-    let number = |v: &Value| match v {
-        Value::String(t) => quantity::parse_quantity(t, "m").ok(),
-        v => v.as_float().or(v.as_integer().map(|i| i as f64)),
-    };
-    let valid = value.and_then(number).is_some_and(|v| v > 0.0 && v <= 0.01);
+    let valid = value.and_then(|v| quantity::number(v, "m")).is_some_and(|v| v > 0.0 && v <= 0.01);
     if fixed
         && valid
         && let Some(Value::Table(t)) = root.get_mut(other.0)

@@ -25,6 +25,15 @@ fn is_plain(si_unit: &str) -> bool {
     si_unit == "1" || si_unit.starts_with("dB")
 }
 
+/// A config value as a number in `si_unit`: a TOML number, or a string
+/// with its unit ([`parse_quantity`]); None for anything else.
+pub fn number(value: &toml::Value, si_unit: &str) -> Option<f64> {
+    match value {
+        toml::Value::String(t) => parse_quantity(t, si_unit).ok(),
+        v => v.as_float().or(v.as_integer().map(|i| i as f64)),
+    }
+}
+
 /// `text` (a number followed by a unit, e.g. `70km/h`) in `si_unit`, the
 /// key's SI unit. The error says what was wrong (the unit unknown, or of
 /// another kind than `si_unit`) and gives an example of the right kind.

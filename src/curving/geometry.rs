@@ -335,7 +335,7 @@ impl Geometry {
 
     /// The geometry at track position `y` (m): the gap, the rail's slope and
     /// curvature, the wheel's radius there.
-    pub fn at(&self, side: Side, pose: &Pose, y: f64) -> Option<Closest> {
+    fn at(&self, side: Side, pose: &Pose, y: f64) -> Option<Closest> {
         let h = CURVATURE_STEP;
         let (gm, g0, gp) = (self.gap(side, pose, y - h)?, self.gap(side, pose, y)?, self.gap(side, pose, y + h)?);
         let (rm, r0, rp) = (self.rail_height(side, y - h)?, self.rail_height(side, y)?, self.rail_height(side, y + h)?);

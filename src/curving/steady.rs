@@ -1,9 +1,8 @@
-//! Steady (quasi-static) curving of a wheelset or a bogie: the pose of each
-//! wheelset (lateral shift, height, roll, yaw from the radial, rotation
-//! speed) at which the creep, normal and suspension forces balance the
-//! curve's load (Boocock, *Vehicle System Dynamics* 5 (1969) 1-26, for the
-//! equations; elastic multi-point contact as in Shabana, Zaazaa and
-//! Sugiyama, *Railroad Vehicle Dynamics*, 2008, ch. 5).
+//! Steady (quasi-static) curving of a wheelset or a bogie: each wheelset's
+//! lateral shift, yaw from the radial, rotation speed and two normal forces
+//! at which the creep, normal and suspension forces balance the curve's
+//! load (Boocock, *Vehicle System Dynamics* 5 (1969) 1-26, for the
+//! equations).
 //!
 //! Each wheel touches its rail at its rigid contact point, read from the
 //! wheelset's [`ContactTable`] at its lateral shift (the height and roll
@@ -45,10 +44,14 @@ use nalgebra::{DMatrix, DVector};
 /// Unknowns per wheelset: lateral shift, yaw, spin offset, left and right
 /// normal forces (relative to the axle load).
 const PER_WHEELSET: usize = 5;
-/// Force balance to which the solution converges, relative to the axle load.
+/// Force balance to which the solution converges, relative to the axle load
+/// (FASTSIM's 24 x 24 mesh leaves a noise of about 1e-5).
 const TOLERANCE: f64 = 1e-4;
-/// Newton iterations per continuation step.
+/// Iterations per continuation step.
 const MAX_ITERATIONS: usize = 60;
+/// The forward differences' step of every unknown: 1 um, 1 urad, 1e-6 of
+/// the rotation speed and of the axle load.
+const DIFFERENCE: f64 = 1e-6;
 /// Contact angle above which a contact is on the flange (rad, 45 degrees).
 pub const FLANGE_ANGLE: f64 = std::f64::consts::FRAC_PI_4;
 
@@ -88,6 +91,9 @@ pub struct Patch {
     pub semi_axes: (f64, f64),
     /// Hertz approach (m).
     pub approach: f64,
+    /// The Hertz problem's curvature sums `A`, `B` (1/m): the contact's,
+    /// `B` raised to `A / 1000` where conformal.
+    pub curvatures: (f64, f64),
     /// Whether the profiles are conformal there (the lateral curvature sum
     /// not above `A / 1000`, raised to it): the Hertz patch is then a bound,
     /// not a solution.
@@ -114,6 +120,16 @@ impl Patch {
     /// Whether a second point is within the Hertz approach: two-point contact.
     pub fn two_point(&self) -> bool {
         self.contact.second_clearance < self.approach
+    }
+
+    /// The lateral creepage, spin (1/m) and lateral creep force (N) in a
+    /// study's axes (x forward, y to the right, the spin about the downward
+    /// normal) for the curve turning left, or for its mirror image turning
+    /// right (`mirror`: how a study of the high rail takes it, as its first
+    /// rail).
+    pub fn study_axes(&self, mirror: bool) -> (f64, f64, f64) {
+        let s = if mirror { 1.0 } else { -1.0 };
+        (s * self.creepage.y, s * self.creepage.spin, s * self.force_lateral)
     }
 
     /// The force on the wheel in the track's cross-section `(F_Y, F_Z)` (N).
@@ -160,10 +176,30 @@ pub struct SteadyState {
     pub wheelsets: Vec<WheelsetState>,
     /// The bogie frame's lateral shift (m) and yaw from the radial (rad).
     pub frame: Option<(f64, f64)>,
-    /// Newton iterations, all continuation steps together.
+    /// Iterations, all continuation steps together.
     pub iterations: usize,
     /// The largest force residual, relative to the axle load.
     pub residual: f64,
+}
+
+impl SteadyState {
+    /// Every wheel, the leading wheelset's first, the low rail's before the
+    /// high: its name ("leading low"; "low" with a single wheelset), its
+    /// wheelset and its patch.
+    pub fn wheels(&self) -> Vec<(String, &WheelsetState, &Patch)> {
+        let mut out = Vec::new();
+        for (i, w) in self.wheelsets.iter().enumerate() {
+            for (side, rail) in [(Side::Left, "low"), (Side::Right, "high")] {
+                let name = if self.wheelsets.len() > 1 {
+                    format!("{} {rail}", ["leading", "trailing"][i])
+                } else {
+                    rail.to_string()
+                };
+                out.push((name, w, w.on(side)));
+            }
+        }
+        out
+    }
 }
 
 /// A steady state that cannot be found.
@@ -172,20 +208,15 @@ pub enum CurvingError {
     /// The geometry fails.
     #[error(transparent)]
     Geometry(#[from] GeometryError),
-    /// A wheel unloads (its normal force would be negative: it lifts off,
-    /// or the flange climbs) or the wheelset leaves the table.
-    #[error("wheelset {wheelset}'s {side} wheel {what} at a lateral shift of {y_mm:.2} mm: no steady curving there")]
-    NoContact {
-        /// The side.
-        side: &'static str,
+    /// A wheelset leaves the contact table: its flange climbs.
+    #[error("wheelset {wheelset} runs beyond its flange contact (lateral shift {y_mm:.2} mm): no steady curving there")]
+    OffTable {
         /// The wheelset (1 the leading).
         wheelset: usize,
         /// Its lateral shift (mm).
         y_mm: f64,
-        /// What happens.
-        what: &'static str,
     },
-    /// Newton's method did not converge.
+    /// Levenberg-Marquardt's method did not converge.
     #[error(
         "steady curving did not converge at {fraction:.3} of the curve (curvature, cant, traction): force residual {residual:.2e} of the axle load after {iterations} iterations, largest in {worst}"
     )]
@@ -237,7 +268,7 @@ impl Problem<'_> {
         let (mut done, mut step, mut iterations) = (0.0, 1.0f64, 0);
         loop {
             let fraction = (done + step).min(1.0);
-            match self.newton(&u, fraction, &axles) {
+            match self.levenberg_marquardt(&u, fraction, &axles) {
                 Ok((next, its)) => {
                     iterations += its;
                     u = next;
@@ -272,7 +303,7 @@ impl Problem<'_> {
         Ok(SteadyState { wheelsets: states, frame, iterations, residual: r.amax() })
     }
 
-    /// Newton's method at `fraction` from starting points that move one
+    /// Levenberg-Marquardt's method at `fraction` from starting points that move one
     /// wheelset (the leading first) 1, 2, 4 or 6 mm towards the high rail.
     fn jump(&self, u: &[f64], fraction: f64, axles: &[f64]) -> Option<(Vec<f64>, usize)> {
         let mut its = 0;
@@ -280,7 +311,7 @@ impl Problem<'_> {
             for shift in [1e-3, 2e-3, 4e-3, 6e-3] {
                 let mut v = u.to_vec();
                 v[PER_WHEELSET * i] -= shift;
-                match self.newton(&v, fraction, axles) {
+                match self.levenberg_marquardt(&v, fraction, axles) {
                     Ok((next, k)) => return Some((next, its + k)),
                     Err(_) => its += MAX_ITERATIONS,
                 }
@@ -323,6 +354,8 @@ impl Problem<'_> {
             y: -yaw * nz,
             spin: (1.0 + eps) * ny / r0 + nz * kappa,
         };
+        let curvatures = shape.curvatures();
+        let curvatures = (curvatures.a, curvatures.b);
         let (mut semi_axes, mut approach, mut force_x, mut force_lateral) = ((0.0, 0.0), 0.0, 0.0, 0.0);
         if let Ok(patch) = shape.patch(normal_force) {
             let nu = self.contact.elastic.poisson_ratio;
@@ -345,7 +378,18 @@ impl Problem<'_> {
             };
             (semi_axes, approach, force_x, force_lateral) = ((patch.a, patch.b), patch.approach, fx, fy);
         }
-        Patch { side, contact: *c, normal_force, semi_axes, approach, conformal, creepage, force_x, force_lateral }
+        Patch {
+            side,
+            contact: *c,
+            normal_force,
+            semi_axes,
+            approach,
+            curvatures,
+            conformal,
+            creepage,
+            force_x,
+            force_lateral,
+        }
     }
 
     /// The equations' residuals at unknowns `u`, at `fraction` of the curve.
@@ -374,13 +418,7 @@ impl Problem<'_> {
             let w = &u[PER_WHEELSET * i..PER_WHEELSET * (i + 1)];
             let (y, yaw, eps) = (w[0], w[1], w[2]);
             let Some(row) = self.table.at(y) else {
-                let side = if y > 0.0 { "left" } else { "right" };
-                return Err(CurvingError::NoContact {
-                    side,
-                    wheelset: i + 1,
-                    y_mm: y * 1e3,
-                    what: "runs beyond its flange contact",
-                });
+                return Err(CurvingError::OffTable { wheelset: i + 1, y_mm: y * 1e3 });
             };
             let patches = [Side::Left, Side::Right]
                 .map(|s| self.patch(s, &row.wheel[s as usize], (w[3 + s as usize] * q).max(0.0), yaw, eps, kappa));
@@ -412,7 +450,8 @@ impl Problem<'_> {
             r[k + 2] = mx / (q * b);
             r[k + 3] = (mz + ext_mz) / (q * b);
             r[k + 4] = (my - traction) / q;
-            // A wheel whose normal force would be negative lifts off.
+            // A wheel whose normal force would be negative lifts off: its
+            // force is held at zero, the vertical balance pushed back.
             for s in Side::BOTH {
                 if w[3 + s as usize] < 0.0 {
                     r[k + 1] += w[3 + s as usize];
@@ -425,10 +464,8 @@ impl Problem<'_> {
 
     /// Levenberg-Marquardt's method from `u0` (forward-difference
     /// Jacobian), each step within the unknowns' limits.
-    fn newton(&self, u0: &[f64], fraction: f64, axles: &[f64]) -> Result<(Vec<f64>, usize), CurvingError> {
+    fn levenberg_marquardt(&self, u0: &[f64], fraction: f64, axles: &[f64]) -> Result<(Vec<f64>, usize), CurvingError> {
         let n = u0.len();
-        // Forward differences: 1 um, 1 urad, 1e-6 of the spin and the axle load.
-        let steps = vec![1e-6; n];
         let limits: Vec<f64> = (0..n)
             .map(
                 |j| if j >= PER_WHEELSET * axles.len() { 2e-3 } else { [1e-3, 2e-3, 2e-3, 0.5, 0.5][j % PER_WHEELSET] },
@@ -444,9 +481,9 @@ impl Problem<'_> {
             let mut jac = DMatrix::zeros(n, n);
             for j in 0..n {
                 let mut v = u.clone();
-                v[j] += steps[j];
+                v[j] += DIFFERENCE;
                 let rj = self.residual(&v, fraction, axles)?.0;
-                jac.set_column(j, &((rj - &r) / steps[j]));
+                jac.set_column(j, &((rj - &r) / DIFFERENCE));
             }
             // Levenberg-Marquardt with Marquardt's scaling (Newton's step as
             // the damping vanishes), each step within the unknowns' limits.

@@ -90,36 +90,29 @@ pub fn write_curve_file(path: &Path, setup: &CurveSetup, config: &str) -> Result
             c.attr_f64("frame_lateral_shift_m", -y)?;
             c.attr_f64("frame_yaw_rad", yaw)?;
         }
-        let names_of = ["leading", "trailing"];
         let mut names = Vec::new();
         let mut cols: Vec<Vec<f64>> = vec![Vec::new(); 14];
-        for (i, w) in setup.state.wheelsets.iter().enumerate() {
-            for (side, rail) in [(Side::Left, "low"), (Side::Right, "high")] {
-                let p = w.on(side);
-                names.push(if setup.state.wheelsets.len() > 1 {
-                    format!("{} {rail}", names_of[i])
-                } else {
-                    rail.to_string()
-                });
-                let v = [
-                    p.normal_force,
-                    p.creepage.x,
-                    -p.creepage.y,
-                    -p.creepage.spin,
-                    p.force_x,
-                    -p.force_lateral,
-                    -w.shift,
-                    w.angle_of_attack(),
-                    p.contact_angle(),
-                    p.contact.rolling_radius,
-                    p.contact.wheel_lateral,
-                    p.contact.rail_lateral,
-                    f64::from(u8::from(p.on_flange())),
-                    f64::from(u8::from(p.two_point())),
-                ];
-                for (col, x) in cols.iter_mut().zip(v) {
-                    col.push(x);
-                }
+        for (name, w, p) in setup.state.wheels() {
+            names.push(name);
+            let (creepage_y, spin, lateral_force) = p.study_axes(false);
+            let v = [
+                p.normal_force,
+                p.creepage.x,
+                creepage_y,
+                spin,
+                p.force_x,
+                lateral_force,
+                -w.shift,
+                w.angle_of_attack(),
+                p.contact_angle(),
+                p.contact.rolling_radius,
+                p.contact.wheel_lateral,
+                p.contact.rail_lateral,
+                f64::from(u8::from(p.on_flange())),
+                f64::from(u8::from(p.two_point())),
+            ];
+            for (col, x) in cols.iter_mut().zip(v) {
+                col.push(x);
             }
         }
         c.coord_str("wheel", &names, "", "wheelset and rail")?;

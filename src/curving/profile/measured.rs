@@ -126,7 +126,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn spline_reproduces_a_cubic_inside_and_a_line_exactly() {
+    fn spline_reproduces_a_line_exactly_and_a_circle_within_a_nanometre() {
         let x: Vec<f64> = (0..41).map(|i| -20.0 + i as f64).collect();
         let line: Vec<f64> = x.iter().map(|v| 0.5 - 0.05 * v).collect();
         let s = Spline::new(x.clone(), line);

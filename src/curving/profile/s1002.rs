@@ -88,7 +88,7 @@ mod tests {
         // 32.5 mm at 10 mm above the tape circle (from the back at -70).
         assert!(height_mm(0.0).unwrap().abs() < 1e-9);
         assert!((height_mm(-55.0).unwrap() - 28.0).abs() < 1e-9);
-        assert!((height_mm(-37.5).unwrap() - 10.0).abs() < 1e-3 * 1e-3 * 1e3, "{}", height_mm(-37.5).unwrap());
+        assert!((height_mm(-37.5).unwrap() - 10.0).abs() < 1e-3, "{} mm", height_mm(-37.5).unwrap()); // 1 um
         assert_eq!(height_mm(-70.1), None);
         assert_eq!(height_mm(60.1), None);
     }
